@@ -1,0 +1,45 @@
+"""lumped: vibrations of lumped-parameter systems governed by DAEs.
+
+A mass on a linear spring and a Bingham (or Coulomb, or any monotone) dashpot,
+whose velocity is a function of its force but not the other way round
+(Darbha, Nakshatrala and Rajagopal, 2020).
+
+Modules, one idea each: :mod:`~lumped.laws` (springs and dashpots),
+:mod:`~lumped.timestepping` (Algorithm 1), :mod:`~lumped.event_driven` (exact
+solution), :mod:`~lumped.textbook` (the ``sgn(0) = 0`` model),
+:mod:`~lumped.forcing`, :mod:`~lumped.simulate`, :mod:`~lumped.results`,
+:mod:`~lumped.cli`.
+"""
+
+from lumped.event_driven import Event, ExactSolution, Phase, solve_exact
+from lumped.forcing import SwitchedSine, paper_forcing
+from lumped.laws import BinghamDashpot, Dashpot, DashpotState, LinearSpring, MonotoneDashpot, coulomb
+from lumped.results import COLUMNS, EnergyBalance, Trajectory
+from lumped.simulate import METHODS, simulate
+from lumped.system import Oscillator
+from lumped.timestepping import algorithm1, backward_euler
+
+__all__ = [
+    "BinghamDashpot",
+    "COLUMNS",
+    "Dashpot",
+    "DashpotState",
+    "EnergyBalance",
+    "Event",
+    "ExactSolution",
+    "LinearSpring",
+    "METHODS",
+    "MonotoneDashpot",
+    "Oscillator",
+    "Phase",
+    "SwitchedSine",
+    "Trajectory",
+    "algorithm1",
+    "backward_euler",
+    "coulomb",
+    "paper_forcing",
+    "simulate",
+    "solve_exact",
+]
+
+__version__ = "0.1.0"

@@ -1,0 +1,292 @@
+"""Constitutive laws: the linear spring and the dashpots.
+
+A dashpot here is a *graph* relating velocity and force, written the way the
+paper writes eq. (6): the velocity as a function of the force, ``v = phi(F_d)``.
+When ``phi`` is flat (the Bingham band ``|F_d| <= mu_s N_f``) the inverse is
+set-valued, so ``F_d`` cannot be computed from ``v`` and becomes an unknown of
+the differential-algebraic system (8).
+
+One backward-Euler step (eqs. 13 to 15) reduces to a scalar equation for the
+dashpot force.  With ``eta = m/dt + k*dt`` eq. (15a) reads
+
+    F_d + eta * phi(F_d) = F~,          v = (F~ - F_d) / eta,
+
+that is ``F_d = (I + eta*phi)^{-1}(F~)``: the *resolvent* of the monotone graph
+``phi`` applied to the predictor ``F~`` of eq. (15b).  Each law provides that
+resolvent; Algorithm 1 is its closed form for the Bingham graph.
+"""
+
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from lumped import _validate
+
+__all__ = [
+    "LinearSpring",
+    "Dashpot",
+    "BinghamDashpot",
+    "MonotoneDashpot",
+    "DashpotState",
+    "coulomb",
+]
+
+
+@dataclass(frozen=True)
+class LinearSpring:
+    """Linear spring, eq. (5): ``x = F_s / k``.
+
+    Parameters
+    ----------
+    stiffness : float, N/m
+        Spring constant ``k > 0``.
+    """
+
+    stiffness: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(
+            self, "stiffness", _validate.positive("stiffness", self.stiffness)
+        )
+
+    def force(self, x: np.ndarray | float) -> np.ndarray | float:
+        """Spring force ``F_s = k x`` (N) for displacement ``x`` (m)."""
+        return self.stiffness * x
+
+    def displacement(self, force: np.ndarray | float) -> np.ndarray | float:
+        """Displacement ``x = F_s / k`` (m), eq. (5)."""
+        return force / self.stiffness
+
+    def energy(self, force: np.ndarray | float) -> np.ndarray | float:
+        """Stored energy ``F_s**2 / (2k)`` (J)."""
+        return 0.5 * force * force / self.stiffness
+
+
+class DashpotState(NamedTuple):
+    """Solution of one implicit dashpot step: ``force`` (N), ``velocity`` (m/s)."""
+
+    force: float
+    velocity: float
+
+
+class Dashpot(ABC):
+    """A dashpot given by its velocity-force graph ``v = phi(F_d)``.
+
+    A new dashpot law must provide:
+
+    1. ``velocity(force)``: the graph ``phi``, vectorised over NumPy arrays.
+       It must be monotone non-decreasing with ``phi(0) = 0`` (a dashpot
+       dissipates: ``F_d * v >= 0``).  It may be flat on an interval, where the
+       force is not a function of the velocity.
+    2. ``force_interval(velocity)``: the inverse graph, the closed interval
+       ``(lo, hi)`` of forces compatible with a velocity (``lo == hi`` off the
+       flat parts).  Used for plots and for the Filippov set of eq. (11).
+    3. ``_resolvent_impl(predictor, eta)``: the solution ``F_d`` of
+       ``F_d + eta*phi(F_d) = predictor`` together with ``v = phi(F_d)``,
+       returned as a :class:`DashpotState`.  ``eta > 0`` is finite.
+    4. ``threshold``: the largest ``|F_d|`` for which ``phi(F_d) = 0`` (the
+       static band), ``0`` if there is none.
+
+    The public :meth:`resolvent` checks its arguments and calls the hook.
+    """
+
+    threshold: float
+
+    @abstractmethod
+    def velocity(self, force: np.ndarray | float) -> np.ndarray | float:
+        """Velocity ``phi(F_d)`` (m/s) carried by a dashpot force (N)."""
+
+    @abstractmethod
+    def force_interval(self, velocity: float) -> tuple[float, float]:
+        """Interval of dashpot forces (N) compatible with ``velocity`` (m/s)."""
+
+    @abstractmethod
+    def _resolvent_impl(self, predictor: float, eta: float) -> DashpotState:
+        """Solve ``F_d + eta*phi(F_d) = predictor`` (see the class docstring)."""
+
+    def resolvent(self, predictor: float, eta: float) -> DashpotState:
+        """Implicit dashpot step: ``F_d = (I + eta*phi)^{-1}(predictor)``.
+
+        Parameters
+        ----------
+        predictor : float, N
+            ``F~`` of eq. (15b).
+        eta : float, kg/s
+            ``m/dt + k*dt``, the factor of eq. (15a) divided by ``dt/m``.
+
+        Returns
+        -------
+        DashpotState
+            Dashpot force and velocity at the new time level.
+        """
+        predictor = _validate.finite("predictor", predictor)
+        eta = _validate.positive("eta", eta)
+        return self._resolvent_impl(predictor, eta)
+
+
+@dataclass(frozen=True)
+class BinghamDashpot(Dashpot):
+    """Bingham dashpot, eq. (6).
+
+    Parameters
+    ----------
+    threshold : float, N
+        The paper's ``mu_s N_f >= 0``: the half-width of the static band.
+    gamma : float, m/(N s)
+        Slope ``gamma > 0`` of the velocity-force graph outside the band;
+        ``inf`` gives the Coulomb law of Remark 2.1.
+
+    Notes
+    -----
+    Outside the band ``F_d = sgn(v) mu_s N_f + v / gamma`` (eq. 7).  The step is
+    computed with the *viscosity* ``c = 1/gamma``, which is ``0`` for Coulomb,
+    so that no ``inf * 0`` ever arises (Algorithm 1, line 8, divided through by
+    ``gamma``).
+    """
+
+    threshold: float = 1.0
+    gamma: float = 1.0
+
+    def __post_init__(self) -> None:
+        object.__setattr__(
+            self, "threshold", _validate.non_negative("threshold", self.threshold)
+        )
+        object.__setattr__(self, "gamma", _validate.positive_or_inf("gamma", self.gamma))
+
+    @property
+    def viscosity(self) -> float:
+        """``c = 1/gamma`` (N s/m); ``0`` for the Coulomb law."""
+        return 0.0 if math.isinf(self.gamma) else 1.0 / self.gamma
+
+    def velocity(self, force: np.ndarray | float) -> np.ndarray | float:
+        excess = np.maximum(np.abs(force) - self.threshold, 0.0)
+        if math.isinf(self.gamma):
+            return np.where(excess > 0, np.sign(force) * np.inf, 0.0)
+        return np.sign(force) * self.gamma * excess
+
+    def force_interval(self, velocity: float) -> tuple[float, float]:
+        if velocity == 0:
+            return (-self.threshold, self.threshold)
+        f = math.copysign(self.threshold, velocity) + self.viscosity * velocity
+        return (f, f)
+
+    def slip_force(self, velocity: np.ndarray | float) -> np.ndarray | float:
+        """Force while slipping, ``sgn(v) mu_s N_f + v/gamma`` (eq. 7); 0 at v = 0."""
+        return np.sign(velocity) * self.threshold + self.viscosity * velocity
+
+    def _resolvent_impl(self, predictor: float, eta: float) -> DashpotState:
+        return DashpotState(*bingham_corrector(predictor, eta, self.threshold, self.viscosity))
+
+
+def bingham_corrector(
+    predictor: float, eta: float, threshold: float, viscosity: float
+) -> tuple[float, float]:
+    """Corrector of Algorithm 1 (lines 5 to 10), returning ``(F_d, v)``.
+
+    Notes
+    -----
+    Line 8 with ``a = 1 + dt^2 k/m`` and ``b = dt/m`` is
+    ``F_d = (gamma*a*s*mu_s N_f + b*F~) / (gamma*a + b)``.  Dividing through by
+    ``gamma*b`` and writing ``eta = a/b``, ``c = 1/gamma`` gives
+    ``F_d = (eta*s*mu_s N_f + c*F~) / (eta + c)``, finite at ``c = 0``.  Line 9,
+    ``v = gamma*(F_d - s*mu_s N_f)``, is evaluated in the algebraically equal
+    form ``v = (F~ - s*mu_s N_f) / (eta + c)``, which has no cancellation and is
+    also finite at ``c = 0``.
+    """
+    if abs(predictor) <= threshold:
+        return predictor, 0.0
+    signed = math.copysign(threshold, predictor)
+    force = (eta * signed + viscosity * predictor) / (eta + viscosity)
+    return force, (predictor - signed) / (eta + viscosity)
+
+
+def coulomb(threshold: float = 1.0) -> BinghamDashpot:
+    """Coulomb friction: the Bingham law with ``gamma = inf`` (Remark 2.1)."""
+    return BinghamDashpot(threshold=threshold, gamma=math.inf)
+
+
+class MonotoneDashpot(Dashpot):
+    """Dashpot given by any monotone law ``v = phi(F_d)`` (Remark 2.3).
+
+    Parameters
+    ----------
+    velocity_of_force : callable
+        ``phi``: monotone non-decreasing, ``phi(0) = 0``, finite for finite force.
+        It is called with floats in the step and with arrays in plots.
+    threshold : float, N
+        Half-width of the flat part around zero, if any (used by plots and by
+        the stick test of results); ``0`` by default.
+    max_iterations : int
+        Bound on the root finder's iterations per step.
+
+    Notes
+    -----
+    The resolvent equation ``g(F) = F + eta*phi(F) - F~ = 0`` has ``g``
+    strictly increasing, ``g(0) = -F~`` and ``g(F~) = eta*phi(F~)``, whose sign
+    is that of ``F~``; so the root lies between ``0`` and ``F~`` and Brent's
+    method (bracketing, hence safeguarded) finds it to a few ulps.
+    """
+
+    def __init__(
+        self,
+        velocity_of_force: Callable[[float], float],
+        threshold: float = 0.0,
+        max_iterations: int = 200,
+    ) -> None:
+        if not callable(velocity_of_force):
+            raise ValueError("velocity_of_force must be callable")
+        if velocity_of_force(0.0) != 0:
+            raise ValueError("velocity_of_force must vanish at zero force")
+        self.phi = velocity_of_force
+        self.threshold = _validate.non_negative("threshold", threshold)
+        self.max_iterations = _validate.positive_int("max_iterations", max_iterations)
+
+    def velocity(self, force: np.ndarray | float) -> np.ndarray | float:
+        if np.ndim(force) == 0:
+            return self.phi(float(force))
+        return np.array([self.phi(float(f)) for f in np.ravel(force)]).reshape(np.shape(force))
+
+    def force_interval(self, velocity: float) -> tuple[float, float]:
+        if velocity == 0:
+            return (-self.threshold, self.threshold)
+        from scipy.optimize import brentq
+
+        hi = math.copysign(1.0, velocity)
+        for _ in range(200):
+            if (self.phi(hi) - velocity) * math.copysign(1.0, velocity) >= 0:
+                break
+            hi *= 2.0
+        else:
+            raise ValueError(f"velocity {velocity} is outside the range of the law")
+        f = brentq(lambda F: self.phi(F) - velocity, 0.0, hi, xtol=1e-300, rtol=4e-16)
+        return (f, f)
+
+    def _resolvent_impl(self, predictor: float, eta: float) -> DashpotState:
+        from scipy.optimize import brentq
+
+        if predictor == 0.0:
+            return DashpotState(0.0, 0.0)
+        phi = self.phi
+        lo, hi = min(0.0, predictor), max(0.0, predictor)
+        force, info = brentq(
+            lambda F: F + eta * phi(F) - predictor,
+            lo,
+            hi,
+            xtol=1e-300,
+            rtol=4 * np.finfo(float).eps,
+            maxiter=self.max_iterations,
+            full_output=True,
+            disp=False,
+        )
+        if not info.converged:
+            raise ValueError(
+                f"velocity_of_force: no convergence in {self.max_iterations} "
+                "iterations; is the law monotone and finite?"
+            )
+        return DashpotState(force, (predictor - force) / eta)
