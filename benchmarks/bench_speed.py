@@ -1,0 +1,97 @@
+"""Speed of the solvers, printed (a benchmark, not a test).
+
+Run from the repository root:  python benchmarks/bench_speed.py [--quick]
+
+Measures, each as the best of several repeats:
+1. Algorithm 1 (backward Euler) on 1e7 steps through the API, compiled kernel
+   and, on fewer steps, the pure-Python twin;
+2. the same 1e7 steps through the command line, interpreter start-up, imports
+   and writing the ``.npz`` file included;
+3. the exact event-driven solver to rest for the free vibration ``x0 = 0.5``;
+4. ``solve_ivp`` on the textbook ``sgn(0) = 0`` model and on its ``tanh``
+   regularisation over the same motion, for comparison.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import lumped as L
+from lumped import textbook, timestepping
+
+
+def best_of(repeats: int, fn) -> float:  # noqa: ANN001
+    """Smallest wall time (s) of ``repeats`` calls of ``fn``."""
+    times = []
+    for _ in range(repeats):
+        start = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - start)
+    return min(times)
+
+
+def bench_api(osc: L.Oscillator, n: int, repeats: int) -> None:
+    dt = 1e-4
+    run = lambda kernel, steps: L.backward_euler(  # noqa: E731
+        osc, steps * dt, dt, x0=0.5, save_every=1000, kernel=kernel
+    )
+    run("auto", 10)  # load the kernel once
+    secs = best_of(repeats, lambda: run("auto", n))
+    print(f"Algorithm 1, API, {timestepping.KERNEL} kernel: {n:.0e} steps in {secs:.3f} s "
+          f"= {n / secs:.3g} steps/s")  # fmt: skip
+    n_py = max(n // 100, 1000)
+    secs = best_of(1, lambda: run("python", n_py))
+    print(f"Algorithm 1, API, pure-Python loop: {n_py:.0e} steps in {secs:.3f} s "
+          f"= {n_py / secs:.3g} steps/s")  # fmt: skip
+
+
+def bench_cli(n: int, repeats: int) -> None:
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "run.npz")
+        cmd = [sys.executable, "-m", "lumped", "simulate", "--x0", "0.5", "--dt", "1e-4",
+               "--t-end", repr(n * 1e-4), "--save-every", "1000", "--output", out]  # fmt: skip
+        call = lambda c: subprocess.run(c, check=True, capture_output=True)  # noqa: E731
+        secs = best_of(repeats, lambda: call(cmd))
+        bare = best_of(repeats, lambda: call([sys.executable, "-c", "import numpy"]))
+    print(f"Algorithm 1, command line: {n:.0e} steps in {secs:.3f} s wall, start-up included "
+          f"= {n / secs:.3g} steps/s (python + import numpy alone: {bare:.3f} s)")  # fmt: skip
+
+
+def bench_exact(osc: L.Oscillator, repeats: int) -> None:
+    sol = L.solve_exact(osc, 5.0, x0=0.5)
+    secs = best_of(repeats, lambda: L.solve_exact(osc, 5.0, x0=0.5))
+    print(f"exact solver, free vibration x0 = 0.5: rest at t = {sol.rest_time:.10f} s, "
+          f"x = {sol.rest_position:.10f} m, {len(sol.events)} events, in {secs * 1e3:.2f} ms")
+
+
+def bench_textbook(osc: L.Oscillator, budget: float) -> None:
+    cases = [("sgn(0) = 0, RK45", textbook.TextbookModel(osc), "RK45"),
+             ("tanh(v/1e-3), RK45", textbook.TextbookModel(osc, eps=1e-3), "RK45"),
+             ("tanh(v/1e-3), Radau", textbook.TextbookModel(osc, eps=1e-3), "Radau")]  # fmt: skip
+    for label, model, method in cases:
+        out = textbook.integrate_adaptive(model, 5.0, x0=0.5, method=method, rtol=1e-8,
+                                          max_nfev=2_000_000, max_seconds=budget)  # fmt: skip
+        print(f"solve_ivp on the textbook model, {label}, x0 = 0.5 over 5 s: "
+              f"{out.wall_time:.3f} s, {out.nfev} evaluations; {out.message}")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--quick", action="store_true", help="1e6 steps, one repeat")
+    args = parser.parse_args()
+    n, repeats = (10**6, 1) if args.quick else (10**7, 3)
+    osc = L.Oscillator.bingham()  # the paper's parameters
+    print(f"python {sys.version.split()[0]}, {os.cpu_count()} cores")
+    bench_api(osc, n, repeats)
+    bench_cli(n, repeats)
+    bench_exact(osc, 20)
+    bench_textbook(osc, 5.0 if args.quick else 30.0)
+
+
+if __name__ == "__main__":
+    main()
