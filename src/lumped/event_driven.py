@@ -35,6 +35,7 @@ __all__ = ["Event", "Phase", "SlipMotion", "ExactSolution", "solve_exact"]
 
 _EPS = np.finfo(float).eps
 _BLOCK = 256  # samples per block when bracketing a zero of v
+_MAX_BLOCKS = 100_000  # bound on the search for one zero of v (2.6e7 samples)
 
 
 @dataclass(frozen=True)
@@ -127,8 +128,11 @@ class SlipMotion:
 
         h = self.time_scale() / 32
         velocity = lambda t: float(self.state(t)[1])  # noqa: E731
+        t_lim = min(t_lim, self.t0 + self.horizon())
         lo = self.t0
-        while lo < t_lim:
+        for _ in range(_MAX_BLOCKS):
+            if lo >= t_lim:
+                return None
             grid = np.minimum(lo + h * np.arange(1, _BLOCK + 1), t_lim)
             ahead = direction * self.state(grid)[1] <= 0
             if ahead.any():
@@ -142,7 +146,22 @@ class SlipMotion:
                     return float(b)
                 return brentq(velocity, a, b, xtol=1e-300, rtol=4 * _EPS, maxiter=200)
             lo = float(grid[-1])
-        return None
+        raise ValueError(f"t_end: no stop found in {_MAX_BLOCKS * _BLOCK} samples of a slip phase")
+
+    def horizon(self) -> float:
+        """Time after ``t0`` beyond which ``v`` cannot return to zero (s), or ``inf``.
+
+        Without an oscillating force an over- or critically damped oscillator's
+        velocity is a sum of two exponentials, which vanishes at most once; by
+        ``60`` slow time constants the transient has decayed by ``e^-60`` and
+        the mass is, to every printed digit, at its asymptote.  Otherwise the
+        search runs to the end of the phase.
+        """
+        sigma = -self.c / (2 * self.m)
+        disc = sigma * sigma - self.k / self.m
+        if disc < 0 or (self.P != 0 and self.w > 0):
+            return math.inf
+        return 60.0 / (-sigma - math.sqrt(disc)) if sigma + math.sqrt(disc) < 0 else math.inf
 
     def _leave_rest(self, b: float, direction: int) -> float | None:
         """A time in ``(t0, b)`` where the motion from rest has the sign ``direction``."""
