@@ -80,7 +80,7 @@ def positive_int(name: str, value: object) -> int:
     return out
 
 
-def step_count(t_end: float, dt: float) -> int:
+def step_count(t_end: float, dt: float, names: str = "t_end/dt") -> int:
     """Number of steps ``N`` of the grid ``t_n = n*dt`` that reaches ``t_end``.
 
     ``t_end`` that is a multiple of ``dt`` up to round-off gives exactly that
@@ -92,7 +92,7 @@ def step_count(t_end: float, dt: float) -> int:
         n = math.ceil(ratio)
     if n > MAX_STEPS:
         raise ValueError(
-            f"t_end/dt must be at most {MAX_STEPS:.0e} steps, got {ratio:.3g}"
+            f"{names} must be at most {MAX_STEPS:.0e} steps, got {ratio:.3g}"
         )
     return max(int(n), 1)
 

@@ -84,7 +84,7 @@ def _clean(args: argparse.Namespace) -> dict[str, object]:
     folder = os.path.dirname(os.path.abspath(args.output))
     if not os.path.isdir(folder):
         raise ValueError(f"--output: directory {folder!r} does not exist")
-    n = _validate.step_count(values["t_end"], values["dt"])  # type: ignore[arg-type]
+    n = _validate.step_count(values["t_end"], values["dt"], "--t-end/--dt")  # type: ignore[arg-type]
     try:
         _validate.output_size(n, values["save_every"])  # type: ignore[arg-type]
     except ValueError as err:
