@@ -88,7 +88,8 @@ def _clean(args: argparse.Namespace) -> dict[str, object]:
     try:
         _validate.output_size(n, values["save_every"])  # type: ignore[arg-type]
     except ValueError as err:
-        raise ValueError("--" + str(err).replace("_", "-", 1)) from None
+        message = str(err).replace("save_every", "--save-every").replace(" dt", " --dt")
+        raise ValueError(message) from None
     return values
 
 
