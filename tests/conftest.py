@@ -1,0 +1,19 @@
+"""Shared fixtures: the paper's parameters (section 3) and its time step."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import lumped as L
+
+#: Machine epsilon of float64; tolerances below are written in units of it.
+EPS = float(np.finfo(float).eps)
+#: The paper's time step (section 3).
+PAPER_DT = 1e-4
+
+
+@pytest.fixture
+def paper_oscillator() -> L.Oscillator:
+    """gamma = 1, mu_s N_f = 1, m = 1, k = 100 (section 3)."""
+    return L.Oscillator.bingham(mass=1.0, stiffness=100.0, threshold=1.0, gamma=1.0)
