@@ -1,0 +1,116 @@
+"""Plots for the tutorials on the governing equations and on the textbook model.
+
+Each helper takes ``ax=`` (draw into an existing Axes, or ``None`` for a new
+styled figure), returns the :class:`~matplotlib.figure.Figure`, never calls
+``plt.show()`` and leaves global matplotlib state alone (the project style is
+applied with :func:`lumped.plotting._base.style` inside the helper only).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+from matplotlib.axes import Axes
+from matplotlib.figure import Figure
+
+from lumped.laws import BinghamDashpot
+from lumped.plotting._base import new_axes, style
+from lumped.results import Trajectory
+from lumped.system import Oscillator
+from lumped.textbook import AdaptiveOutcome, FixedStepResult
+
+__all__ = ["bingham_graph", "acceleration_graph", "chatter", "creep"]
+
+
+def bingham_graph(law: BinghamDashpot, f_max: float | None = None, ax: Axes | None = None) -> Figure:
+    """The graph of eq. (6), velocity (m/s) against dashpot force (N).
+
+    The flat part ``|F_d| <= mu_s N_f`` (where ``F_d`` is not a function of
+    ``v``) is drawn thicker.  ``f_max`` (N) bounds the force axis; three times
+    the threshold by default.
+    """
+    f_max = 3.0 * law.threshold if f_max is None else f_max
+    force = np.linspace(-f_max, f_max, 601)
+    fig, ax = new_axes(ax)
+    with style():
+        ax.plot(force, law.velocity(force), color="C0", label=r"$v = \varphi(F_d)$, eq. (6)")
+        ax.plot([-law.threshold, law.threshold], [0.0, 0.0], color="C3", lw=4, alpha=0.6,
+                label=r"$v = 0$ for every $|F_d| \leq \mu_s N_f$")  # fmt: skip
+        ax.set_xlabel(r"dashpot force $F_d$ (N)")
+        ax.set_ylabel(r"velocity $v$ (m/s)")
+        ax.legend(loc="upper left")
+    return fig
+
+
+def acceleration_graph(
+    oscillator: Oscillator, x: float, force: float = 0.0, v_max: float = 1e-2,
+    ax: Axes | None = None,
+) -> Figure:  # fmt: skip
+    """Acceleration against velocity at displacement ``x`` (m), eqs. (11).
+
+    For ``v != 0`` the acceleration is single-valued (eqs. 11a, 11b); at
+    ``v = 0`` it is the segment of eq. (11c), ``(F - k x - F_d)/m`` for
+    ``|F_d| <= mu_s N_f``.  The point of that segment with zero acceleration,
+    if any, is marked: it is the dashpot force that keeps the mass at rest.
+    """
+    law, m = oscillator.dashpot, oscillator.mass
+    net = force - oscillator.stiffness * x
+    v = np.linspace(0.0, v_max, 201)[1:]
+    fig, ax = new_axes(ax)
+    with style():
+        for side, label in ((1, "eq. (11a), $v > 0$"), (-1, "eq. (11b), $v < 0$")):
+            ax.plot(side * v, (net - law.slip_force(side * v)) / m, label=label)
+        ends = (net - law.threshold) / m, (net + law.threshold) / m
+        ax.plot([0.0, 0.0], ends, color="C3", lw=4, alpha=0.6, label="eq. (11c), $v = 0$")
+        if abs(net) <= law.threshold:
+            ax.plot([0.0], [0.0], "o", color="k", label=rf"$F_d = {net:.3g}$ N: rest")
+        ax.axhline(0.0, color="0.5", lw=0.8)
+        ax.set_xlabel(r"velocity $v$ (m/s)")
+        ax.set_ylabel(r"acceleration $\dot v$ (m/s$^2$)")
+        ax.legend(loc="best")
+    return fig
+
+
+def chatter(
+    runs: Mapping[str, FixedStepResult], reference: Trajectory | None = None,
+    t_max: float | None = None, ax: Axes | None = None,
+) -> Figure:  # fmt: skip
+    """Dashpot force (N) against time (s) of fixed-step runs, with the DAE's.
+
+    ``runs`` maps a label to a :class:`~lumped.textbook.FixedStepResult`;
+    ``reference`` is a trajectory of the DAE (Algorithm 1 or the exact
+    solution); ``t_max`` (s) crops the time axis.
+    """
+    fig, ax = new_axes(ax)
+    with style():
+        for i, (label, run) in enumerate(runs.items()):
+            keep = slice(None) if t_max is None else run.t <= t_max
+            ax.step(run.t[keep], run.F_d[keep], where="post", lw=0.8, color=f"C{i}", label=label)
+        if reference is not None:
+            keep = slice(None) if t_max is None else reference.t <= t_max
+            ax.plot(reference.t[keep], reference.F_d[keep], color="k", lw=2, label="DAE")
+        ax.set_xlabel(r"time $t$ (s)")
+        ax.set_ylabel(r"dashpot force $F_d$ (N)")
+        ax.legend(loc="center right")
+    return fig
+
+
+def creep(
+    runs: Mapping[float, AdaptiveOutcome], rest: float | None = None, ax: Axes | None = None
+) -> Figure:
+    """Displacement (m) against time (s) of regularised runs, one per ``eps``.
+
+    ``runs`` maps ``eps`` (m/s) to an :class:`~lumped.textbook.AdaptiveOutcome`;
+    ``rest`` (m) is the DAE's rest position, drawn as a horizontal line.
+    """
+    fig, ax = new_axes(ax)
+    with style():
+        for eps, run in runs.items():
+            ax.plot(run.t, run.x, label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {eps:.0e}$ m/s")
+        if rest is not None:
+            ax.axhline(rest, color="k", lw=2, label="DAE (Algorithm 1, exact)")
+        ax.set_xlabel(r"time $t$ (s)")
+        ax.set_ylabel(r"displacement $x$ (m)")
+        ax.legend(loc="best")
+    return fig
