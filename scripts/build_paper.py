@@ -1,0 +1,85 @@
+"""Typeset ``paper/paper.typ`` into ``paper/paper.pdf`` with the ``typst`` Python package.
+
+Usage::
+
+    python scripts/build_paper.py [--out paper/paper.pdf] [--draft] [FIGURE ...]
+
+The figures are the PNG files ``figures/figNN_<slug>.png`` (``NN`` = 01..14,
+the original's figure numbers); when none are given on the command line they
+are found by that pattern.  Their names go to ``paper/build/figures.json``,
+which the article reads.  A missing figure is an error unless ``--draft`` is
+given, in which case the article shows an empty frame in its place.
+
+The PDF is deterministic: the document date is fixed in ``paper.typ``
+(from ``paper/metadata.yaml``), system fonts are ignored (the fonts embedded
+in the ``typst`` package are used), so two builds from the same inputs are
+byte-identical.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+FIGURE_COUNT = 14
+_PATTERN = re.compile(r"fig(\d\d)_[A-Za-z0-9_-]+\.png$")
+
+
+def figure_table(files: list[str]) -> dict[str, str]:
+    """Map ``"01"``..``"14"`` to root-relative paths (``/figures/...``) for Typst."""
+    table: dict[str, str] = {}
+    for name in files:
+        match = _PATTERN.search(Path(name).name)
+        if not match:
+            raise ValueError(f"figure: {name!r} is not named figures/figNN_<slug>.png")
+        number = match.group(1)
+        if number in table:
+            raise ValueError(f"figure: two files for Figure {int(number)}: {table[number]}, {name}")
+        table[number] = "/" + Path(name).resolve().relative_to(ROOT).as_posix()
+    return table
+
+
+def find_figures() -> list[str]:
+    """The PNG files in ``figures/`` that follow the naming pattern."""
+    return sorted(str(p) for p in (ROOT / "figures").glob("fig[0-9][0-9]_*.png"))
+
+
+def build(out: Path, figures: list[str], draft: bool = False) -> Path:
+    """Write ``paper/build/figures.json`` and compile the article to ``out``."""
+    import typst
+
+    table = figure_table(figures)
+    missing = [f"{n:02d}" for n in range(1, FIGURE_COUNT + 1) if f"{n:02d}" not in table]
+    if missing and not draft:
+        raise FileNotFoundError(f"figures missing for Figure(s) {', '.join(missing)} (use --draft)")
+    numbers = ROOT / "paper" / "build" / "numbers.json"
+    if not numbers.is_file():
+        raise FileNotFoundError(f"{numbers} not found: run scripts/paper_numbers.py first")
+    listing = ROOT / "paper" / "build" / "figures.json"
+    listing.write_text(json.dumps(table, indent=1, sort_keys=True) + "\n", encoding="utf-8")
+    out.parent.mkdir(parents=True, exist_ok=True)
+    typst.compile(
+        str(ROOT / "paper" / "paper.typ"), output=str(out), root=str(ROOT),
+        ignore_system_fonts=True, sys_inputs={"draft": "true" if draft else "false"},
+    )  # fmt: skip
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("figures", nargs="*", help="figures/figNN_<slug>.png files")
+    parser.add_argument("--out", type=Path, default=ROOT / "paper" / "paper.pdf")
+    parser.add_argument("--draft", action="store_true", help="allow missing figures")
+    args = parser.parse_args(argv)
+    figures = [f for f in args.figures if f.endswith(".png")] or find_figures()
+    path = build(args.out, figures, args.draft)
+    print(f"wrote {path}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
