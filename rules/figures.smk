@@ -1,0 +1,50 @@
+# The figures: each notebook is executed once and writes its figures.
+
+
+rule effective_config:
+    """config/config.yaml after any --config overrides, for the notebooks.
+
+    The values are a parameter, so the params rerun trigger reruns this rule
+    (and the notebooks) only when one of them changes.
+    """
+    output:
+        "results/config.yaml",
+    params:
+        values=config,
+    log:
+        "logs/effective_config.log",
+    script:
+        "../scripts/write_config.py"
+
+
+def notebook_outputs(notebook):
+    """The figures of one notebook, PNGs listed in the report with their captions."""
+    outputs = []
+    for stem in NOTEBOOK_FIGURES[notebook]:
+        outputs.append(f"figures/{stem}.pdf")
+        png = f"figures/{stem}.png"
+        caption = f"../report/{stem[:5]}.rst"
+        outputs.append(report(png, caption=caption, category=CATEGORY[notebook]))
+    return outputs
+
+
+# One rule per notebook (a notebook writes several figures whose names do not
+# share a wildcard pattern).
+for _notebook in NOTEBOOK_FIGURES:
+
+    rule:
+        name:
+            f"notebook_{_notebook[:2]}"
+        input:
+            notebook=f"notebooks/{_notebook}.py",
+            config=rules.effective_config.output[0],
+            runner="scripts/run_notebook.py",
+            package=PACKAGE_SOURCES,
+        output:
+            executed=f"results/notebooks/{_notebook}.ipynb",
+            figures=notebook_outputs(_notebook),
+        log:
+            f"logs/notebooks/{_notebook}.log",
+        shell:
+            "python {input.runner} {input.notebook} --output {output.executed}"
+            " --figures figures --config {input.config} > {log} 2>&1"

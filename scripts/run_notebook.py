@@ -1,0 +1,92 @@
+"""Execute the jupytext notebooks of ``notebooks/``.
+
+Two uses:
+
+* the Snakemake pipeline runs one notebook and keeps the executed copy::
+
+      python scripts/run_notebook.py notebooks/04_forced_vibrations.py \\
+          --output results/notebooks/04_forced_vibrations.ipynb \\
+          --figures figures --config results/config.yaml
+
+  The kernel runs in ``notebooks/`` with ``LUMPED_FIGURES_DIR`` (where
+  :func:`lumped.plotting.save_figure` writes) and ``LUMPED_CONFIG`` (the
+  pipeline's effective configuration) set;
+
+* after editing a notebook's ``.py`` twin, refresh the committed ``.ipynb``
+  (outputs included, as nbval compares them) from the repository root::
+
+      python scripts/run_notebook.py --update-committed            # all of them
+      python scripts/run_notebook.py --update-committed notebooks/05_free_vibrations.py
+
+  These runs use ``config/config.yaml`` and write no figure files.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+from pathlib import Path
+
+import jupytext
+import nbclient
+
+ROOT = Path(__file__).resolve().parent.parent
+NOTEBOOKS = ROOT / "notebooks"
+#: Variables a notebook kernel reads; cleared unless set on purpose.
+ENV_VARS = ("LUMPED_FIGURES_DIR", "LUMPED_CONFIG")
+
+
+def execute(source: Path, env: dict[str, str], timeout: int = 600) -> object:
+    """Read ``source`` (jupytext), run it in its folder with ``env``; return the notebook."""
+    notebook = jupytext.read(source)
+    for name in ENV_VARS:
+        os.environ.pop(name, None)
+    os.environ.update(env)
+    client = nbclient.NotebookClient(
+        notebook,
+        timeout=timeout,
+        kernel_name="python3",
+        record_timing=False,  # no timestamps: the output does not change between runs
+        resources={"metadata": {"path": str(source.resolve().parent)}},
+    )
+    client.execute()
+    return notebook
+
+
+def update_committed(sources: list[Path]) -> None:
+    """Re-execute each ``.py`` and overwrite its paired ``.ipynb`` next to it."""
+    for source in [s.resolve() for s in sources] or sorted(NOTEBOOKS.glob("[0-9][0-9]_*.py")):
+        notebook = execute(source, env={})
+        target = source.with_suffix(".ipynb")
+        jupytext.write(notebook, target)
+        print(f"{source.relative_to(ROOT)} -> {target.relative_to(ROOT)}")
+
+
+def main(argv: list[str] | None = None) -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("notebooks", nargs="*", type=Path, help="jupytext .py notebooks")
+    parser.add_argument("--update-committed", action="store_true",
+                        help="overwrite the paired .ipynb of each notebook (default: all)")
+    parser.add_argument("--output", type=Path, help="where to write the executed notebook")
+    parser.add_argument("--figures", type=Path, help="folder for the figure files")
+    parser.add_argument("--config", type=Path, help="configuration file for the notebook")
+    args = parser.parse_args(argv)
+    if args.update_committed:
+        update_committed(args.notebooks)
+        return 0
+    if len(args.notebooks) != 1 or args.output is None:
+        parser.error("give one notebook and --output (or use --update-committed)")
+    env = {}
+    if args.figures is not None:
+        env["LUMPED_FIGURES_DIR"] = str(args.figures.resolve())
+    if args.config is not None:
+        env["LUMPED_CONFIG"] = str(args.config.resolve())
+    notebook = execute(args.notebooks[0], env)
+    args.output.parent.mkdir(parents=True, exist_ok=True)
+    jupytext.write(notebook, args.output)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
