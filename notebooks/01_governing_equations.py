@@ -31,6 +31,7 @@
 # Every statement below is backed by a printed number or an `assert`.
 
 # %%
+# %matplotlib inline
 import math
 
 import numpy as np

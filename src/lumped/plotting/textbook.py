@@ -23,6 +23,13 @@ from lumped.textbook import AdaptiveOutcome, FixedStepResult
 __all__ = ["bingham_graph", "acceleration_graph", "chatter", "creep"]
 
 
+def _power(value: float) -> str:
+    """``value`` in LaTeX scientific notation, ``10^{-3}`` or ``2 \\times 10^{-3}``."""
+    mantissa, exponent = f"{value:.0e}".split("e")
+    power = rf"10^{{{int(exponent)}}}"
+    return power if mantissa == "1" else rf"{mantissa} \times {power}"
+
+
 def bingham_graph(law: BinghamDashpot, f_max: float | None = None, ax: Axes | None = None) -> Figure:
     """The graph of eq. (6), velocity (m/s) against dashpot force (N).
 
@@ -76,7 +83,7 @@ def chatter(
     runs: Mapping[str, FixedStepResult], reference: Trajectory | None = None,
     t_max: float | None = None, ax: Axes | None = None,
 ) -> Figure:  # fmt: skip
-    """Dashpot force (N) against time (s) of fixed-step runs, with the DAE's.
+    """Dashpot force (N) against time (ms) of fixed-step runs, with the DAE's.
 
     ``runs`` maps a label to a :class:`~lumped.textbook.FixedStepResult`;
     ``reference`` is a trajectory of the DAE (Algorithm 1 or the exact
@@ -86,11 +93,12 @@ def chatter(
     with style():
         for i, (label, run) in enumerate(runs.items()):
             keep = slice(None) if t_max is None else run.t <= t_max
-            ax.step(run.t[keep], run.F_d[keep], where="post", lw=0.8, color=f"C{i}", label=label)
+            ax.step(1e3 * run.t[keep], run.F_d[keep], where="post", lw=0.8, color=f"C{i}",
+                    label=label)  # fmt: skip
         if reference is not None:
             keep = slice(None) if t_max is None else reference.t <= t_max
-            ax.plot(reference.t[keep], reference.F_d[keep], color="k", lw=2, label="DAE")
-        ax.set_xlabel(r"time $t$ (s)")
+            ax.plot(1e3 * reference.t[keep], reference.F_d[keep], color="k", lw=2, label="DAE")
+        ax.set_xlabel(r"time $t$ (ms)")
         ax.set_ylabel(r"dashpot force $F_d$ (N)")
         ax.legend(loc="center right")
     return fig
@@ -107,7 +115,7 @@ def creep(
     fig, ax = new_axes(ax)
     with style():
         for eps, run in runs.items():
-            ax.plot(run.t, run.x, label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {eps:.0e}$ m/s")
+            ax.plot(run.t, run.x, label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {_power(eps)}$ m/s")
         if rest is not None:
             ax.axhline(rest, color="k", lw=2, label="DAE (Algorithm 1, exact)")
         ax.set_xlabel(r"time $t$ (s)")
