@@ -181,12 +181,15 @@ def test_initial_row_is_consistent(paper_oscillator):
 
 def test_generic_force_callable_equals_switched_sine(paper_oscillator):
     # A callable is tabulated with numpy's sin, the SwitchedSine is evaluated
-    # with libm's sin inside the loop: they agree to an ulp of the force per
-    # step, so the trajectories agree closely (not bitwise).
+    # with libm's sin inside the loop: they may differ by an ulp or two of the
+    # force, delta_F <= 2 eps max|F|, per step.  Such a perturbation moves the
+    # static balance by at most delta_F/k, and the step map is non-expansive,
+    # so over N steps |dx| <= N * 2 eps max|F| / k (a real mismatch of the two
+    # forcing paths, e.g. a phase error, would be O(1e-2) here).
     sine = L.paper_forcing(10.0)
     a = L.backward_euler(paper_oscillator, 2.0, 1e-3, force=sine)
     b = L.backward_euler(paper_oscillator, 2.0, 1e-3, force=lambda t: sine(t))
-    assert np.abs(a.x - b.x).max() <= 2000 * 4 * EPS * 10.0 / 100.0
+    assert np.abs(a.x - b.x).max() <= len(a.t) * 2 * EPS * 10.0 / 100.0
 
 
 def test_stick_intervals_and_rest_semantics(paper_oscillator):
