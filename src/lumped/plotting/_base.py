@@ -12,6 +12,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+import matplotlib
 import matplotlib.pyplot as plt
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
@@ -28,9 +29,16 @@ _PNG_METADATA = {"Software": None}
 
 @contextmanager
 def style() -> Iterator[None]:
-    """Apply the project style inside a ``with`` block only."""
+    """Apply the project style inside a ``with`` block only.
+
+    The one setting kept on leaving is matplotlib's interactive flag: Jupyter
+    switches it on when the first figure is made, and restoring it would hide
+    every later inline figure.
+    """
     with plt.style.context(STYLE):
         yield
+        interactive = matplotlib.is_interactive()
+    matplotlib.interactive(interactive)
 
 
 def new_axes(ax: Axes | None = None, **subplot_kw: object) -> tuple[Figure, Axes]:
