@@ -130,10 +130,28 @@ def _run(values: dict[str, object], method: str, output: str) -> str:
     return f"at rest from t = {traj.rest_time:.6g} s at x = {traj.rest_position:.9g} m"
 
 
+def _attach_values(argv: Sequence[str]) -> list[str]:
+    """Write ``--opt VALUE`` as ``--opt=VALUE``.
+
+    argparse takes a value such as ``-1e-4`` or ``-inf`` for an option name;
+    attached with ``=`` it reaches the validators, which explain what is wrong.
+    """
+    takes_value = {"--" + name.replace("_", "-") for name in _CHECKS} | {"--method", "--output"}
+    out: list[str] = []
+    items = iter(argv)
+    for item in items:
+        value = next(items, None) if item in takes_value else None
+        out.append(item if value is None else f"{item}={value}")
+    return out
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status."""
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(_attach_values(sys.argv[1:] if argv is None else argv))
+    except SystemExit as stop:  # usage errors (status 2) and --help (status 0)
+        return int(stop.code or 0)
     try:
         values = _clean(args)
         summary = _run(values, args.method, args.output)

@@ -385,5 +385,6 @@ def solve_exact(
     force = force or SwitchedSine()
     build = _Builder(oscillator, force, t_end, _validate.positive_int("max_events", max_events))
     build.run(x0, v0)
-    return ExactSolution(oscillator, force, t_end, tuple(build.phases), tuple(build.events),
+    events = tuple(sorted(build.events, key=lambda e: e.time))  # "rest" is dated back
+    return ExactSolution(oscillator, force, t_end, tuple(build.phases), events,
                          *build.rest)  # fmt: skip
