@@ -91,6 +91,12 @@ def _exact_summary(ex: L.ExactSolution) -> dict[str, Any]:
     }
 
 
+def _reversals(v: np.ndarray) -> int:
+    """Changes of direction: sign changes between successive nonzero velocities."""
+    s = np.sign(v[v != 0.0])
+    return int(np.count_nonzero(s[1:] != s[:-1]))
+
+
 def _example(osc: L.Oscillator, dt: float, run: dict[str, Any]) -> dict[str, Any]:
     exact = L.solve_exact(osc, run["t_end"], x0=run["x0"], force=run["force"])
     be = L.backward_euler(osc, run["t_end"], dt, x0=run["x0"], force=run["force"])
@@ -109,6 +115,7 @@ def _example(osc: L.Oscillator, dt: float, run: dict[str, Any]) -> dict[str, Any
             "min_F_d": float(np.min(be.F_d)),
             "max_F_d": float(np.max(be.F_d)),
             "stick_fraction": float(np.mean(be.v == 0.0)),
+            "reversals": _reversals(be.v),
             "energy_residual": float(np.max(np.abs(be.energy_balance().residual))),
             "steps": int(be.t.size - 1),
         },
