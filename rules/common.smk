@@ -44,3 +44,14 @@ FIGURE_FILES = [
 PACKAGE_SOURCES = sorted(
     glob("src/lumped/**/*.py", recursive=True) + glob("src/lumped/**/*.mplstyle", recursive=True)
 )
+
+
+def notebook_outputs(notebook):
+    """The figures of one notebook, PNGs listed in the report with their captions."""
+    outputs = []
+    for stem in NOTEBOOK_FIGURES[notebook]:
+        outputs.append(f"figures/{stem}.pdf")
+        png = f"figures/{stem}.png"
+        caption = f"../report/{stem[:5]}.rst"
+        outputs.append(report(png, caption=caption, category=CATEGORY[notebook]))
+    return outputs

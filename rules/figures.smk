@@ -1,4 +1,9 @@
 # The figures: each notebook is executed once and writes its figures.
+#
+# `snakemake --lint` waiver: it asks for a conda environment or container per
+# rule. This project runs in one virtual environment made from
+# environment-pip.txt (see README.md), so the rules name none; the executed
+# notebooks record the kernel they ran with.
 
 
 rule effective_config:
@@ -15,17 +20,6 @@ rule effective_config:
         "logs/effective_config.log",
     script:
         "../scripts/write_config.py"
-
-
-def notebook_outputs(notebook):
-    """The figures of one notebook, PNGs listed in the report with their captions."""
-    outputs = []
-    for stem in NOTEBOOK_FIGURES[notebook]:
-        outputs.append(f"figures/{stem}.pdf")
-        png = f"figures/{stem}.png"
-        caption = f"../report/{stem[:5]}.rst"
-        outputs.append(report(png, caption=caption, category=CATEGORY[notebook]))
-    return outputs
 
 
 # One rule per notebook (a notebook writes several figures whose names do not
