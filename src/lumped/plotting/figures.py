@@ -345,4 +345,6 @@ def time_history_panels(trajectory: Trajectory, solution: ExactSolution | None,
     fig = axes[0].figure
     for i, (name, ax) in enumerate(zip(columns, axes)):
         time_history(trajectory, solution, name, ax=ax, legend=(i == 0))
+        if i < len(columns) - 2:  # a shared time axis is labelled on the bottom row only
+            ax.set_xlabel("")
     return fig
