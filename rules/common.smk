@@ -3,6 +3,8 @@ from glob import glob
 
 #: notebook stem -> figure stems, in the paper's numbering (figNN_<slug>).
 NOTEBOOK_FIGURES = {
+    "01_governing_equations": [],
+    "02_sgn_zero_failure": [],
     "03_constitutive_pictures": [
         "fig01_bingham_relations",
         "fig02_spring_with_string",
@@ -39,6 +41,9 @@ FIGURE_FILES = [
     for stem in stems
     for ext in ("pdf", "png")
 ]
+
+#: Every notebook, executed: build artefacts to read with their outputs.
+EXECUTED_NOTEBOOKS = [f"results/notebooks/{name}.ipynb" for name in NOTEBOOK_FIGURES]
 
 #: The package sources: editing any of them reruns every notebook.
 PACKAGE_SOURCES = sorted(
