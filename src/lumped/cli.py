@@ -113,21 +113,28 @@ def _write(path: str, columns: dict[str, np.ndarray]) -> None:
 
 
 def _run(values: dict[str, object], method: str, output: str) -> str:
+    from lumped.event_driven import solve_exact
     from lumped.forcing import SwitchedSine
     from lumped.simulate import simulate
     from lumped.system import Oscillator
 
-    osc = Oscillator.bingham(values["mass"], values["stiffness"], values["threshold"],
-                             values["gamma"])  # type: ignore[arg-type]  # fmt: skip
-    force = SwitchedSine(values["force_amplitude"], values["force_omega"],
-                         values["force_phase"], values["force_until"])  # type: ignore[arg-type]  # fmt: skip
-    traj = simulate(osc, values["t_end"], values["dt"], x0=values["x0"], v0=values["v0"],
-                    force=None if force.is_zero else force, method=method,
-                    save_every=values["save_every"])  # type: ignore[arg-type]  # fmt: skip
+    v = values
+    osc = Oscillator.bingham(v["mass"], v["stiffness"], v["threshold"], v["gamma"])  # type: ignore[arg-type]
+    force = SwitchedSine(v["force_amplitude"], v["force_omega"], v["force_phase"],
+                         v["force_until"])  # type: ignore[arg-type]  # fmt: skip
+    common = dict(x0=v["x0"], v0=v["v0"], force=None if force.is_zero else force)
+    if method == "exact":  # keep the solution: its rest time is an event, not a grid point
+        sol = solve_exact(osc, v["t_end"], **common)  # type: ignore[arg-type]
+        traj = sol.sample(v["dt"], v["save_every"])  # type: ignore[arg-type]
+        rest_time, rest_position = sol.rest_time, sol.rest_position
+    else:
+        traj = simulate(osc, v["t_end"], v["dt"], method=method, save_every=v["save_every"],
+                        **common)  # type: ignore[arg-type]  # fmt: skip
+        rest_time, rest_position = traj.rest_time, traj.rest_position
     _write(output, traj.columns())
-    if math.isnan(traj.rest_time):
+    if math.isnan(rest_time):
         return f"still moving at t = {traj.t[-1]:.6g} s (x = {traj.x[-1]:.9g} m)"
-    return f"at rest from t = {traj.rest_time:.6g} s at x = {traj.rest_position:.9g} m"
+    return f"at rest from t = {rest_time:.10g} s at x = {rest_position:.10g} m"
 
 
 def _attach_values(argv: Sequence[str]) -> list[str]:

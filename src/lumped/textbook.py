@@ -176,8 +176,10 @@ def integrate_adaptive(
     max_seconds : float
         Budget of wall time (s).
     """
-    from scipy.integrate._ivp.ivp import METHODS
+    from scipy import integrate
 
+    names = ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA")
+    METHODS = {name: getattr(integrate, name) for name in names}  # noqa: N806
     if method not in METHODS:
         raise ValueError(f"method must be one of {sorted(METHODS)}, got {method!r}")
     t_end = _validate.positive("t_end", t_end)
