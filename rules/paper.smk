@@ -2,6 +2,7 @@
 #   snakemake --cores all paper/paper.pdf
 # Included by the Snakefile after rules/common.smk and rules/figures.smk, whose
 # FIGURE_FILES, PACKAGE_SOURCES and effective_config rule it uses.
+# `snakemake --lint` waiver (conda/container per rule): see rules/figures.smk.
 rule paper_numbers:
     """Every number of the article, computed from the package (scripts/paper_numbers.py)."""
     input:
