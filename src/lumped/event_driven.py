@@ -296,7 +296,10 @@ class _Builder:
             t, x, v = self.slip(t, t_lim, x, v, direction, (P, w, ph), seg_end)
             direction = 0
 
-    def stick(self, t, t_lim, x, P, w, ph, seg_end) -> tuple[float, int]:  # noqa: ANN001
+    def stick(
+        self, t: float, t_lim: float, x: float, P: float, w: float, ph: float, seg_end: float
+    ) -> tuple[float, int]:
+        """Record a stick phase from ``t``; return its end and the breakaway direction."""
         if P == 0 and seg_end == math.inf:  # the force stays zero: rest for ever
             last = self.phases[-1] if self.phases else None
             start = last.start if last and last.kind == "stick" and last.end == t else t
@@ -312,7 +315,9 @@ class _Builder:
             self.event(t_b, "forcing-off", x)
         return t_b, direction
 
-    def breakaway(self, t0, t_lim, x, P, w, ph) -> tuple[float, int]:  # noqa: ANN001
+    def breakaway(
+        self, t0: float, t_lim: float, x: float, P: float, w: float, ph: float
+    ) -> tuple[float, int]:
         """First time in ``[t0, t_lim]`` at which ``|P sin(w t + ph) - k x|`` exceeds tau."""
         best, direction = t_lim, 0
         if P == 0 or w == 0:
@@ -329,7 +334,11 @@ class _Builder:
                 best, direction = t_cross, sign
         return best, direction
 
-    def slip(self, t, t_lim, x, v, direction, forcing, seg_end):  # noqa: ANN001, ANN201
+    def slip(
+        self, t: float, t_lim: float, x: float, v: float, direction: int,
+        forcing: tuple[float, float, float], seg_end: float,
+    ) -> tuple[float, float, float]:  # fmt: skip
+        """Record a slip phase from ``(t, x, v)``; return the state where it ends."""
         P, w, ph = forcing
         motion = SlipMotion(self.m, self.c, self.k, direction * self.tau, P, w, ph, t, x, v)
         t_stop = motion.first_stop(t_lim, direction)
