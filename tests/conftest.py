@@ -2,10 +2,20 @@
 
 from __future__ import annotations
 
+import os
+
 import numpy as np
 import pytest
+from hypothesis import settings
 
 import lumped as L
+
+# In CI the property tests draw the same examples on every run (a red CI then
+# means a change broke something, never that a new random draw was unlucky);
+# locally they explore new examples each time.
+settings.register_profile("ci", derandomize=True)
+if os.environ.get("CI"):
+    settings.load_profile("ci")
 
 #: Machine epsilon of float64; tolerances below are written in units of it.
 EPS = float(np.finfo(float).eps)
