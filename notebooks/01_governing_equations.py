@@ -40,7 +40,7 @@ import sympy as sp
 import lumped as L
 import lumped.config
 from lumped.laws import bingham_corrector
-from lumped.plotting.textbook import bingham_graph
+import lumped.plotting as P
 from lumped.system import initial_dashpot_force
 
 cfg = lumped.config.load()
@@ -103,11 +103,12 @@ print("velocity of F_d = 1.5, -0.3, -2.0:", law.velocity(np.array([1.5, -0.3, -2
 # %% [markdown]
 # So the inverse graph is an interval at $v = 0$ and a single point
 # elsewhere, where it is the slip force $F_d = \operatorname{sgn}(v)\,\mu_s N_f
-# + v/\gamma$ of (7). The figure is the paper's Figure 1(b): a function of
-# $F_d$ with a flat piece, whose inverse is a multivalued "relation".
+# + v/\gamma$ of (7). The figure is the paper's Figure 1, drawn both ways: (a)
+# the force against the velocity, a relation with a vertical segment at
+# $v = 0$, and (b) the velocity as a function of the force, with a flat piece.
 
 # %%
-fig = bingham_graph(law)
+fig = P.bingham_pair(law)
 
 # %% [markdown]
 # ## Step 3: a semi-explicit DAE

@@ -1,4 +1,4 @@
-"""Plots for the tutorials on the governing equations and on the textbook model.
+"""Plots for the tutorial on the textbook model (notebook 02).
 
 Each helper takes ``ax=`` (draw into an existing Axes, or ``None`` for a new
 styled figure), returns the :class:`~matplotlib.figure.Figure`, never calls
@@ -14,13 +14,12 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from lumped.laws import BinghamDashpot
 from lumped.plotting._base import new_axes, style
 from lumped.results import Trajectory
 from lumped.system import Oscillator
 from lumped.textbook import AdaptiveOutcome, FixedStepResult
 
-__all__ = ["bingham_graph", "acceleration_graph", "chatter", "creep"]
+__all__ = ["acceleration_graph", "chatter", "creep"]
 
 
 def _power(value: float) -> str:
@@ -28,26 +27,6 @@ def _power(value: float) -> str:
     mantissa, exponent = f"{value:.0e}".split("e")
     power = rf"10^{{{int(exponent)}}}"
     return power if mantissa == "1" else rf"{mantissa} \times {power}"
-
-
-def bingham_graph(law: BinghamDashpot, f_max: float | None = None, ax: Axes | None = None) -> Figure:
-    """The graph of eq. (6), velocity (m/s) against dashpot force (N).
-
-    The flat part ``|F_d| <= mu_s N_f`` (where ``F_d`` is not a function of
-    ``v``) is drawn thicker.  ``f_max`` (N) bounds the force axis; three times
-    the threshold by default.
-    """
-    f_max = 3.0 * law.threshold if f_max is None else f_max
-    force = np.linspace(-f_max, f_max, 601)
-    fig, ax = new_axes(ax)
-    with style():
-        ax.plot(force, law.velocity(force), color="C0", label=r"$v = \varphi(F_d)$, eq. (6)")
-        ax.plot([-law.threshold, law.threshold], [0.0, 0.0], color="C3", lw=4, alpha=0.6,
-                label=r"$v = 0$ for every $|F_d| \leq \mu_s N_f$")  # fmt: skip
-        ax.set_xlabel(r"dashpot force $F_d$ (N)")
-        ax.set_ylabel(r"velocity $v$ (m/s)")
-        ax.legend(loc="upper left")
-    return fig
 
 
 def acceleration_graph(
