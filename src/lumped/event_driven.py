@@ -229,11 +229,13 @@ class ExactSolution:
         x, v = np.empty_like(t), np.zeros_like(t)
         starts = np.array([p.start for p in self.phases])
         which = np.clip(np.searchsorted(starts, t, side="right") - 1, 0, len(starts) - 1)
-        for i, p in enumerate(self.phases):
-            sel = which == i
+        order = np.argsort(which, kind="stable")  # indices grouped by phase, O(n log n)
+        bounds = np.searchsorted(which[order], np.arange(len(self.phases) + 1))
+        for p, lo, hi in zip(self.phases, bounds[:-1], bounds[1:]):
+            sel = order[lo:hi]
             if p.motion is None:
                 x[sel] = p.x_start
-            else:
+            elif sel.size:
                 x[sel], v[sel] = p.motion.state(t[sel])
         k, law = self.oscillator.stiffness, self.oscillator.dashpot
         force = np.asarray(self.force(t), dtype=float)
