@@ -43,8 +43,7 @@ class SwitchedSine:
             ("phase", _validate.finite),
             ("until", _validate.time_or_inf),
         ):
-            label = "force_" + name if name != "until" else "force_until"
-            object.__setattr__(self, name, check(label, getattr(self, name)))
+            object.__setattr__(self, name, check("force_" + name, getattr(self, name)))
 
     def __call__(self, t: np.ndarray | float) -> np.ndarray | float:
         on = self.amplitude * np.sin(self.omega * np.asarray(t) + self.phase)
