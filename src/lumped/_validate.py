@@ -1,27 +1,43 @@
 """Argument checks shared by the API and the command line.
 
 Every helper returns the cleaned value or raises :class:`ValueError` with a
-one-line message that names the argument and the accepted range.  The command
-line prints that message and exits with status 2, so the wording here is the
+one-line message that *begins with the argument's name* and states the
+accepted range.  The command line parses its strings with :func:`parse_float`
+and :func:`parse_int`, then calls the same checks, and prints the message with
+the argument's name replaced by the option's; so the wording here is the
 user-facing wording of both.
+
+The API is strict: a number is an ``int``, a ``float`` or a NumPy real scalar;
+strings and booleans are refused, not converted.
 """
 
 from __future__ import annotations
 
 import math
+import numbers
 
 #: Largest number of time steps a single run may take (a bound, so that no run
 #: can be made to loop for hours by a typo in ``--dt``).
 MAX_STEPS = 2_000_000_000
 #: Largest memory, in bytes, that the saved output of one run may occupy.
 MAX_OUTPUT_BYTES = 4 * 1024**3
+#: Longest estimated run time, in seconds, that a single run may take.
+MAX_SECONDS = 600.0
+
+
+def _show(value: object) -> str:
+    """``repr`` shortened to one readable line (a 400-digit integer included)."""
+    text = repr(value)
+    return text if len(text) <= 40 else text[:20] + "..." + text[-8:]
 
 
 def _as_float(name: str, value: object) -> float:
+    if isinstance(value, bool) or not isinstance(value, numbers.Real):
+        raise ValueError(f"{name} must be a real number, got {_show(value)}")
     try:
-        out = float(value)  # type: ignore[arg-type]
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a real number, got {value!r}") from None
+        out = float(value)
+    except OverflowError:
+        raise ValueError(f"{name} is beyond double precision (about 1.8e308): {_show(value)}") from None
     if math.isnan(out):
         raise ValueError(f"{name} must be a real number, got nan")
     return out
@@ -68,16 +84,42 @@ def time_or_inf(name: str, value: object) -> float:
 
 
 def positive_int(name: str, value: object) -> int:
-    """Return ``value`` as an int >= 1."""
-    if isinstance(value, bool) or not isinstance(value, (int, float, str)):
-        raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
-    try:
-        out = int(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an integer >= 1, got {value!r}") from None
-    if out < 1 or (isinstance(value, float) and value != out):
-        raise ValueError(f"{name} must be an integer >= 1, got {value!r}")
+    """Return ``value`` as an int >= 1 (a Python or NumPy integer, any size)."""
+    if isinstance(value, bool) or not isinstance(value, numbers.Integral):
+        raise ValueError(f"{name} must be an integer >= 1, got {_show(value)}")
+    out = int(value)
+    if out < 1:
+        raise ValueError(f"{name} must be an integer >= 1, got {out}")
     return out
+
+
+def parse_float(name: str, text: str) -> float:
+    """A command-line number: decimal or ``inf``/``-inf``; ``1e400`` is refused.
+
+    The range checks are left to :func:`finite` and its siblings.
+    """
+    word = text.strip().lower()
+    if not word:
+        raise ValueError(f"{name} expects a number, got an empty value")
+    if word.lstrip("+-") in ("inf", "infinity"):
+        return -math.inf if word.startswith("-") else math.inf
+    try:
+        out = float(word)
+    except ValueError:
+        raise ValueError(f"{name} must be a number, got {text!r}") from None
+    if math.isinf(out):
+        raise ValueError(
+            f"{name}: {text} is beyond double precision (about 1.8e308); write inf for infinity"
+        )
+    return out
+
+
+def parse_int(name: str, text: str) -> int:
+    """A command-line integer >= 1 (decimal digits, any size)."""
+    word = text.strip().lstrip("+")
+    if not word.isdigit():
+        raise ValueError(f"{name} must be an integer >= 1, got {text!r}")
+    return positive_int(name, int(word))
 
 
 def step_count(t_end: float, dt: float, names: str = "t_end/dt") -> int:
@@ -87,19 +129,22 @@ def step_count(t_end: float, dt: float, names: str = "t_end/dt") -> int:
     multiple; otherwise the grid overshoots ``t_end`` by less than one step.
     """
     ratio = t_end / dt
+    if ratio > MAX_STEPS:
+        raise ValueError(f"{names} must be at most {MAX_STEPS:.0e} steps, got {ratio:.3g}")
     n = round(ratio)
     if abs(ratio - n) > 1e-9 * max(1.0, ratio):
         n = math.ceil(ratio)
-    if n > MAX_STEPS:
-        raise ValueError(
-            f"{names} must be at most {MAX_STEPS:.0e} steps, got {ratio:.3g}"
-        )
     return max(int(n), 1)
+
+
+def output_rows(n_steps: int, save_every: int) -> int:
+    """Number of saved rows: ``t = 0``, every ``save_every``-th step, and the last."""
+    return n_steps // save_every + 1 + (n_steps % save_every != 0)
 
 
 def output_size(n_steps: int, save_every: int, n_columns: int = 6) -> int:
     """Number of saved rows; refuses outputs larger than ``MAX_OUTPUT_BYTES``."""
-    rows = n_steps // save_every + 1 + (n_steps % save_every != 0)
+    rows = output_rows(n_steps, save_every)
     need = rows * n_columns * 8
     if need > MAX_OUTPUT_BYTES:
         raise ValueError(
@@ -107,3 +152,15 @@ def output_size(n_steps: int, save_every: int, n_columns: int = 6) -> int:
             f"the {MAX_OUTPUT_BYTES / 1024**3:.0f} GiB allowed; raise save_every or dt"
         )
     return rows
+
+
+def run_time(n_steps: int, seconds_per_step: float, what: str, names: str = "t_end/dt") -> float:
+    """Estimated run time (s); refuses runs estimated above ``MAX_SECONDS``."""
+    estimate = n_steps * seconds_per_step
+    if estimate > MAX_SECONDS:
+        raise ValueError(
+            f"{names}: {n_steps:.3g} steps of {what} would take about {estimate:.3g} s "
+            f"(at {seconds_per_step:.2g} s per step), more than the {MAX_SECONDS:.0f} s allowed; "
+            "raise dt or shorten t_end"
+        )
+    return estimate

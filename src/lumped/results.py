@@ -51,6 +51,12 @@ class Trajectory:
         Grid step of the computation (s).
     save_every : int
         Stride between the computed grid and the saved points.
+    final_rest : (float, float) or None
+        Start time (s) and position (m) of the stick interval that lasts to
+        the end of the run, found by the method at its full resolution (a
+        grid step for backward Euler, the event time for the exact
+        solution), ``(nan, nan)`` if the mass moves at the end; ``None``
+        derives them from the saved points.
     """
 
     t: np.ndarray
@@ -63,6 +69,7 @@ class Trajectory:
     method: str
     dt: float
     save_every: int = 1
+    final_rest: tuple[float, float] | None = None
 
     @classmethod
     def from_array(cls, data: np.ndarray, oscillator: Oscillator, **meta: object) -> Trajectory:
@@ -98,8 +105,12 @@ class Trajectory:
     def rest_time(self) -> float:
         """Start of the stick interval that lasts to the end of the run (s).
 
-        ``nan`` if the mass is moving at the last point.
+        ``nan`` if the mass is moving at the last point.  Taken from
+        ``final_rest`` when the method supplied it, so that it does not
+        depend on ``save_every``.
         """
+        if self.final_rest is not None:
+            return self.final_rest[0]
         runs = self.stick_intervals()
         if not runs or runs[-1][1] != self.t[-1]:
             return math.nan
@@ -108,6 +119,8 @@ class Trajectory:
     @property
     def rest_position(self) -> float:
         """Displacement at the final rest (m); ``nan`` if still moving."""
+        if self.final_rest is not None:
+            return self.final_rest[1]
         return float(self.x[-1]) if self.v[-1] == 0.0 else math.nan
 
     def energy_balance(self) -> EnergyBalance:
