@@ -75,7 +75,9 @@ def _clean(args: argparse.Namespace) -> dict[str, object]:
 
     values = {}
     for name, check in _CHECKS.items():
-        values[name] = check("--" + name.replace("_", "-"), getattr(args, name))
+        option = "--" + name.replace("_", "-")
+        parse = _validate.parse_int if check is _validate.positive_int else _validate.parse_float
+        values[name] = check(option, parse(option, getattr(args, name)))
     if args.method not in METHODS:
         raise ValueError(f"--method must be one of {', '.join(METHODS)}; got {args.method!r}")
     suffix = os.path.splitext(args.output)[1].lower()
