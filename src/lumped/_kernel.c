@@ -1,28 +1,38 @@
 /* Algorithm 1 (backward Euler) for a Bingham or Coulomb dashpot: the compiled
- * twin of lumped.timestepping._bingham_loop.  Same operations in the same
+ * twin of lumped.timestepping._bingham_block.  Same operations in the same
  * order, compiled without floating-point contraction, so the numbers are
- * bit-identical to the pure-Python loop.  Uses only the CPython buffer API. */
+ * bit-identical to the pure-Python loop.  Uses only the CPython buffer API.
+ *
+ * One call advances steps n_first..n_last; the driver calls it block by block
+ * (so that Ctrl-C is seen between blocks) and carries the state in two small
+ * arrays: state = (F_s, v, F_d), counters = (row, rest_start, bad_step,
+ * bad_quantity).  rest_start is the first step of the current run of v == 0;
+ * a non-finite v, F_d or F_s stops the loop with bad_step and bad_quantity
+ * (1: v, 2: F_d, 3: F_s) set and that step not saved. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 #include <math.h>
+#include <stdint.h>
 
-static PyObject *bingham_loop(PyObject *self, PyObject *args) {
-    double m, k, dt, tau, c, x0, v0, amp, omega, phase, until;
-    Py_ssize_t n_steps, save_every;
-    Py_buffer table, out;
-    if (!PyArg_ParseTuple(args, "dddddddnnddddy*w*", &m, &k, &dt, &tau, &c, &x0, &v0,
-                          &n_steps, &save_every, &amp, &omega, &phase, &until, &table, &out))
+static PyObject *bingham_block(PyObject *self, PyObject *args) {
+    double m, k, dt, tau, c, amp, omega, phase, until;
+    Py_ssize_t n_first, n_last, n_steps, save_every;
+    Py_buffer table, state, counters, out;
+    if (!PyArg_ParseTuple(args, "dddddnnnnddddy*w*w*w*", &m, &k, &dt, &tau, &c, &n_first,
+                          &n_last, &n_steps, &save_every, &amp, &omega, &phase, &until, &table,
+                          &state, &counters, &out))
         return NULL;
     const double *force_values = (const double *)table.buf;
-    double *o = (double *)out.buf;
+    double *st = (double *)state.buf, *o = (double *)out.buf;
+    int64_t *cnt = (int64_t *)counters.buf;
     const int tabulated = table.len > 0;
     Py_BEGIN_ALLOW_THREADS
     const double eta = m / dt + k * dt;
-    double f_s = k * x0, v = v0, f, f_d = 0.0;
-    Py_ssize_t row = 1;
-    for (Py_ssize_t n = 1; n <= n_steps; n++) {
+    double f_s = st[0], v = st[1], f_d = st[2], f;
+    int64_t row = cnt[0], rest_start = cnt[1];
+    for (Py_ssize_t n = n_first; n <= n_last; n++) {
         const double t = (double)n * dt;
-        if (tabulated) f = force_values[n];
+        if (tabulated) f = force_values[n - n_first];
         else if (t <= until) f = amp * sin(omega * t + phase);
         else f = 0.0;
         const double predictor = (m / dt) * v + f - f_s;
@@ -35,20 +45,30 @@ static PyObject *bingham_loop(PyObject *self, PyObject *args) {
             v = (predictor - signed_tau) / (eta + c);
         }
         f_s = f_s + dt * k * v;
+        if (!(isfinite(v) && isfinite(f_d) && isfinite(f_s))) {
+            cnt[2] = n;
+            cnt[3] = !isfinite(v) ? 1 : !isfinite(f_d) ? 2 : 3;
+            break;
+        }
+        if (v != 0.0) rest_start = n + 1;
         if (n % save_every == 0 || n == n_steps) {
             double *r = o + 6 * row;
             r[0] = t; r[1] = f_s / k; r[2] = v; r[3] = f_s; r[4] = f_d; r[5] = f;
             row++;
         }
     }
+    st[0] = f_s; st[1] = v; st[2] = f_d;
+    cnt[0] = row; cnt[1] = rest_start;
     Py_END_ALLOW_THREADS
     PyBuffer_Release(&table);
+    PyBuffer_Release(&state);
+    PyBuffer_Release(&counters);
     PyBuffer_Release(&out);
     Py_RETURN_NONE;
 }
 
 static PyMethodDef methods[] = {
-    {"bingham_loop", bingham_loop, METH_VARARGS, "Algorithm 1 for the Bingham law."},
+    {"bingham_block", bingham_block, METH_VARARGS, "Algorithm 1 for the Bingham law, one block."},
     {NULL, NULL, 0, NULL}};
 
 static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_kernel", NULL, -1, methods};

@@ -8,6 +8,7 @@ other forcing may be passed to the API as a Python callable of time.
 from __future__ import annotations
 
 import math
+import numbers
 from collections.abc import Callable
 from dataclasses import dataclass
 
@@ -15,7 +16,7 @@ import numpy as np
 
 from lumped import _validate
 
-__all__ = ["SwitchedSine", "paper_forcing", "evaluate"]
+__all__ = ["SwitchedSine", "paper_forcing", "evaluate", "validate_force"]
 
 
 @dataclass(frozen=True)
@@ -70,20 +71,76 @@ def paper_forcing(amplitude: float) -> SwitchedSine:
     return SwitchedSine(amplitude=amplitude, omega=5 * math.pi, phase=0.0, until=1.0)
 
 
-def evaluate(force: Callable[[np.ndarray], np.ndarray] | None, t: np.ndarray) -> np.ndarray:
-    """Values of a forcing callable on the time grid ``t`` (zeros for ``None``).
+def validate_force(force: object) -> SwitchedSine | Callable[[np.ndarray], np.ndarray] | None:
+    """Return ``force`` if it is ``None``, a :class:`SwitchedSine` or a callable."""
+    if force is None or isinstance(force, SwitchedSine) or callable(force):
+        return force  # type: ignore[return-value]
+    raise ValueError(
+        f"force must be a SwitchedSine, a callable of time or None, got {type(force).__name__}"
+    )
 
-    A callable that accepts arrays is called once; one that works only on
-    floats is called point by point.
+
+def _numbers(raw: object, shape: tuple[int, ...]) -> np.ndarray | None:
+    """``raw`` as a float array of ``shape`` (a number is broadcast), else ``None``."""
+    try:
+        values = np.asarray(raw, dtype=float)
+    except (TypeError, ValueError, OverflowError):
+        return None
+    if values.ndim == 0 and isinstance(raw, (numbers.Real, np.ndarray)) and not isinstance(raw, bool):
+        return np.full(shape, float(values))
+    return values if values.shape == shape and _real_array(raw) else None
+
+
+def _real_array(raw: object) -> bool:
+    """True for a real numeric array (not strings, booleans or objects)."""
+    kind = np.asarray(raw).dtype.kind
+    return kind in "iuf"
+
+
+def _at(force: Callable[[float], object], t: float) -> float:
+    """``force(t)`` as a float, or a ``ValueError`` that says what went wrong."""
+    try:
+        raw = force(t)
+    except Exception as err:  # a user's callable: report its failure, named
+        raise ValueError(f"force raised {type(err).__name__} at t = {t:.6g} s: {err}") from None
+    if isinstance(raw, bool) or not isinstance(raw, (numbers.Real, np.ndarray)):
+        raise ValueError(f"force must return a real number, got {_short(raw)} at t = {t:.6g} s")
+    values = np.asarray(raw)
+    if values.size != 1 or values.dtype.kind not in "iuf":
+        raise ValueError(f"force must return one real number per time, got {_short(raw)} "
+                         f"at t = {t:.6g} s")  # fmt: skip
+    return float(values.reshape(()))
+
+
+def _short(value: object) -> str:
+    text = repr(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def evaluate(force: Callable[[np.ndarray], np.ndarray] | None, t: np.ndarray) -> np.ndarray:
+    """Values of a forcing callable on the times ``t`` (zeros for ``None``).
+
+    A callable that accepts an array and returns an array of the same shape
+    (or one number, taken as constant) is called once; any other is called
+    point by point.  The values must be real and finite.
+
+    Raises
+    ------
+    ValueError
+        Naming ``force``: not callable, an exception inside it, a value that
+        is not a real number, or a non-finite value (with the time).
     """
     if force is None:
         return np.zeros_like(t)
+    force = validate_force(force)
     try:
-        values = np.asarray(force(t), dtype=float)
-    except Exception:  # a scalar-only callable: fall back to point-wise calls
-        values = np.array([float(force(float(s))) for s in t])
-    if values.shape != t.shape:
-        values = np.array([float(force(float(s))) for s in t])
-    if not np.all(np.isfinite(values)):
-        raise ValueError("force must return finite values on the time grid")
+        values = _numbers(force(t), t.shape)
+    except Exception:  # a scalar-only callable: call it point by point below
+        values = None
+    if values is None:
+        values = np.array([_at(force, float(s)) for s in t])
+    bad = ~np.isfinite(values)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(f"force must return finite values; got {values[i]} at t = {t[i]:.6g} s")
     return values

@@ -241,16 +241,32 @@ class MonotoneDashpot(Dashpot):
     ) -> None:
         if not callable(velocity_of_force):
             raise ValueError("velocity_of_force must be callable")
-        if velocity_of_force(0.0) != 0:
-            raise ValueError("velocity_of_force must vanish at zero force")
         self.phi = velocity_of_force
+        if self._phi(0.0) != 0:
+            raise ValueError("velocity_of_force must vanish at zero force")
         self.threshold = _validate.non_negative("threshold", threshold)
         self.max_iterations = _validate.positive_int("max_iterations", max_iterations)
 
+    def _phi(self, force: float) -> float:
+        """``phi(force)`` checked: a finite real number, else a ``ValueError``."""
+        try:
+            raw = self.phi(force)
+        except Exception as err:  # a user's callable: report its failure, named
+            raise ValueError(
+                f"velocity_of_force raised {type(err).__name__} at F = {force:.6g} N: {err}"
+            ) from None
+        if isinstance(raw, bool) or not isinstance(raw, (int, float, np.integer, np.floating)):
+            raise ValueError(
+                f"velocity_of_force must return a real number, got {raw!r:.40} at F = {force:.6g} N"
+            )
+        if not math.isfinite(raw):
+            raise ValueError(f"velocity_of_force must be finite, got {raw} at F = {force:.6g} N")
+        return float(raw)
+
     def velocity(self, force: np.ndarray | float) -> np.ndarray | float:
         if np.ndim(force) == 0:
-            return self.phi(float(force))
-        return np.array([self.phi(float(f)) for f in np.ravel(force)]).reshape(np.shape(force))
+            return self._phi(float(force))
+        return np.array([self._phi(float(f)) for f in np.ravel(force)]).reshape(np.shape(force))
 
     def force_interval(self, velocity: float) -> tuple[float, float]:
         if velocity == 0:
@@ -259,12 +275,12 @@ class MonotoneDashpot(Dashpot):
 
         hi = math.copysign(1.0, velocity)
         for _ in range(200):
-            if (self.phi(hi) - velocity) * math.copysign(1.0, velocity) >= 0:
+            if (self._phi(hi) - velocity) * math.copysign(1.0, velocity) >= 0:
                 break
             hi *= 2.0
         else:
             raise ValueError(f"velocity {velocity} is outside the range of the law")
-        f = brentq(lambda F: self.phi(F) - velocity, 0.0, hi, xtol=1e-300, rtol=4e-16)
+        f = brentq(lambda F: self._phi(F) - velocity, 0.0, hi, xtol=1e-300, rtol=4e-16)
         return (f, f)
 
     def _resolvent_impl(self, predictor: float, eta: float) -> DashpotState:
@@ -272,7 +288,12 @@ class MonotoneDashpot(Dashpot):
 
         if predictor == 0.0:
             return DashpotState(0.0, 0.0)
-        phi = self.phi
+        phi = self._phi
+        if phi(predictor) * predictor < 0:
+            raise ValueError(
+                "velocity_of_force must be monotone non-decreasing with phi(0) = 0; "
+                f"phi({predictor:.6g}) = {phi(predictor):.6g} has the opposite sign"
+            )
         lo, hi = min(0.0, predictor), max(0.0, predictor)
         force, info = brentq(
             lambda F: F + eta * phi(F) - predictor,
