@@ -110,6 +110,21 @@ def _modes(m: float, c: float, k: float) -> _Modes:
     return modes
 
 
+def _first_zero(a: float, b: float) -> float:
+    """Smallest ``theta > 0`` with ``a cos(theta) + b sin(theta) = 0`` (0 if immediate).
+
+    ``tan(theta) = -a/b``; the arctangent of the ratio keeps its digits when the
+    zero is close to 0 or to ``pi`` (a mass stopped at once by a huge band).
+    """
+    if b == 0:
+        return 0.0 if a == 0 else math.pi / 2
+    ratio = -a / b
+    if ratio == 0 and a != 0:  # underflow: the zero is at 0+ or just before pi
+        return 0.0 if a * b < 0 else math.pi
+    theta = math.atan(ratio)
+    return theta if theta > 0 else theta + math.pi
+
+
 @dataclass(frozen=True)
 class SlipMotion:
     """Closed-form motion ``m x'' + c x' + k x = P sin(w t + ph) - s tau``.
@@ -164,6 +179,11 @@ class SlipMotion:
         where the two exponentials are close.
         """
         md = self.modes
+        with np.errstate(over="ignore", under="ignore"):  # exp(-huge) = 0 is the decay
+            return self._free_impl(md, tau)
+
+    @staticmethod
+    def _free_impl(md: _Modes, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         if md.kind == "under":
             e = np.exp(-md.h * tau)
             return e * np.cos(md.q * tau), e * np.sin(md.q * tau) / md.q
@@ -234,8 +254,7 @@ class SlipMotion:
         Notes
         -----
         Underdamped: ``v = exp(-h tau) (a cos q tau + b sin q tau)`` with
-        ``a = y0'`` and ``b = -(omega2 y0 + h y0')/q``, which is
-        ``R exp(-h tau) sin(q tau + phi)``, ``phi = atan2(a, b)``.  Real roots:
+        ``a = y0'`` and ``b = -(omega2 y0 + h y0')/q`` (:func:`_first_zero`).  Real roots:
         ``v = l_s A e^{l_s tau} + l_f B e^{l_f tau}`` vanishes at most once, at
         ``tau = log(-l_f B / (l_s A)) / (l_s - l_f)``, taken through logarithms
         so that no ratio overflows.
@@ -245,8 +264,7 @@ class SlipMotion:
             return 0.0  # at rest on the centre: it stops at once
         md = self.modes
         if md.kind == "under":
-            phi = math.atan2(dy0, -(md.omega2 * y0 + md.h * dy0) / md.q)
-            return (math.pi * (math.floor(phi / math.pi) + 1) - phi) / md.q
+            return _first_zero(dy0, -(md.omega2 * y0 + md.h * dy0) / md.q) / md.q
         if dy0 == 0:
             return None  # from rest a sum of two exponentials has no further zero
         if md.kind == "critical":
@@ -275,6 +293,9 @@ class SlipMotion:
         brackets found before ``t_lim`` are those of any later ``t_lim``.
         """
         fast, slow = (s / _PER_SCALE for s in self.time_scales())
+        # Below 1e-12 of the slow spacing (or a few ulps of t0) v is rounding
+        # noise at the start of a slip from rest: start the grid there.
+        fast = max(fast, 1e-12 * slow, 4 * math.ulp(self.t0))
         geo = np.zeros(0)
         if fast * (_GRADE - 1) < slow:
             n_geo = math.ceil(math.log(slow / (fast * (_GRADE - 1))) / math.log(_GRADE))
@@ -515,36 +536,43 @@ class _Builder:
             )
 
     def run(self, x: float, v: float) -> None:
-        """March from ``(0, x, v)`` to ``t_end``; every pass but the last adds an event."""
-        t, direction, stalled = 0.0, 0, 0
+        """March from ``(0, x, v)`` to ``t_end``; every pass but the last adds an event.
+
+        ``nxt`` is what comes next: ``"stick"``, a slip direction ``+-1``, or
+        ``None`` (decided from ``v`` and the net force).  After a stop the
+        mass sticks even if round-off puts the net force a few ulps outside
+        the band, and a reversal always reverses: otherwise a mass stopping
+        on the band edge would slip and stop again without end.
+        """
+        t, nxt, stalled = 0.0, None, 0
         while t < self.t_end:
             P, w, ph, seg_end = self.forcing_at(t)
             t_lim = min(seg_end, self.t_end)
+            nxt = self.decide(t, x, v, P * math.sin(w * t + ph)) if nxt is None else nxt
+            if nxt == "stick":
+                t, direction = self.stick(t, t_lim, x, P, w, ph, seg_end)
+                nxt = direction or None
+                continue
             t_before = t
-            if v == 0 and direction == 0:
-                net = P * math.sin(w * t + ph) - self.k * x
-                if abs(net) <= self.tau:
-                    t, direction = self.stick(t, t_lim, x, P, w, ph, seg_end)
-                    continue
-                direction = 1 if net > 0 else -1
-            elif v != 0:
-                direction = 1 if v > 0 else -1
-            t, x, v = self.slip(t, t_lim, x, v, direction, (P, w, ph), seg_end)
-            direction = 0
+            t, x, v, nxt = self.slip(t, t_lim, x, v, nxt, (P, w, ph), seg_end)
             stalled = stalled + 1 if t == t_before else 0
             if stalled > 8:
                 raise ValueError(
                     f"x0: the exact solver makes no progress at t = {t!r} s: the net force "
                     "stays on the edge of the static band to round-off; perturb x0 or the force"
                 )
-        self.close(t, x)
+        if nxt == "stick" and self.phases[-1].kind == "slip":  # a stop exactly at t_end
+            P, w, ph, seg_end = self.forcing_at(t)
+            self.stick(t, t, x, P, w, ph, seg_end)
 
-    def close(self, t: float, x: float) -> None:
-        """A stop exactly at ``t_end`` starts a stick phase there (a rest, if the force is off)."""
-        if self.events and self.events[-1].kind == "stop" and self.events[-1].time == t:
-            if self.phases[-1].kind == "slip":
-                P, w, ph, seg_end = self.forcing_at(t)
-                self.stick(t, t, x, P, w, ph, seg_end)
+    def decide(self, t: float, x: float, v: float, force: float) -> str | int:
+        """``"stick"`` or the slip direction of a mass at ``(t, x, v)`` under ``force``."""
+        if v != 0:
+            return 1 if v > 0 else -1
+        net = force - self.k * x
+        if abs(net) <= self.tau:
+            return "stick"
+        return 1 if net > 0 else -1
 
     def stick(
         self, t: float, t_lim: float, x: float, P: float, w: float, ph: float, seg_end: float
@@ -587,8 +615,8 @@ class _Builder:
     def slip(
         self, t: float, t_lim: float, x: float, v: float, direction: int,
         forcing: tuple[float, float, float], seg_end: float,
-    ) -> tuple[float, float, float]:  # fmt: skip
-        """Record a slip phase from ``(t, x, v)``; return the state where it ends."""
+    ) -> tuple[float, float, float, str | int | None]:  # fmt: skip
+        """Record a slip phase from ``(t, x, v)``; return where it ends and what follows."""
         P, w, ph = forcing
         motion = SlipMotion(self.m, self.c, self.k, direction * self.tau, P, w, ph, t, x, v)
         t_stop = motion.first_stop(t_lim, direction)
@@ -597,13 +625,16 @@ class _Builder:
             self.phases.append(Phase(t, t_lim, "slip", x, motion))
             if t_lim == seg_end and t_lim < self.t_end:
                 self.event(t_lim, "forcing-off", x_end)
-            return t_lim, x_end, v_end
+            return t_lim, x_end, v_end, None
         x_stop = float(motion.state(t_stop)[0])
         self.phases.append(Phase(t, t_stop, "slip", x, motion))
         P2, w2, ph2, _ = self.forcing_at(t_stop)
         net = P2 * math.sin(w2 * t_stop + ph2) - self.k * x_stop
-        self.event(t_stop, "stop" if abs(net) <= self.tau else "reversal", x_stop)
-        return t_stop, x_stop, 0.0
+        # At a zero of v after slipping with sign s, m v' = net - s tau points
+        # against s: the motion reverses only if the net force lies beyond -s tau.
+        reverses = -direction * net > self.tau
+        self.event(t_stop, "reversal" if reverses else "stop", x_stop)
+        return t_stop, x_stop, 0.0, -direction if reverses else "stick"
 
 
 def _half_cycles_to_rest(amplitude: float, band: float, modes: _Modes) -> float:
