@@ -71,12 +71,7 @@ def _flag(name: str) -> str:
 
 #: The API's argument names (what its ``ValueError`` messages begin with) -> options.
 _API_TO_OPTION = {name: _flag(name) for name in _CHECKS} | {"t_end/dt": "--t-end/--dt"}
-#: Names that are also English words: replaced only where a message begins with them.
-_PLAIN_WORDS = frozenset({"mass", "stiffness", "gamma", "threshold"})
 _LEADING_NAME = re.compile(r"^([a-z][a-z0-9_/]*)(?=:| must)")
-_CODE_NAMES = sorted((n for n in _API_TO_OPTION if n not in _PLAIN_WORDS), key=len, reverse=True)
-# a name not inside a word, an option (``--dt``) or a quoted echo of the user's value
-_NAME_IN_TEXT = re.compile(r"(?<![\w/'\"-])(" + "|".join(map(re.escape, _CODE_NAMES)) + r")(?![\w/'\"])")
 #: Options that take a value (the rest of the command line is names and values).
 _TAKES_VALUE = frozenset(_API_TO_OPTION.values()) - {"--t-end/--dt"} | {"--method", "--output"}
 #: Signals that unwind through the cleanup while a run is under way (SIGINT
@@ -122,10 +117,9 @@ def option_message(message: str) -> str:
 
     The API's messages begin with the argument's name followed by ``:`` or
     `` must`` (``"force_amplitude: ..."``); that name becomes the option
-    (``"--force-amplitude: ..."``).  Names that are not English words
-    (``save_every``, ``dt``, ``x0``, ...) are replaced wherever they occur, so a
-    hint such as "raise save_every or dt" names options too.  A message that
-    does not begin with an argument name is returned unchanged.
+    (``"--force-amplitude: ..."``).  Only the leading name is replaced: the
+    rest may be a formula or echo the user's value.  A message that does not
+    begin with an argument name is returned unchanged.
 
     Parameters
     ----------
@@ -137,9 +131,9 @@ def option_message(message: str) -> str:
     str
     """
     lead = _LEADING_NAME.match(message)
-    if lead and lead.group(1) in _API_TO_OPTION:
-        message = _API_TO_OPTION[lead.group(1)] + message[lead.end():]
-    return _NAME_IN_TEXT.sub(lambda m: _API_TO_OPTION[m.group(1)], message)
+    if lead is None or lead.group(1) not in _API_TO_OPTION:
+        return message
+    return _API_TO_OPTION[lead.group(1)] + message[lead.end():]
 
 
 def _is_option(item: str) -> bool:
