@@ -189,7 +189,8 @@ def test_disk_full_during_the_write(tmp_path, monkeypatch, capsys):
     out = tmp_path / "o.csv"
     status, line = _main(["simulate", "--t-end", "0.01", "--output", str(out)], capsys)
     assert status == 2
-    assert line == f"lumped simulate: error: --output: cannot write {str(out)!r}: No space left on device"  # fmt: skip
+    assert line == ("lumped simulate: error: --output: "
+                    f"cannot write {str(out)!r}: No space left on device")  # fmt: skip
     assert os.listdir(tmp_path) == []
 
 
@@ -201,7 +202,8 @@ def test_unwritable_folder_is_refused_before_the_run(tmp_path, monkeypatch, caps
     monkeypatch.setattr(DRIVER, "simulate", _raise(AssertionError("ran")))
     status, line = _main(["simulate", "--output", str(tmp_path / "o.csv")], capsys)
     assert status == 2
-    assert line == f"lumped simulate: error: --output: cannot create a file in {str(tmp_path)!r}: Permission denied"  # fmt: skip
+    assert line == ("lumped simulate: error: --output: "
+                    f"cannot create a file in {str(tmp_path)!r}: Permission denied")  # fmt: skip
 
 
 def test_read_only_folder(tmp_path, capsys):
@@ -300,9 +302,9 @@ def test_file_mode(tmp_path, umask, existing, mode):
     assert out.read_text().startswith("t,x,v,F_s,F_d,F\n")
 
 
-def _interrupt(tmp_path, args, sig, *, started, env=None, wait=3.0) -> tuple[subprocess.CompletedProcess, float]:
+def _interrupt(tmp_path, args, sig, *, started, env=None, wait=3.0):
     """Start a run, wait until ``started(temporary file)``, send ``sig``; returns the
-    finished process and the seconds it took after the signal."""
+    finished process and the seconds it took after the signal (at most ``wait``)."""
     env = {**os.environ, **(env or {})}
     proc = subprocess.Popen([sys.executable, "-m", "lumped", "simulate", *args, "--output", "o.csv"],
                             cwd=tmp_path, env=env, stderr=subprocess.PIPE, text=True,

@@ -186,7 +186,7 @@ def _check_output(path: str) -> str:
     if not path.strip():
         raise ValueError("--output expects a file name, got an empty value")
     if os.path.isdir(path) or not name:
-        raise ValueError(f"--output: {path!r} is a directory; give a file name ending in .csv or .npz")  # fmt: skip
+        raise ValueError(f"--output: {path!r} is a directory; name a .csv or .npz file")
     if name.lower() in (".csv", ".npz"):
         raise ValueError(f"--output: {path!r} has no file name before the suffix")
     if os.path.splitext(name)[1].lower() not in (".csv", ".npz"):
@@ -261,7 +261,8 @@ class _Output:
             finally:
                 os.close(fd)
         except OSError as err:
-            raise ValueError(f"--output: cannot create a file in {folder!r}: {err.strerror or err}") from None  # fmt: skip
+            why = err.strerror or str(err)
+            raise ValueError(f"--output: cannot create a file in {folder!r}: {why}") from None
 
     def commit(self, columns: dict[str, np.ndarray]) -> None:
         """Write ``columns`` to the temporary file and rename it to the output."""
@@ -273,7 +274,8 @@ class _Output:
                 os.replace(self.tmp, self.path)
                 self.written = True
         except OSError as err:
-            raise ValueError(f"--output: cannot write {self.path!r}: {err.strerror or err}") from None  # fmt: skip
+            why = err.strerror or str(err)
+            raise ValueError(f"--output: cannot write {self.path!r}: {why}") from None
 
     def discard(self) -> None:
         """Remove the temporary file if it is still there."""
