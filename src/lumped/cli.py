@@ -1,25 +1,54 @@
 """Command line: ``python -m lumped simulate [options]``.
 
 Writes the columns ``t, x, v, F_s, F_d, F`` to a ``.csv`` or ``.npz`` file and a
-short summary to stderr.  A user error prints one line and exits with status 2.
+short summary to stderr.  A user error prints one line and exits with status 2;
+an interrupted run (Ctrl-C, SIGTERM, SIGHUP) prints one line and exits with
+128 + the signal number.  The output is written to a temporary file in the
+target folder, created before the run (so an unwritable folder is refused at
+once) and renamed when complete; every failure removes it.
 """
 
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import os
+import re
+import signal
+import stat
 import sys
 import tempfile
-from collections.abc import Sequence
+import threading
+from collections.abc import Iterator, Sequence
+from typing import TYPE_CHECKING, BinaryIO
 
 import numpy as np
 
 from lumped import _validate
 
+if TYPE_CHECKING:
+    from lumped.results import Trajectory
+
 __all__ = ["main", "build_parser"]
 
-_CHECKS = {  # option -> (validator, API keyword)
+_OPTIONS = (  # (API name, default, help); the option is "--" + name with "-" for "_"
+    ("mass", "1", "mass m > 0 (kg)"),
+    ("stiffness", "100", "spring constant k > 0 (N/m)"),
+    ("gamma", "1", "Bingham slope gamma > 0 (m/(N s)); inf for Coulomb"),
+    ("threshold", "1", "static threshold mu_s N_f >= 0 (N)"),
+    ("x0", "0", "initial displacement (m)"),
+    ("v0", "0", "initial velocity (m/s)"),
+    ("force_amplitude", "0", "forcing amplitude P (N)"),
+    ("force_omega", "0", "forcing angular frequency (rad/s)"),
+    ("force_phase", "0", "forcing phase (rad)"),
+    ("force_until", "inf", "time after which the force is zero (s)"),
+    ("t_end", "2", "final time > 0 (s)"),
+    ("dt", "1e-4", "time step > 0 (s)"),
+    ("save_every", "1", "keep every K-th grid point"),
+)
+
+_CHECKS = {  # API name -> validator (the API's own, so the messages are the API's)
     "mass": _validate.positive,
     "stiffness": _validate.positive,
     "gamma": _validate.positive_or_inf,
@@ -36,86 +65,236 @@ _CHECKS = {  # option -> (validator, API keyword)
 }
 
 
+def _flag(name: str) -> str:
+    return "--" + name.replace("_", "-")
+
+
+#: The API's argument names (what its ``ValueError`` messages begin with) -> options.
+_API_TO_OPTION = {name: _flag(name) for name in _CHECKS} | {"t_end/dt": "--t-end/--dt"}
+_LEADING_NAME = re.compile(r"^([a-z][a-z0-9_/]*)(?=:| must)")
+#: Options that take a value (the rest of the command line is names and values).
+_TAKES_VALUE = frozenset(_API_TO_OPTION.values()) - {"--t-end/--dt"} | {"--method", "--output"}
+#: Signals that unwind through the cleanup while a run is under way (SIGINT
+#: already does, as KeyboardInterrupt).
+_UNWIND_SIGNALS = tuple(getattr(signal, n) for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n))
+
+
 class _Parser(argparse.ArgumentParser):
     def error(self, message: str) -> None:  # one line, status 2, no usage dump
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
+class _Terminated(BaseException):
+    """Raised by the SIGTERM/SIGHUP handler; a BaseException, like KeyboardInterrupt,
+    so that no ``except Exception`` on the way swallows it."""
+
+    def __init__(self, signum: int) -> None:
+        super().__init__(signum)
+        self.signum = signum
+
+
 def build_parser() -> argparse.ArgumentParser:
-    """The argument parser (defaults are the paper's values, section 3)."""
-    parser = _Parser(prog="lumped", description=__doc__.splitlines()[0])
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
-    sim = sub.add_parser("simulate", help="integrate one motion and write it to a file")
-    options = [
-        ("--mass", "1", "mass m > 0 (kg)"),
-        ("--stiffness", "100", "spring constant k > 0 (N/m)"),
-        ("--gamma", "1", "Bingham slope gamma > 0 (m/(N s)); inf for Coulomb"),
-        ("--threshold", "1", "static threshold mu_s N_f >= 0 (N)"),
-        ("--x0", "0", "initial displacement (m)"),
-        ("--v0", "0", "initial velocity (m/s)"),
-        ("--force-amplitude", "0", "forcing amplitude P (N)"),
-        ("--force-omega", "0", "forcing angular frequency (rad/s)"),
-        ("--force-phase", "0", "forcing phase (rad)"),
-        ("--force-until", "inf", "time after which the force is zero (s)"),
-        ("--t-end", "2", "final time > 0 (s)"),
-        ("--dt", "1e-4", "time step > 0 (s)"),
-        ("--save-every", "1", "keep every K-th grid point"),
-    ]
-    for flag, default, text in options:
-        sim.add_argument(flag, default=default, help=f"{text} [default: {default}]")
+    """The argument parser (defaults are the paper's values, section 3).
+
+    Abbreviated option names are not accepted: ``--x0`` and ``--x00`` must not
+    silently mean the same thing, and every option's value is checked by name.
+    """
+    parser = _Parser(prog="lumped", description=__doc__.splitlines()[0], allow_abbrev=False)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
+                                parser_class=_Parser)  # fmt: skip
+    sim = sub.add_parser("simulate", help="integrate one motion and write it to a file",
+                         allow_abbrev=False)  # fmt: skip
+    for name, default, text in _OPTIONS:
+        sim.add_argument(_flag(name), default=default, help=f"{text} [default: {default}]")
     sim.add_argument("--method", default="backward-euler",
                      help="backward-euler (Algorithm 1) or exact [default: backward-euler]")  # fmt: skip
     sim.add_argument("--output", required=True, help="output file, .csv or .npz")
     return parser
 
 
-def _clean(args: argparse.Namespace) -> dict[str, object]:
-    """Validate every option, naming it as the user typed it."""
-    from lumped.simulate import METHODS
+def option_message(message: str) -> str:
+    """An API error message in the command line's words.
 
-    values = {}
-    for name, check in _CHECKS.items():
-        option = "--" + name.replace("_", "-")
-        parse = _validate.parse_int if check is _validate.positive_int else _validate.parse_float
-        values[name] = check(option, parse(option, getattr(args, name)))
-    if args.method not in METHODS:
-        raise ValueError(f"--method must be one of {', '.join(METHODS)}; got {args.method!r}")
-    suffix = os.path.splitext(args.output)[1].lower()
-    if suffix not in (".csv", ".npz"):
-        raise ValueError(f"--output must end in .csv or .npz, got {args.output!r}")
-    folder = os.path.dirname(os.path.abspath(args.output))
+    The API's messages begin with the argument's name followed by ``:`` or
+    `` must`` (``"force_amplitude: ..."``); that name becomes the option
+    (``"--force-amplitude: ..."``).  Only the leading name is replaced: the
+    rest may be a formula or echo the user's value.  A message that does not
+    begin with an argument name is returned unchanged.
+
+    Parameters
+    ----------
+    message : str
+        The text of a ``ValueError`` raised by :mod:`lumped`.
+
+    Returns
+    -------
+    str
+    """
+    lead = _LEADING_NAME.match(message)
+    if lead is None or lead.group(1) not in _API_TO_OPTION:
+        return message
+    return _API_TO_OPTION[lead.group(1)] + message[lead.end():]
+
+
+def _is_option(item: str) -> bool:
+    """``--name`` (not a value such as ``-1e-4``, ``-inf`` or ``--5``)."""
+    return item.startswith("--") and item[2:3].isalpha()
+
+
+def _attach_values(argv: Sequence[str]) -> list[str]:
+    """Write ``--opt VALUE`` as ``--opt=VALUE``.
+
+    argparse takes a value such as ``-1e-4`` or ``-inf`` for an option name;
+    attached with ``=`` it reaches the validators, which explain what is wrong.
+    An option followed by another option (``--mass --output o.csv``) is left
+    alone, so that argparse reports the missing value.
+    """
+    out: list[str] = []
+    items = iter(argv)
+    for item in items:
+        if item in _TAKES_VALUE:
+            value = next(items, None)
+            if value is not None and _is_option(value):
+                out.extend([item, value])
+                continue
+            item = item if value is None else f"{item}={value}"
+        out.append(item)
+    return out
+
+
+def _refuse_repeats(items: Sequence[str]) -> None:
+    """Refuse an option given twice (argparse would silently keep the last)."""
+    seen: set[str] = set()
+    for item in items:
+        name = item.split("=", 1)[0]
+        if name in _TAKES_VALUE and name in seen:
+            raise ValueError(f"{name} is given more than once")
+        seen.add(name)
+
+
+def _parse(argv: Sequence[str]) -> argparse.Namespace:
+    """Parse the command line; raises SystemExit (usage, --help) or ValueError."""
+    items = _attach_values(argv)
+    if items[:1] == ["simulate"]:
+        _refuse_repeats(items[1:])
+    return build_parser().parse_args(items)
+
+
+def _check_output(path: str) -> str:
+    """Refuse an ``--output`` that cannot name the file to write, with the reason."""
+    name = os.path.basename(path)
+    if not path.strip():
+        raise ValueError("--output expects a file name, got an empty value")
+    if os.path.isdir(path) or not name:
+        raise ValueError(f"--output: {path!r} is a directory; name a .csv or .npz file")
+    if name.lower() in (".csv", ".npz"):
+        raise ValueError(f"--output: {path!r} has no file name before the suffix")
+    if os.path.splitext(name)[1].lower() not in (".csv", ".npz"):
+        raise ValueError(f"--output must end in .csv or .npz, got {path!r}")
+    folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise ValueError(f"--output: directory {folder!r} does not exist")
-    n = _validate.step_count(values["t_end"], values["dt"], "--t-end/--dt")  # type: ignore[arg-type]
-    try:
-        _validate.output_size(n, values["save_every"])  # type: ignore[arg-type]
-    except ValueError as err:
-        message = str(err).replace("save_every", "--save-every").replace(" dt", " --dt")
-        raise ValueError(message) from None
+    return path
+
+
+def _clean(args: argparse.Namespace) -> dict[str, object]:
+    """Parse and validate every option; the messages use the API's names."""
+    from lumped.simulate import METHODS
+
+    values: dict[str, object] = {}
+    for name, check in _CHECKS.items():
+        parse = _validate.parse_int if check is _validate.positive_int else _validate.parse_float
+        values[name] = check(name, parse(name, getattr(args, name)))
+    if args.method not in METHODS:
+        raise ValueError(f"--method must be one of {', '.join(METHODS)}; got {args.method!r}")
+    _check_output(args.output)
+    n = _validate.step_count(values["t_end"], values["dt"])  # type: ignore[arg-type]
+    _validate.output_size(n, values["save_every"])  # type: ignore[arg-type]
     return values
 
 
-def _write(path: str, columns: dict[str, np.ndarray]) -> None:
-    """Write atomically: a temporary file in the same folder, then rename."""
-    folder = os.path.dirname(os.path.abspath(path))
-    suffix = os.path.splitext(path)[1].lower()
-    fd, tmp = tempfile.mkstemp(dir=folder, suffix=suffix)
+def _new_file_mode(path: str) -> int:
+    """Mode for the output: that of the file it replaces, else 0o666 less the umask."""
+    with contextlib.suppress(OSError):
+        return stat.S_IMODE(os.stat(path).st_mode)
+    umask = os.umask(0)  # reading the umask means setting it; put it back at once
+    os.umask(umask)
+    return 0o666 & ~umask
+
+
+@contextlib.contextmanager
+def _signals_blocked() -> Iterator[None]:
+    """Hold back the unwinding signals (so a rename and its record are not split)."""
+    held = {signal.SIGINT, *_UNWIND_SIGNALS}
+    if not hasattr(signal, "pthread_sigmask"):  # not POSIX: nothing to hold
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, held)
     try:
-        with os.fdopen(fd, "wb") as fh:
-            if suffix == ".npz":
-                np.savez(fh, **columns)
-            else:
-                data = np.column_stack(list(columns.values()))
-                np.savetxt(fh, data, fmt="%.17g", delimiter=",", header=",".join(columns),
-                           comments="")  # fmt: skip
-        os.replace(tmp, path)
-    except BaseException:
-        os.unlink(tmp)
-        raise
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
 
 
-def _run(values: dict[str, object], method: str, output: str) -> str:
-    from lumped.event_driven import solve_exact
+class _Output:
+    """The output file: a temporary file in the target folder, then a rename.
+
+    :meth:`create` makes the temporary file (before the run, so that a folder
+    that cannot be written is refused at once), :meth:`commit` fills and
+    renames it, :meth:`discard` removes it unless committed.  ``written`` tells
+    whether the rename happened.
+    """
+
+    def __init__(self, path: str) -> None:
+        self.path = path
+        self.tmp: str | None = None
+        self.written = False
+
+    def create(self) -> None:
+        """Create the temporary file with the final file's mode."""
+        folder = os.path.dirname(os.path.abspath(self.path))
+        try:
+            fd, self.tmp = tempfile.mkstemp(dir=folder, prefix=os.path.basename(self.path) + ".",
+                                            suffix=".part")  # fmt: skip
+            try:
+                os.fchmod(fd, _new_file_mode(self.path))  # mkstemp's 0o600 ignores the umask
+            finally:
+                os.close(fd)
+        except OSError as err:
+            why = err.strerror or str(err)
+            raise ValueError(f"--output: cannot create a file in {folder!r}: {why}") from None
+
+    def commit(self, columns: dict[str, np.ndarray]) -> None:
+        """Write ``columns`` to the temporary file and rename it to the output."""
+        assert self.tmp is not None, "create() first"
+        try:
+            with open(self.tmp, "wb") as fh:
+                _dump(fh, columns, os.path.splitext(self.path)[1].lower())
+            with _signals_blocked():
+                os.replace(self.tmp, self.path)
+                self.written = True
+        except OSError as err:
+            why = err.strerror or str(err)
+            raise ValueError(f"--output: cannot write {self.path!r}: {why}") from None
+
+    def discard(self) -> None:
+        """Remove the temporary file if it is still there."""
+        if self.tmp is not None and not self.written:
+            with contextlib.suppress(FileNotFoundError):
+                os.unlink(self.tmp)
+
+
+def _dump(fh: BinaryIO, columns: dict[str, np.ndarray], suffix: str) -> None:
+    """Write the columns as ``.npz`` arrays or as ``.csv`` with a header line."""
+    if suffix == ".npz":
+        np.savez(fh, **columns)
+    else:
+        data = np.column_stack(list(columns.values()))
+        np.savetxt(fh, data, fmt="%.17g", delimiter=",", header=",".join(columns), comments="")
+
+
+def _compute(values: dict[str, object], method: str) -> Trajectory:
+    """Run ``method`` through the driver :func:`lumped.simulate.simulate`."""
     from lumped.forcing import SwitchedSine
     from lumped.simulate import simulate
     from lumped.system import Oscillator
@@ -124,51 +303,77 @@ def _run(values: dict[str, object], method: str, output: str) -> str:
     osc = Oscillator.bingham(v["mass"], v["stiffness"], v["threshold"], v["gamma"])  # type: ignore[arg-type]
     force = SwitchedSine(v["force_amplitude"], v["force_omega"], v["force_phase"],
                          v["force_until"])  # type: ignore[arg-type]  # fmt: skip
-    common = dict(x0=v["x0"], v0=v["v0"], force=None if force.is_zero else force)
-    if method == "exact":  # keep the solution: its rest time is an event, not a grid point
-        sol = solve_exact(osc, v["t_end"], **common)  # type: ignore[arg-type]
-        traj = sol.sample(v["dt"], v["save_every"])  # type: ignore[arg-type]
-        rest_time, rest_position = sol.rest_time, sol.rest_position
-    else:
-        traj = simulate(osc, v["t_end"], v["dt"], method=method, save_every=v["save_every"],
-                        **common)  # type: ignore[arg-type]  # fmt: skip
-        rest_time, rest_position = traj.rest_time, traj.rest_position
-    _write(output, traj.columns())
-    if math.isnan(rest_time):
+    return simulate(osc, v["t_end"], v["dt"], x0=v["x0"], v0=v["v0"],  # type: ignore[arg-type]
+                    force=None if force.is_zero else force, method=method,
+                    save_every=v["save_every"])  # type: ignore[arg-type]  # fmt: skip
+
+
+def _summary(traj: Trajectory) -> str:
+    """Rest time and position as the method found them, or the last state."""
+    if math.isnan(traj.rest_time):
         return f"still moving at t = {traj.t[-1]:.6g} s (x = {traj.x[-1]:.9g} m)"
-    return f"at rest from t = {rest_time:.10g} s at x = {rest_position:.10g} m"
+    return f"at rest from t = {traj.rest_time:.10g} s at x = {traj.rest_position:.10g} m"
 
 
-def _attach_values(argv: Sequence[str]) -> list[str]:
-    """Write ``--opt VALUE`` as ``--opt=VALUE``.
+def _raise_terminated(signum: int, frame: object) -> None:
+    raise _Terminated(signum)
 
-    argparse takes a value such as ``-1e-4`` or ``-inf`` for an option name;
-    attached with ``=`` it reaches the validators, which explain what is wrong.
+
+@contextlib.contextmanager
+def _signals_unwind() -> Iterator[None]:
+    """While active, SIGTERM and SIGHUP raise :class:`_Terminated`.
+
+    Signals that the caller ignores (``nohup``) stay ignored; the previous
+    handlers are restored on exit.  Outside the main thread nothing changes
+    (Python delivers signals to the main thread only).
     """
-    takes_value = {"--" + name.replace("_", "-") for name in _CHECKS} | {"--method", "--output"}
-    out: list[str] = []
-    items = iter(argv)
-    for item in items:
-        value = next(items, None) if item in takes_value else None
-        out.append(item if value is None else f"{item}={value}")
-    return out
+    old = {}
+    if threading.current_thread() is threading.main_thread():
+        for sig in _UNWIND_SIGNALS:
+            if signal.getsignal(sig) is not signal.SIG_IGN:
+                old[sig] = signal.signal(sig, _raise_terminated)
+    try:
+        yield
+    finally:
+        for sig, handler in old.items():
+            signal.signal(sig, signal.SIG_DFL if handler is None else handler)
+
+
+def _simulate(args: argparse.Namespace, output: _Output) -> str:
+    """Validate, reserve the output file, run, write; returns the summary."""
+    values = _clean(args)
+    output.create()
+    traj = _compute(values, args.method)
+    output.commit(traj.columns())
+    return _summary(traj)
+
+
+def _fail(status: int, message: str) -> int:
+    print("lumped simulate: " + " ".join(message.split()), file=sys.stderr)  # one line
+    return status
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Entry point; returns the exit status."""
-    parser = build_parser()
+    """Entry point; returns the exit status (0, 2 for a user error, 128 + signal)."""
+    output = None
     try:
-        args = parser.parse_args(_attach_values(sys.argv[1:] if argv is None else argv))
-    except SystemExit as stop:  # usage errors (status 2) and --help (status 0)
+        with _signals_unwind():
+            args = _parse(sys.argv[1:] if argv is None else argv)
+            output = _Output(args.output)
+            summary = _simulate(args, output)
+    except SystemExit as stop:  # argparse: usage errors (status 2) and --help (status 0)
         return int(stop.code or 0)
-    try:
-        values = _clean(args)
-        summary = _run(values, args.method, args.output)
+    except (KeyboardInterrupt, _Terminated) as stop:
+        done = f"wrote {output.path}" if output and output.written else "no output written"
+        return _fail(128 + getattr(stop, "signum", signal.SIGINT), f"interrupted; {done}")
     except ValueError as err:
-        print(f"lumped simulate: error: {err}", file=sys.stderr)
-        return 2
+        return _fail(2, "error: " + option_message(str(err)))
     except MemoryError:
-        print("lumped simulate: error: out of memory; raise --save-every or --dt", file=sys.stderr)
-        return 2
+        return _fail(2, "error: out of memory; raise --save-every or --dt")
+    except ArithmeticError as err:  # the API should refuse such input first: report it
+        return _fail(2, f"error: the {args.method} run failed: {type(err).__name__}: {err}")
+    finally:
+        if output is not None:
+            output.discard()
     print(f"lumped simulate ({args.method}): {summary}; wrote {args.output}", file=sys.stderr)
     return 0
