@@ -21,8 +21,9 @@ Two uses:
   These runs use ``config/config.yaml`` and write no figure files.
 
 The output is the same bytes from run to run: cell ids are numbered from the
-cell index (nbformat draws random ones), no timing is recorded, and tracebacks
-are uncoloured. The kernel talks to this process over Unix sockets in a
+cell index (nbformat draws random ones), a cell's printed output is one piece
+per stream (the kernel splits it at timing-dependent places), no timing is
+recorded, and tracebacks are uncoloured. The kernel talks to this process over Unix sockets in a
 temporary folder (IPC transport) rather than TCP on localhost, so no port is
 opened and ipykernel has no reason to warn about unencrypted TCP. A failing
 cell ends the run with the cell's source and the error, in plain text, and
@@ -48,10 +49,25 @@ NOTEBOOKS = ROOT / "notebooks"
 ENV_VARS = ("LUMPED_FIGURES_DIR", "LUMPED_CONFIG")
 
 
-def number_cells(notebook) -> None:
-    """Give each cell the id ``cell-<index>`` in place of nbformat's random one."""
+def normalise(notebook) -> None:
+    """Make the executed notebook independent of the run.
+
+    Each cell gets the id ``cell-<index>`` in place of nbformat's random one,
+    and consecutive pieces of the same stream are joined: where the kernel
+    splits one cell's printing depends on timing.
+    """
     for index, cell in enumerate(notebook.cells):
         cell["id"] = f"cell-{index}"
+        outputs = []
+        for output in cell.get("outputs", []):
+            previous = outputs[-1] if outputs else None
+            if (output["output_type"] == "stream" and previous is not None
+                    and previous["output_type"] == "stream" and previous["name"] == output["name"]):
+                previous["text"] += output["text"]
+            else:
+                outputs.append(output)
+        if "outputs" in cell:
+            cell["outputs"] = outputs
 
 
 def execute(source: Path, env: dict[str, str], timeout: int = 600) -> object:
@@ -72,7 +88,7 @@ def execute(source: Path, env: dict[str, str], timeout: int = 600) -> object:
             extra_arguments=["--InteractiveShell.colors=nocolor"],
         )
         client.execute()
-    number_cells(notebook)
+    normalise(notebook)
     return notebook
 
 
