@@ -152,3 +152,21 @@ def test_coulomb_friction_builds_end_to_end(tmp_path):
     assert numbers["free_large"]["exact"]["rest_time"] == "still moving"
     assert numbers["free_large"]["error"]["rest_position"] is None
     _plans_nothing(repo, "gamma=.inf")
+
+
+@pytest.mark.slow
+def test_executed_notebook_is_the_same_bytes_twice(tmp_path):
+    """Cell ids are numbered and split streams joined, so two runs write the same file."""
+    runner = ROOT / "scripts" / "run_notebook.py"
+    notebook = ROOT / "notebooks" / "01_governing_equations.py"
+    written = []
+    for name in ("a.ipynb", "b.ipynb"):
+        done = subprocess.run(
+            [sys.executable, str(runner), str(notebook), "--output", str(tmp_path / name)],
+            capture_output=True, text=True, timeout=300,
+        )  # fmt: skip
+        assert done.returncode == 0 and done.stdout + done.stderr == "", done.stdout + done.stderr
+        written.append((tmp_path / name).read_bytes())
+    assert written[0] == written[1]
+    cells = json.loads(written[0])["cells"]
+    assert [c["id"] for c in cells] == [f"cell-{i}" for i in range(len(cells))]
