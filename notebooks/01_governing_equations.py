@@ -147,9 +147,16 @@ fig = P.bingham_pair(law)
 # since the first step of Algorithm 1 does not use $F_d(0)$.
 
 # %%
+def on_graph(v, fd):
+    """(v, F_d) satisfies (6); for gamma = inf a slipping F_d is the band edge sgn(v) mu_s N_f."""
+    if math.isinf(gamma) and v != 0:
+        return fd == math.copysign(tau, v)  # the slip branch is vertical: v is not phi(F_d)
+    return math.isclose(law.velocity(fd), v, abs_tol=1e-15)
+
+
 for x0, v0 in [(0.005, 0.0), (0.5, 0.0), (0.0, 0.3)]:
     fd0 = initial_dashpot_force(osc, 0.0, x0, v0)
-    assert math.isclose(law.velocity(fd0), v0, abs_tol=1e-15)  # (5) and (6) hold at t = 0
+    assert on_graph(v0, fd0)  # (5) and (6) hold at t = 0
     print(f"x0 = {x0:5.3f} m, v0 = {v0:3.1f} m/s:  F_s(0) = {k * x0:5.2f} N, "
           f"F_d(0) = {fd0:+.3f} N, band of (6) = {law.force_interval(v0)}")
 
@@ -360,7 +367,7 @@ print(f"steps: {Ft.size}: slip {(~stick).sum()}, stick {stick.sum()} "
       f"(arrivals at rest {(stick & ~held).sum()}, held at rest {held.sum()})")
 print(f"sgn(F~) == sgn(F_d) at {np.sum(np.sign(Ft) == np.sign(Fd))} of {Ft.size} steps")
 print(f"largest |residual of (15a)|: {np.abs(residual).max():.1e} m/s")
-print(f"largest |F_d| in stick: {np.abs(Fd[stick]).max():.4f} N  (<= mu_s N_f = {tau})")
+print(f"largest |F_d| in stick: {np.abs(Fd[stick]).max(initial=0.0):.4f} N  (<= mu_s N_f = {tau})")
 
 # %% [markdown]
 # ## What to take away

@@ -240,9 +240,15 @@ print(f"energy: {energy(x0, 0.0):.5f} J at t = 0, {energy(bdf.x[-1], bdf.v[-1]):
 
 # %%
 def creep_velocity(x, eps):
-    """Root of k x + tau tanh(v/eps) + v/gamma = 0 (bracketed for 0 < k x < tau)."""
+    """Root of k x + tau tanh(v/eps) + v/gamma = 0, for 0 < k x < tau.
+
+    The balance is k x > 0 at v = 0 and negative at twice the frictionless
+    root, v = -2 eps artanh(k x/tau), since tanh(2a) > tanh(a) for a > 0 and
+    v/gamma <= 0 there: a bracket also for gamma = inf, where the root is the
+    frictionless one itself.
+    """
     balance = lambda v: k * x + tau * np.tanh(v / eps) + osc.dashpot.viscosity * v  # noqa: E731
-    return brentq(balance, -eps * np.arctanh(k * x / tau), 0.0, xtol=1e-300, rtol=1e-15)
+    return brentq(balance, -2 * eps * np.arctanh(k * x / tau), 0.0, xtol=1e-300, rtol=1e-15)
 
 
 print(" eps (m/s)   x(5 s) (m)   measured v/x   -k eps/tau   ratio     v_qs/x    ratio"

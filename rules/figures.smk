@@ -9,13 +9,14 @@
 rule effective_config:
     """config/config.yaml after any --config overrides, for the notebooks.
 
-    The values are a parameter, so the params rerun trigger reruns this rule
-    (and the notebooks) only when one of them changes.
+    The checked values, as canonical YAML text (rules/common.smk), are a
+    parameter: the params rerun trigger reruns this rule (and the notebooks)
+    only when a value changes, not when an override repeats the default.
     """
     output:
         "results/config.yaml",
     params:
-        values=config,
+        text=CONFIG_TEXT,
     log:
         "logs/effective_config.log",
     script:

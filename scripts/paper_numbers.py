@@ -18,6 +18,14 @@ Figure 10, ``free_large`` = Figures 11-14), each with the exact solution
 (``error``); ``convergence`` holds the same differences for a range of steps;
 ``textbook`` the numbers of the ``sgn(0) = 0`` model and its regularisation.
 Times in s, displacements in m, velocities in m/s, forces in N.
+
+The JSON is strict (no ``NaN`` or ``Infinity``, which JSON lacks): a run that
+has not come to rest by its end time has ``"still moving"`` as its rest time
+and rest position; a difference or fitted order that cannot be formed (one of
+the runs still moving, or a zero error on a logarithmic fit) is ``null``, as is
+``first_event_time`` of a mass that never moves; an
+infinite parameter (``gamma`` for Coulomb friction, ``force_until`` for a
+forcing never switched off) is the string ``"inf"``.
 """
 
 from __future__ import annotations
@@ -43,6 +51,13 @@ RK45_BUDGET = 50_000
 RK45_RTOL, RK45_ATOL = 1e-8, 1e-10
 #: Regularisation scales (m/s) of sgn(v) -> tanh(v/eps).
 TANH_EPS = (1e-3, 1e-4, 1e-5, 1e-6)
+#: Rest time and rest position of a run still moving at its end time.
+STILL_MOVING = "still moving"
+
+
+def _rest(value: float) -> float | str:
+    """A rest time or position, or STILL_MOVING where the trajectory gives ``nan``."""
+    return STILL_MOVING if math.isnan(value) else value
 
 
 def _examples(cfg: dict[str, Any]) -> dict[str, dict[str, Any]]:
@@ -81,8 +96,8 @@ def _exact_summary(ex: L.ExactSolution) -> dict[str, Any]:
     kinds = [e.kind for e in ex.events]
     moving = [e for e in ex.events if e.kind in ("breakaway", "reversal", "stop")]
     return {
-        "rest_time": ex.rest_time,
-        "rest_position": ex.rest_position,
+        "rest_time": _rest(ex.rest_time),
+        "rest_position": _rest(ex.rest_position),
         "reversals": kinds.count("reversal"),
         "breakaways": kinds.count("breakaway"),
         "first_event_time": moving[0].time if moving else math.nan,
@@ -108,8 +123,8 @@ def _example(osc: L.Oscillator, dt: float, run: dict[str, Any]) -> dict[str, Any
         "exact": _exact_summary(exact)
         | {"peak_x": float(np.max(np.abs(sampled.x))), "peak_v": float(np.max(np.abs(sampled.v)))},
         "be": {
-            "rest_time": be.rest_time,
-            "rest_position": be.rest_position,
+            "rest_time": _rest(be.rest_time),
+            "rest_position": _rest(be.rest_position),
             "peak_x": float(np.max(np.abs(be.x))),
             "peak_v": float(np.max(np.abs(be.v))),
             "min_F_d": float(np.min(be.F_d)),
@@ -136,7 +151,9 @@ def _forced_small_extra(osc: L.Oscillator, dt: float, run: dict[str, Any]) -> di
 
 
 def _order(steps: list[float], errors: list[float]) -> float:
-    """Least-squares slope of log(error) against log(step)."""
+    """Least-squares slope of log(error) against log(step); ``nan`` unless every error is > 0."""
+    if not all(e > 0 and math.isfinite(e) for e in errors):
+        return math.nan  # a zero error (exact at that step) or a run still moving
     return float(np.polyfit(np.log(steps), np.log(errors), 1)[0])
 
 
@@ -173,7 +190,7 @@ def _creep(osc: L.Oscillator, x0: float, eps: float) -> dict[str, float]:
         "x_end": float(run.x[-1]),
         "v_end": float(run.v[-1]),
         "drift": float(x0 - run.x[-1]),
-        "linear_rate": -osc.stiffness * eps / osc.threshold,
+        "linear_rate": -osc.stiffness * eps / osc.threshold if osc.threshold > 0 else -math.inf,
     }
 
 
@@ -236,7 +253,7 @@ def compute(cfg: dict[str, Any] | None = None) -> dict[str, Any]:
 
 
 def _clean(value: Any) -> Any:
-    """NaN to None (JSON has no NaN); numpy scalars to Python numbers."""
+    """NaN to None and infinities to "inf"/"-inf" (strict JSON); numpy scalars to Python numbers."""
     if isinstance(value, dict):
         return {k: _clean(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
@@ -246,7 +263,9 @@ def _clean(value: Any) -> Any:
     if isinstance(value, (int, np.integer)):
         return int(value)
     if isinstance(value, (float, np.floating)):
-        return None if math.isnan(value) else float(value)
+        if math.isnan(value):
+            return None
+        return float(value) if math.isfinite(value) else ("inf" if value > 0 else "-inf")
     return value
 
 
@@ -257,7 +276,7 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     target = Path(args[0])
     target.parent.mkdir(parents=True, exist_ok=True)
-    target.write_text(json.dumps(compute(), indent=1, sort_keys=True) + "\n", encoding="utf-8")
+    target.write_text(json.dumps(compute(), indent=1, sort_keys=True, allow_nan=False) + "\n", encoding="utf-8")
     return 0
 
 

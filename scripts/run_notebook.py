@@ -19,6 +19,15 @@ Two uses:
       python scripts/run_notebook.py --update-committed notebooks/05_free_vibrations.py
 
   These runs use ``config/config.yaml`` and write no figure files.
+
+The output is the same bytes from run to run: cell ids are numbered from the
+cell index (nbformat draws random ones), a cell's printed output is one piece
+per stream (the kernel splits it at timing-dependent places), no timing is
+recorded, and tracebacks are uncoloured. The kernel talks to this process over Unix sockets in a
+temporary folder (IPC transport) rather than TCP on localhost, so no port is
+opened and ipykernel has no reason to warn about unencrypted TCP. A failing
+cell ends the run with the cell's source and the error, in plain text, and
+exit status 1.
 """
 
 from __future__ import annotations
@@ -26,15 +35,39 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import tempfile
 from pathlib import Path
 
 import jupytext
 import nbclient
+from nbclient.exceptions import CellExecutionError
+from traitlets.config import Config
 
 ROOT = Path(__file__).resolve().parent.parent
 NOTEBOOKS = ROOT / "notebooks"
 #: Variables a notebook kernel reads; cleared unless set on purpose.
 ENV_VARS = ("LUMPED_FIGURES_DIR", "LUMPED_CONFIG")
+
+
+def normalise(notebook) -> None:
+    """Make the executed notebook independent of the run.
+
+    Each cell gets the id ``cell-<index>`` in place of nbformat's random one,
+    and consecutive pieces of the same stream are joined: where the kernel
+    splits one cell's printing depends on timing.
+    """
+    for index, cell in enumerate(notebook.cells):
+        cell["id"] = f"cell-{index}"
+        outputs = []
+        for output in cell.get("outputs", []):
+            previous = outputs[-1] if outputs else None
+            if (output["output_type"] == "stream" and previous is not None
+                    and previous["output_type"] == "stream" and previous["name"] == output["name"]):
+                previous["text"] += output["text"]
+            else:
+                outputs.append(output)
+        if "outputs" in cell:
+            cell["outputs"] = outputs
 
 
 def execute(source: Path, env: dict[str, str], timeout: int = 600) -> object:
@@ -43,14 +76,19 @@ def execute(source: Path, env: dict[str, str], timeout: int = 600) -> object:
     for name in ENV_VARS:
         os.environ.pop(name, None)
     os.environ.update(env)
-    client = nbclient.NotebookClient(
-        notebook,
-        timeout=timeout,
-        kernel_name="python3",
-        record_timing=False,  # no timestamps: the output does not change between runs
-        resources={"metadata": {"path": str(source.resolve().parent)}},
-    )
-    client.execute()
+    with tempfile.TemporaryDirectory(prefix="lumped-kernel-") as sockets:
+        client = nbclient.NotebookClient(
+            notebook,
+            timeout=timeout,
+            kernel_name="python3",
+            record_timing=False,  # no timestamps: the output does not change between runs
+            resources={"metadata": {"path": str(source.resolve().parent)}},
+            # ipc: the kernel's sockets are files <sockets>/kernel-<n>, not TCP ports
+            config=Config(KernelManager={"transport": "ipc", "ip": f"{sockets}/kernel"}),
+            extra_arguments=["--InteractiveShell.colors=nocolor"],
+        )
+        client.execute()
+    normalise(notebook)
     return notebook
 
 
@@ -82,7 +120,11 @@ def main(argv: list[str] | None = None) -> int:
         env["LUMPED_FIGURES_DIR"] = str(args.figures.resolve())
     if args.config is not None:
         env["LUMPED_CONFIG"] = str(args.config.resolve())
-    notebook = execute(args.notebooks[0], env)
+    try:
+        notebook = execute(args.notebooks[0], env)
+    except CellExecutionError as error:
+        print(f"{args.notebooks[0]}: a cell failed\n{error}", file=sys.stderr)
+        return 1
     args.output.parent.mkdir(parents=True, exist_ok=True)
     jupytext.write(notebook, args.output)
     return 0

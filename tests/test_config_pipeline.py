@@ -1,0 +1,172 @@
+"""The pipeline's configuration: checked before any job, canonical, usable at its limits.
+
+Each check runs ``snakemake`` in a copy of the repository's tracked files, so
+that it neither reads nor writes this checkout's ``results/`` and ``figures/``.
+A bad value must stop the workflow before the DAG is built, with one line
+``config: <key> ...`` and no traceback; the tests marked ``slow`` build the
+whole pipeline (about 25 s each).
+"""
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parent.parent
+SNAKEMAKE = shutil.which("snakemake") or str(Path(sys.executable).with_name("snakemake"))
+#: What Snakemake itself prints whenever --config is given (not ours to change).
+NOTICE = "Config file config/config.yaml is extended by additional config specified via the command line."
+FIGURE_COUNT = 14
+
+pytestmark = pytest.mark.skipif(not Path(SNAKEMAKE).exists(), reason="snakemake not installed")
+
+
+def _copy_repository(target: Path) -> Path:
+    """The tracked files of the repository, copied to ``target``."""
+    listed = subprocess.run(
+        ["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True
+    ).stdout.decode()
+    for name in filter(None, listed.split("\0")):
+        source = ROOT / name
+        if source.is_file():
+            (target / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(source, target / name)
+    return target
+
+
+def _snakemake(repo: Path, *args: str, timeout: int = 300) -> subprocess.CompletedProcess:
+    env = {k: v for k, v in os.environ.items() if k != "LUMPED_CONFIG"}
+    return subprocess.run(
+        [SNAKEMAKE, *args], cwd=repo, capture_output=True, text=True, timeout=timeout, env=env
+    )
+
+
+def _made(repo: Path) -> list[str]:
+    """Files in results/ and figures/ besides the tracked figures/README.md."""
+    found = [p for d in ("results", "figures") for p in (repo / d).rglob("*") if p.is_file()]
+    return sorted(str(p.relative_to(repo)) for p in found if p.name != "README.md")
+
+
+@pytest.fixture(scope="module")
+def repo(tmp_path_factory) -> Path:
+    return _copy_repository(tmp_path_factory.mktemp("repo"))
+
+
+# (--config arguments, the one line the user must see)
+BAD = [
+    (["dt=-1"], "config: dt must be a finite number > 0 (s); got -1"),
+    (["dt=0"], "config: dt must be a finite number > 0 (s); got 0"),
+    (["dt=abc"], "config: dt must be a finite number > 0 (s); got 'abc'"),
+    (["dt="], "config: dt must be a finite number > 0 (s); got an empty value"),
+    (["dt=nan"], "config: dt must be a finite number > 0 (s); got nan"),
+    (["mass=1e400"], "config: mass must be a finite number > 0 (kg); got inf"),
+    (["dtt=1e-3"], "config: unknown key dtt; did you mean dt?"),
+    (["gamma=0"], "config: gamma must be a number > 0, or inf for Coulomb friction (m/(N s)); got 0"),
+    (["threshold=-0.5"], "config: threshold must be a finite number >= 0 (N); got -0.5"),
+    (["force_amplitude_large=inf"], "config: force_amplitude_large must be a finite number (N); got inf"),
+    (["force_until=-1"], "config: force_until must be a number >= 0, or inf for a forcing never switched off (s); got -1"),
+    (["x0_large=True"], "config: x0_large must be a finite number (m); got True"),
+    (["dt=3"], "config: dt must be smaller than t_end_forced = 2.5 s; got 3"),
+    (["dt=1e-9"], "config: dt must be at least t_end_forced/1e+07 = 2.5e-07 s (a run takes at most 1e+07 steps); got 1e-09"),
+]
+
+
+def _assert_one_clean_line(done: subprocess.CompletedProcess, expected: str, notice: bool = True) -> None:
+    output = done.stdout + done.stderr
+    lines = [line for line in output.splitlines() if line.strip()]
+    assert done.returncode == 2, output
+    assert "Traceback" not in output and 'File "' not in output, output
+    assert [line for line in lines if line.startswith("config:")] == [expected], output
+    assert lines == ([NOTICE] if notice else []) + [expected], output
+
+
+@pytest.mark.parametrize(("overrides", "expected"), BAD, ids=[" ".join(c) for c, _ in BAD])
+def test_bad_override_stops_before_any_job(repo, overrides, expected):
+    done = _snakemake(repo, "--cores", "1", "--config", *overrides)
+    _assert_one_clean_line(done, expected)
+    assert _made(repo) == []
+    assert not (repo / "logs").exists() and not (repo / "paper" / "build").exists()
+
+
+def test_missing_key_in_the_config_file_is_named(tmp_path):
+    repo = _copy_repository(tmp_path)
+    config = repo / "config" / "config.yaml"
+    text = config.read_text(encoding="utf-8")
+    assert re.search(r"^dt:", text, flags=re.M)
+    config.write_text(re.sub(r"^dt:.*\n", "", text, flags=re.M), encoding="utf-8")
+    done = _snakemake(repo, "--cores", "1", "--dry-run")
+    _assert_one_clean_line(done, "config: dt is missing; it must be a finite number > 0 (s)", notice=False)
+
+
+@pytest.mark.parametrize("overrides", [["gamma=inf"], ["gamma=.inf"], ["force_until=inf"], ["mass=1", "dt=1e-3"]])
+def test_valid_override_is_accepted(repo, overrides):
+    done = _snakemake(repo, "--dry-run", "--config", *overrides)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "effective_config" in done.stdout + done.stderr
+
+
+def _build(tmp_path: Path, *overrides: str) -> Path:
+    repo = _copy_repository(tmp_path)
+    args = ["--cores", "all"] + (["--config", *overrides] if overrides else [])
+    done = _snakemake(repo, *args, timeout=600)
+    assert done.returncode == 0, (done.stdout + done.stderr)[-3000:]
+    figures = sorted((repo / "figures").glob("fig[0-9][0-9]_*.p*"))
+    assert len(figures) == 2 * FIGURE_COUNT, figures
+    assert (repo / "paper" / "paper.pdf").stat().st_size > 0
+    return repo
+
+
+def _plans_nothing(repo: Path, *overrides: str) -> None:
+    done = _snakemake(repo, "--dry-run", "--config", *overrides)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "Nothing to be done" in done.stdout + done.stderr, done.stdout + done.stderr
+
+
+@pytest.mark.slow
+def test_default_build_then_override_equal_to_default_reruns_nothing(tmp_path):
+    repo = _build(tmp_path)
+    _plans_nothing(repo, "dt=0.0001")
+    _plans_nothing(repo, "dt=1e-4", "mass=1")
+    logs = sorted((repo / "logs" / "notebooks").glob("*.log"))
+    assert len(logs) == 5
+    for log in logs:
+        text = log.read_text(encoding="utf-8")
+        assert "\x1b[" not in text and "without encryption" not in text, f"{log.name}: {text[:500]}"
+
+
+@pytest.mark.slow
+def test_coulomb_friction_builds_end_to_end(tmp_path):
+    repo = _build(tmp_path, "gamma=inf")
+
+    def no_constant(name):
+        raise AssertionError(f"numbers.json holds {name}, which is not JSON")
+
+    numbers = json.loads((repo / "paper" / "build" / "numbers.json").read_text(), parse_constant=no_constant)
+    assert numbers["parameters"]["gamma"] == "inf"
+    # Coulomb friction removes energy slowly: the large free vibration is still moving at 4 s
+    assert numbers["free_large"]["exact"]["rest_time"] == "still moving"
+    assert numbers["free_large"]["error"]["rest_position"] is None
+    _plans_nothing(repo, "gamma=.inf")
+
+
+@pytest.mark.slow
+def test_executed_notebook_is_the_same_bytes_twice(tmp_path):
+    """Cell ids are numbered and split streams joined, so two runs write the same file."""
+    runner = ROOT / "scripts" / "run_notebook.py"
+    notebook = ROOT / "notebooks" / "01_governing_equations.py"
+    written = []
+    for name in ("a.ipynb", "b.ipynb"):
+        done = subprocess.run(
+            [sys.executable, str(runner), str(notebook), "--output", str(tmp_path / name)],
+            capture_output=True, text=True, timeout=300,
+        )  # fmt: skip
+        assert done.returncode == 0 and done.stdout + done.stderr == "", done.stdout + done.stderr
+        written.append((tmp_path / name).read_bytes())
+    assert written[0] == written[1]
+    cells = json.loads(written[0])["cells"]
+    assert [c["id"] for c in cells] == [f"cell-{i}" for i in range(len(cells))]
