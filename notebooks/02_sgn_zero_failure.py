@@ -31,6 +31,11 @@
 # * see how Filippov's set-valued right-hand side, eq. (11), and the DAE of
 #   notebook 1 both pick the one dashpot force, $-k x_0$, that keeps the mass
 #   at rest.
+#
+# The mass starts halfway into the static band, $x_0 = \mu_s N_f/(2k)$: with
+# the paper's parameters (section 3) that is $x_0 = 0.005$ m, the stretch of
+# its Figure 10, and the numbers and outcomes quoted in the prose are for
+# those parameters. The printed ones are for `config/config.yaml` as given.
 
 # %%
 # %matplotlib inline
@@ -45,7 +50,7 @@ from lumped.plotting.textbook import acceleration_graph, chatter, creep
 cfg = lumped.config.load()
 osc = lumped.config.oscillator(cfg)
 m, k, tau, dt = cfg["mass"], cfg["stiffness"], cfg["threshold"], cfg["dt"]
-x0 = cfg["x0_small"]  # the paper's Figure 10 case
+x0 = osc.static_band / 2  # halfway into the band: the paper's Figure 10 case
 model = T.TextbookModel(osc)  # sgn(0) = 0
 print(f"x0 = {x0} m, static band mu_s N_f / k = {osc.static_band} m, k x0 = {k * x0} N")
 
@@ -119,13 +124,15 @@ print(f"v < 0: acceleration in [{acc[-1].min():+.3f}, {acc[-1].max():+.3f}] m/s^
 # with $F_d = -k x_0 = -0.5$ N at every instant.
 
 # %%
-print(" dt (s)   sign changes   steps with F_d > 0   min |F_d + 0.5|   mean F_d   x(1) - x0 (m)")
+print(" dt (s)   sign changes   steps with F_d > 0   min |F_d + k x0|   mean F_d   x(1) - x0 (m)")
 euler = {}
 for h in (1e-3, 1e-4, 1e-5):
     r = euler[h] = T.integrate_fixed(model, 1.0, h, x0=x0, scheme="euler")
-    print(f"{h:7.0e} {r.sign_changes:12d} {np.mean(r.F_d > 0):17.1%} {np.abs(r.F_d + 0.5).min():16.3f}"
+    print(f"{h:7.0e} {r.sign_changes:12d} {np.mean(r.F_d > 0):17.1%} {np.abs(r.F_d + k * x0).min():17.3f}"
           f" {r.F_d.mean():+11.5f} {r.x[-1] - x0:+15.2e}")
-assert all(np.abs(r.F_d + k * x0).min() >= 0.5 for r in euler.values())
+# The textbook force is 0 or at least tau in size, so it misses -k x0 by at least
+# min(k x0, tau - k x0) (rounding is monotone, so also in floating point).
+assert all(np.abs(r.F_d + k * x0).min() >= min(k * x0, tau - k * x0) for r in euler.values())
 
 # %% [markdown]
 # The velocity changes sign about once every two steps, at every step size: the
@@ -204,17 +211,21 @@ print(f"evaluations: {rk45.nfev}, accepted steps: {rk45.t.size - 1}, "
 bdf = T.integrate_adaptive(model, 1.0, x0=x0, method="BDF", rtol=1e-8, atol=1e-10,
                            max_nfev=100_000, max_seconds=600.0)  # fmt: skip
 energy = lambda x, v: 0.5 * m * v**2 + 0.5 * k * x**2  # noqa: E731
-assert bdf.finished and energy(bdf.x[-1], bdf.v[-1]) > 1000 * energy(x0, 0.0)
-assert np.allclose(bdf.x, x0 - bdf.t**2 / 4, atol=1e-5) and np.allclose(bdf.v, -bdf.t / 2, atol=1e-5)
+gain = energy(bdf.x[-1], bdf.v[-1]) / energy(x0, 0.0)
+a0 = model.rhs(0.0, np.array([x0, 0.0]))[1]  # the acceleration at v = 0, -k x0 / m
+off_path = np.abs(bdf.x - (x0 + a0 * bdf.t**2 / 2)).max()
 print(f"finished: {bdf.finished}, evaluations: {bdf.nfev}, "
-      f"x(1) = {bdf.x[-1]:+.4f} m, v(1) = {bdf.v[-1]:+.4f} m/s")
-print(f"energy: {energy(x0, 0.0):.5f} J at t = 0, {energy(bdf.x[-1], bdf.v[-1]):.3f} J at t = 1 s")
+      f"x({bdf.t[-1]:.3g}) = {bdf.x[-1]:+.4f} m, v = {bdf.v[-1]:+.4f} m/s")
+print(f"energy: {energy(x0, 0.0):.3g} J at t = 0, {energy(bdf.x[-1], bdf.v[-1]):.3g} J at "
+      f"t = {bdf.t[-1]:.3g} s, {gain:.0f} times as much")
+print(f"largest distance from x0 + a0 t^2/2 (a0 = {a0:+.3f} m/s^2): {off_path:.1e} m")
 
 # %% [markdown]
-# The returned path, $x \approx x_0 - t^2/4$, is that of a mass under the
-# constant acceleration $-0.5$ m/s² that the right-hand side has only at
-# $v = 0$, as if neither the spring nor the friction acted once it moved. A
-# silent wrong answer is worse than the honest stall of RK45.
+# The returned path, $x \approx x_0 + a_0 t^2/2$ ($x_0 - t^2/4$
+# with the paper's values), is that of a mass under the constant acceleration
+# $a_0 = -kx_0/m$ ($-0.5$ m/s²) that the right-hand side has only at $v = 0$,
+# as if neither the spring nor the friction acted once it moved. A silent
+# wrong answer is worse than the honest stall of RK45.
 
 # %% [markdown]
 # ## Step 5: regularisation creeps instead of sticking

@@ -47,7 +47,8 @@ print(f"static band: the unforced mass can rest wherever |x| <= mu_s N_f / k = {
 x0, t_end = cfg["x0_small"], cfg["t_end_small"]
 small = L.backward_euler(osc, t_end, dt, x0=x0, v0=0.0)
 small_exact = L.solve_exact(osc, t_end, x0=x0, v0=0.0)
-print(f"x0 = {x0:.4f} m, F_s(0) = k x0 = {osc.stiffness * x0:.4f} N")
+print(f"x0 = {x0:.4f} m, F_s(0) = k x0 = {osc.stiffness * x0:.4f} N, "
+      f"inside the static band: {abs(x0) <= osc.static_band}")
 print(f"max |x - x0| = {np.abs(small.x - x0).max():.3e} m, max |v| = {np.abs(small.v).max():.3e} m/s")
 print(f"max |F_d + k x0| = {np.abs(small.F_d + osc.stiffness * x0).max():.3e} N")
 
@@ -165,8 +166,8 @@ print(f"F_d at the end: Algorithm 1 {large.F_d[-1]:+.4f} N, exact {-k * exact.re
 # ## What to take away
 #
 # * A stretch inside the static band ($|x_0| \le \mu_s N_f/k = 0.01$ m) never
-#   moves the mass: the printed deviations of $x$ and $v$ are zero and the
-#   dashpot force is exactly $-kx_0 = -0.5$ N.
+#   moves the mass: from the paper's $x_0 = 0.005$ m the printed deviations of
+#   $x$ and $v$ are zero and the dashpot force is exactly $-kx_0 = -0.5$ N.
 # * From $x_0 = 0.5$ m the mass makes ten slip phases (nine reversals) and
 #   sticks for good at $t \approx 3.146$ s with $x \approx 0.0027$ m: the spring
 #   stays stretched, held by a dashpot force inside the band. The rest position

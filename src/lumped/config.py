@@ -1,21 +1,40 @@
-"""The shared parameter file ``config/config.yaml`` and the objects it describes.
+"""The shared parameter file ``config/config.yaml``: its check, and the objects it describes.
 
 The notebooks, the Snakemake pipeline and the article all read the same file.
 The environment variable ``LUMPED_CONFIG`` points to another file (the
 pipeline sets it to the configuration after ``--config`` overrides).
+
+Every reader checks the values the same way, here: :func:`problems` lists what
+is wrong, one line each, and :func:`check` (which :func:`load` calls) returns
+the values or raises :class:`ValueError` with the first of those lines, e.g.::
+
+    config: dt must be a finite number > 0 (s); got -1
+
+The accepted ranges are the JSON schema ``config_schema.yaml`` shipped with
+the package, plus two checks a schema cannot state (:func:`problems`).
 """
 
 from __future__ import annotations
 
+import difflib
 import math
 import os
+from functools import cache
+from importlib.resources import files
 from pathlib import Path
 from typing import Any
 
 from lumped.forcing import SwitchedSine
 from lumped.system import Oscillator
 
-__all__ = ["load", "find_root", "oscillator", "forcing"]
+__all__ = ["load", "check", "problems", "schema", "find_root", "oscillator", "forcing"]
+
+#: End-time keys: dt must be below each of them.
+END_TIMES = ("t_end_forced", "t_end_small", "t_end_large")
+#: Most steps one run may take. A run keeps six float64 columns per step (plus
+#: the exact solution sampled on the same grid), about 1 GB at 1e7 steps, and a
+#: notebook holds several runs at once; the paper's runs take at most 4e4.
+MAX_STEPS = 10**7
 
 
 def find_root(start: Path | None = None) -> Path:
@@ -28,12 +47,137 @@ def find_root(start: Path | None = None) -> Path:
 
 
 def load(path: str | os.PathLike[str] | None = None) -> dict[str, Any]:
-    """Read the configuration (``path``, else ``$LUMPED_CONFIG``, else the repository's)."""
+    """Read and check the configuration (``path``, else ``$LUMPED_CONFIG``, else the repository's).
+
+    Returns
+    -------
+    dict
+        The values as :func:`check` returns them.
+
+    Raises
+    ------
+    ValueError
+        With the line ``config: <key> ...`` of the first problem.
+    """
     import yaml
 
     path = path or os.environ.get("LUMPED_CONFIG") or find_root() / "config" / "config.yaml"
     with open(path, encoding="utf-8") as fh:
-        return yaml.safe_load(fh)
+        return check(yaml.safe_load(fh))
+
+
+@cache
+def schema() -> dict[str, Any]:
+    """The JSON schema (draft 2020-12) of the configuration, from the package data."""
+    import yaml
+
+    return yaml.safe_load(files("lumped").joinpath("config_schema.yaml").read_text("utf-8"))
+
+
+def check(raw: Any) -> dict[str, Any]:
+    """The configuration with its values coerced (see :func:`problems`), if it has no problem.
+
+    Raises
+    ------
+    ValueError
+        With the first line :func:`problems` returns.
+    """
+    found = problems(raw)
+    if found:
+        raise ValueError(found[0])
+    return _coerced(raw)
+
+
+def problems(raw: Any) -> list[str]:
+    """One line ``config: ...`` per problem of the configuration ``raw``; empty if none.
+
+    Parameters
+    ----------
+    raw : dict
+        Keys to values as YAML or ``snakemake --config`` gives them (a value
+        may be a string such as ``".inf"``).
+
+    Notes
+    -----
+    First the schema: unknown keys (with the closest known one), missing keys,
+    values out of range. NaN passes every JSON-schema comparison, so it is
+    refused here. Only if the schema holds, the time step: ``dt`` below each
+    end time and at most :data:`MAX_STEPS` steps per run.
+    """
+    if not isinstance(raw, dict):
+        return [f"config: the configuration must be a mapping of keys to values; got {_shown(raw)}"]
+    values = _coerced(raw)
+    return _schema_problems(values, raw) or _step_problems(values)
+
+
+def _coerced(raw: dict[str, Any]) -> dict[str, Any]:
+    return {key: _coerce(value) for key, value in raw.items()}
+
+
+def _coerce(value: Any) -> Any:
+    """One configuration value as the notebooks will read it from YAML.
+
+    ``--config`` parses ``.inf`` as the string ".inf" (it tries int, float,
+    bool and then YAML's base loader, which types nothing), while the YAML
+    file means infinity: strings that YAML reads as numbers become numbers.
+    Numbers become floats, so ``mass=1`` and ``mass: 1.0`` are the same value.
+    """
+    import yaml
+
+    if isinstance(value, str):
+        try:
+            parsed = yaml.safe_load(value)
+        except yaml.YAMLError:
+            return value
+        if isinstance(parsed, (int, float)) and not isinstance(parsed, bool):
+            value = parsed
+    if isinstance(value, int) and not isinstance(value, bool):
+        try:
+            return float(value)
+        except OverflowError:  # an integer beyond double range: the schema rejects it
+            return value
+    return value
+
+
+def _shown(value: Any) -> str:
+    """A configuration value as the user typed it, for an error message."""
+    if value is None:
+        return "an empty value"
+    return repr(value) if isinstance(value, str) else str(value)
+
+
+def _schema_problems(values: dict[str, Any], raw: dict[str, Any]) -> list[str]:
+    """One line per key that breaks the schema (unknown, missing, out of range)."""
+    from jsonschema import Draft202012Validator
+
+    known = schema()["properties"]
+    found = []
+    for key in sorted(set(values) - set(known), key=str):
+        close = difflib.get_close_matches(str(key), known, n=1)
+        hint = f"; did you mean {close[0]}?" if close else f" (keys: {', '.join(known)})"
+        found.append(f"config: unknown key {key}{hint}")
+    bad = {e.path[0] for e in Draft202012Validator(schema()).iter_errors(values) if e.path}
+    bad |= {k for k, v in values.items() if isinstance(v, float) and math.isnan(v)}
+    for key, rule in known.items():
+        if key not in values:
+            found.append(f"config: {key} is missing; it must be {rule['description']}")
+        elif key in bad:
+            found.append(f"config: {key} must be {rule['description']}; got {_shown(raw[key])}")
+    return found
+
+
+def _step_problems(values: dict[str, Any]) -> list[str]:
+    """dt must be below each end time and leave at most MAX_STEPS steps per run."""
+    dt = values["dt"]
+    for key in END_TIMES:
+        if dt >= values[key]:
+            return [f"config: dt must be smaller than {key} = {values[key]:g} s; got {dt:g}"]
+        if values[key] / dt > MAX_STEPS:
+            return [
+                f"config: dt must be at least {key}/{MAX_STEPS:.0e} = {values[key] / MAX_STEPS:g} s"
+                f" (a run takes at most {MAX_STEPS:.0e} steps); got {dt:g}"
+            ]
+    return []
 
 
 def oscillator(cfg: dict[str, Any]) -> Oscillator:

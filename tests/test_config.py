@@ -1,0 +1,144 @@
+"""The configuration check of ``lumped.config``, in-process (milliseconds a case).
+
+The pipeline runs the same check on ``config/config.yaml`` after ``--config``
+overrides (tests/test_config_pipeline.py runs a few cases end to end). Here an
+override is turned into values by Snakemake's own ``--config`` parser, so each
+case sees exactly what the pipeline sees.
+"""
+
+import math
+import tomllib
+from pathlib import Path
+
+import pytest
+import yaml
+
+import lumped.config
+
+ROOT = Path(__file__).resolve().parent.parent
+DEFAULTS = yaml.safe_load((ROOT / "config" / "config.yaml").read_text(encoding="utf-8"))
+
+
+def _overridden(*entries: str) -> dict:
+    """config/config.yaml after ``--config entries``, parsed as Snakemake parses them."""
+    cli = pytest.importorskip("snakemake.cli")
+    return DEFAULTS | cli.parse_config(list(entries))
+
+
+# (--config arguments, the one line the user must see)
+BAD = [
+    (["dt=-1"], "config: dt must be a finite number > 0 (s); got -1"),
+    (["dt=0"], "config: dt must be a finite number > 0 (s); got 0"),
+    (["dt=abc"], "config: dt must be a finite number > 0 (s); got 'abc'"),
+    (["dt="], "config: dt must be a finite number > 0 (s); got an empty value"),
+    (["dt=nan"], "config: dt must be a finite number > 0 (s); got nan"),
+    (["dt=True"], "config: dt must be a finite number > 0 (s); got True"),
+    (["mass=1e400"], "config: mass must be a finite number > 0 (kg); got inf"),
+    (["mass=-.inf"], "config: mass must be a finite number > 0 (kg); got '-.inf'"),
+    (["stiffness=0"], "config: stiffness must be a finite number > 0 (N/m); got 0"),
+    (["dtt=1e-3"], "config: unknown key dtt; did you mean dt?"),
+    (["gamma=0"], "config: gamma must be a number > 0, or inf for Coulomb friction (m/(N s)); got 0"),
+    (["gamma=-inf"], "config: gamma must be a number > 0, or inf for Coulomb friction (m/(N s)); got -inf"),
+    (["threshold=-0.5"], "config: threshold must be a finite number > 0 (N) for the tutorial,"
+                         " whose demonstrations need a static band; got -0.5"),
+    (["threshold=0"], "config: threshold must be a finite number > 0 (N) for the tutorial,"
+                      " whose demonstrations need a static band; got 0"),
+    (["force_amplitude_large=inf"], "config: force_amplitude_large must be a finite number (N); got inf"),
+    (["force_until=-1"], "config: force_until must be a number >= 0, or inf for a forcing never"
+                         " switched off (s); got -1"),
+    (["force_omega_over_pi=0"], "config: force_omega_over_pi must be a finite number > 0 (1/s); got 0"),
+    (["x0_small=inf"], "config: x0_small must be a finite number (m); got inf"),
+    (["x0_large=True"], "config: x0_large must be a finite number (m); got True"),
+    (["t_end_small=nan"], "config: t_end_small must be a finite number > 0 (s); got nan"),
+    (["dt=3"], "config: dt must be smaller than t_end_forced = 2.5 s; got 3"),
+    (["dt=2", "t_end_forced=5"], "config: dt must be smaller than t_end_small = 1 s; got 2"),
+    (["dt=1e-9"], "config: dt must be at least t_end_forced/1e+07 = 2.5e-07 s"
+                  " (a run takes at most 1e+07 steps); got 1e-09"),
+]  # fmt: skip
+
+
+@pytest.mark.parametrize(("overrides", "expected"), BAD, ids=[" ".join(c) for c, _ in BAD])
+def test_bad_override_is_one_line(overrides, expected):
+    raw = _overridden(*overrides)
+    assert lumped.config.problems(raw) == [expected]
+    with pytest.raises(ValueError) as caught:
+        lumped.config.check(raw)
+    assert str(caught.value) == expected
+
+
+def test_every_problem_has_its_line_and_the_first_is_raised():
+    raw = _overridden("dt=-1", "dtt=1", "mass=0")
+    assert lumped.config.problems(raw) == [
+        "config: unknown key dtt; did you mean dt?",
+        "config: mass must be a finite number > 0 (kg); got 0",
+        "config: dt must be a finite number > 0 (s); got -1",
+    ]
+    with pytest.raises(ValueError, match="^config: unknown key dtt; did you mean dt[?]$"):
+        lumped.config.check(raw)
+
+
+def test_unknown_key_without_a_close_one_lists_the_keys():
+    (line,) = lumped.config.problems(DEFAULTS | {"zzz": 1})
+    assert line == f"config: unknown key zzz (keys: {', '.join(DEFAULTS)})"
+
+
+@pytest.mark.parametrize("key", sorted(DEFAULTS))
+def test_missing_key_is_named_with_its_range(key):
+    rule = lumped.config.schema()["properties"][key]
+    raw = {k: v for k, v in DEFAULTS.items() if k != key}
+    assert lumped.config.problems(raw) == [f"config: {key} is missing; it must be {rule['description']}"]
+
+
+@pytest.mark.parametrize("raw", [None, [], "dt: 1"], ids=repr)
+def test_a_file_that_is_not_a_mapping_is_one_line(raw):
+    (line,) = lumped.config.problems(raw)
+    assert line.startswith("config: the configuration must be a mapping of keys to values; got ")
+
+
+def test_an_integer_beyond_double_range_is_refused():
+    (line,) = lumped.config.problems(DEFAULTS | {"mass": 10**400})
+    assert line.startswith("config: mass must be a finite number > 0 (kg); got 1000")
+
+
+# The paper's values varied one at a time: each is a valid configuration.
+VALID = [
+    ["gamma=inf"], ["gamma=.inf"], ["force_until=inf"], ["force_until=.inf"], ["mass=1", "dt=1e-3"],
+    ["x0_small=0.05"], ["x0_small=-0.005"], ["force_amplitude_small=5"], ["force_amplitude_large=-10"],
+    ["t_end_large=10"], ["mass=2"], ["stiffness=50"], ["gamma=10"], ["dt=5e-4"],
+    ["force_omega_over_pi=1"], ["threshold=1e-3"],
+]  # fmt: skip
+
+
+@pytest.mark.parametrize("overrides", VALID, ids=" ".join)
+def test_valid_override_is_checked_to_floats(overrides):
+    values = lumped.config.check(_overridden(*overrides))
+    assert values.keys() == DEFAULTS.keys()
+    assert all(type(v) is float for v in values.values()), values
+    for key, text in (o.split("=") for o in overrides):
+        assert values[key] == float(text.replace(".inf", "inf"))
+
+
+def test_the_defaults_are_valid_and_unchanged():
+    assert lumped.config.check(DEFAULTS) == DEFAULTS
+
+
+def test_load_checks_what_it_reads(tmp_path, monkeypatch):
+    bad = tmp_path / "config.yaml"
+    bad.write_text(yaml.safe_dump(DEFAULTS | {"dt": -1}), encoding="utf-8")
+    monkeypatch.setenv("LUMPED_CONFIG", str(bad))
+    with pytest.raises(ValueError, match=r"^config: dt must be a finite number > 0 \(s\); got -1$"):
+        lumped.config.load()
+
+
+def test_load_reads_inf_from_yaml(tmp_path):
+    path = tmp_path / "config.yaml"
+    path.write_text(yaml.safe_dump(DEFAULTS).replace("gamma: 1.0", "gamma: .inf"), encoding="utf-8")
+    assert lumped.config.load(path)["gamma"] == math.inf
+
+
+def test_the_schema_is_package_data_and_its_only_copy():
+    """Found by importlib.resources wherever the package is installed; no second copy."""
+    shipped = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["package-data"]
+    assert "config_schema.yaml" in shipped["lumped"]
+    assert lumped.config.schema()["properties"].keys() == DEFAULTS.keys()
+    assert not (ROOT / "config" / "schema.yaml").exists()
