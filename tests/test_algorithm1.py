@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import lumped as L
-from lumped import timestepping
+from lumped import laws, timestepping
 from conftest import EPS, PAPER_DT
 
 # Cases for the invariants: (gamma, keyword arguments of backward_euler).
@@ -135,13 +135,36 @@ def test_coulomb_and_huge_gamma_agree(kwargs):
 
 
 @pytest.mark.skipif(timestepping.KERNEL != "compiled", reason="C kernel not built")
+@pytest.mark.parametrize("save_every", [1, 10**9], ids=["every-step", "huge-save-every"])
 @pytest.mark.parametrize("case", CASES)
-def test_compiled_and_python_kernels_are_bit_identical(case):
+def test_compiled_and_python_kernels_are_bit_identical(case, save_every):
     # Same operations in the same order, no FP contraction: identical bits.
+    # With test_python_loop_corrects_through_bingham_corrector this ties the
+    # C copy of the corrector to laws.bingham_corrector (Coulomb, forced,
+    # callable forcing; a huge save_every keeps only the first and last rows).
     gamma, kwargs = CASES[case]
-    a = _run(gamma, kwargs, t_end=2.0, kernel="compiled")
-    b = _run(gamma, kwargs, t_end=2.0, kernel="python")
+    a = _run(gamma, kwargs, t_end=2.0, kernel="compiled", save_every=save_every)
+    b = _run(gamma, kwargs, t_end=2.0, kernel="python", save_every=save_every)
     assert np.array_equal(a.as_array(), b.as_array())
+
+
+@pytest.mark.parametrize("case", ["coulomb-17b", "callable-force", "fig11-x0-0.5"])
+def test_python_loop_corrects_through_bingham_corrector(case, monkeypatch):
+    # The Python loop must call laws.bingham_corrector once per step and use
+    # what it returns: a spy that counts the calls and records the results
+    # must see every stored (F_d, v) of the run.
+    seen = []
+
+    def spy(predictor, eta, tau, c):
+        out = laws.bingham_corrector(predictor, eta, tau, c)
+        seen.append(out)
+        return out
+
+    monkeypatch.setattr(timestepping, "bingham_corrector", spy)
+    gamma, kwargs = CASES[case]
+    tr = _run(gamma, kwargs, t_end=0.5, dt=1e-3, kernel="python")
+    assert len(seen) == len(tr.t) - 1
+    assert np.array_equal(np.array(seen), np.column_stack([tr.F_d[1:], tr.v[1:]]))
 
 
 @pytest.mark.skipif(timestepping.KERNEL != "compiled", reason="C kernel not built")
