@@ -2,7 +2,9 @@
 
 from __future__ import annotations
 
+import importlib
 import math
+import types
 
 import numpy as np
 import pytest
@@ -249,3 +251,21 @@ def test_algorithm1_alias_and_simulate_dispatch(paper_oscillator):
     assert np.array_equal(a.as_array(), b.as_array())
     with pytest.raises(ValueError, match="method"):
         L.simulate(paper_oscillator, 0.5, 1e-3, method="rk4")
+
+
+def test_the_driver_is_a_module_and_simulate_a_function():
+    # lumped.simulate is the function (exported by __init__); the module that
+    # holds it and the method registry is lumped.driver, so importing it by
+    # name gives a module whose simulate is that same function.
+    driver = importlib.import_module("lumped.driver")
+    assert driver.simulate is L.simulate and driver.METHODS is L.METHODS
+    assert callable(L.simulate) and not isinstance(L.simulate, types.ModuleType)
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module("lumped.simulate")
+
+
+@pytest.mark.parametrize("method", ["backward-euler", "exact"])
+def test_every_registered_method_runs_through_simulate(paper_oscillator, method):
+    assert tuple(L.METHODS) == ("backward-euler", "exact")
+    tr = L.simulate(paper_oscillator, 0.5, 1e-3, x0=0.5, method=method)
+    assert tr.method == method and len(tr.t) == 501

@@ -7,15 +7,15 @@ whose velocity is a function of its force but not the other way round
 Modules, one idea each: :mod:`~lumped.laws` (springs and dashpots),
 :mod:`~lumped.timestepping` (Algorithm 1), :mod:`~lumped.event_driven` (exact
 solution), :mod:`~lumped.textbook` (the ``sgn(0) = 0`` model),
-:mod:`~lumped.forcing`, :mod:`~lumped.simulate`, :mod:`~lumped.results`,
-:mod:`~lumped.cli`.
+:mod:`~lumped.forcing`, :mod:`~lumped.driver` (:func:`simulate`),
+:mod:`~lumped.results`, :mod:`~lumped.cli`.
 """
 
 from lumped.event_driven import Event, ExactSolution, Phase, solve_exact
 from lumped.forcing import SwitchedSine, paper_forcing
 from lumped.laws import BinghamDashpot, Dashpot, DashpotState, LinearSpring, MonotoneDashpot, coulomb
 from lumped.results import COLUMNS, EnergyBalance, Trajectory
-from lumped.simulate import METHODS, simulate
+from lumped.driver import METHODS, simulate
 from lumped.system import Oscillator
 from lumped.timestepping import algorithm1, backward_euler
 

@@ -199,7 +199,7 @@ def _check_output(path: str) -> str:
 
 def _clean(args: argparse.Namespace) -> dict[str, object]:
     """Parse and validate every option; the messages use the API's names."""
-    from lumped.simulate import METHODS
+    from lumped.driver import METHODS
 
     values: dict[str, object] = {}
     for name, check in _CHECKS.items():
@@ -294,9 +294,9 @@ def _dump(fh: BinaryIO, columns: dict[str, np.ndarray], suffix: str) -> None:
 
 
 def _compute(values: dict[str, object], method: str) -> Trajectory:
-    """Run ``method`` through the driver :func:`lumped.simulate.simulate`."""
+    """Run ``method`` through the driver :func:`lumped.driver.simulate`."""
     from lumped.forcing import SwitchedSine
-    from lumped.simulate import simulate
+    from lumped.driver import simulate
     from lumped.system import Oscillator
 
     v = values
