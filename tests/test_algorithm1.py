@@ -61,6 +61,26 @@ def test_figure10_mass_never_moves(paper_oscillator):
     assert tr.rest_time == 0.0 and tr.rest_position == x0
 
 
+KERNELS = ["python"] + (["compiled"] if timestepping.KERNEL == "compiled" else [])
+
+
+@pytest.mark.parametrize("kernel", KERNELS)
+def test_released_on_the_band_edge_the_mass_sticks(kernel):
+    # k = 4 and x0 = tau/4 make k*x0 == tau exactly (powers of two), and with
+    # v0 = 0, F = 0 every predictor is F~ = (m/dt)*0 + 0 - k*x0 = -tau exactly:
+    # on the closed band, so lines 5-6 stick (v = 0, F_d = F~ by assignment)
+    # for ever.  The slip formula of line 8 would give the same force in exact
+    # arithmetic; with these values it rounds an ulp off (checked), so a
+    # strict |F~| < tau test shows in F_d.
+    tau, m, k, dt = 1.1, 1.0, 4.0, 1e-3
+    osc = L.Oscillator.bingham(m, k, tau, 1.0)
+    eta, c = m / dt + k * dt, 1.0
+    assert k * (tau / k) == tau and (eta * -tau + c * -tau) / (eta + c) != -tau
+    tr = L.backward_euler(osc, 0.05, dt, x0=tau / k, kernel=kernel)
+    assert np.all(tr.v == 0.0) and np.all(tr.x == tau / k)
+    assert np.all(tr.F_d[1:] == -tau) and tr.rest_time == 0.0
+
+
 @pytest.mark.parametrize("case", CASES)
 def test_force_in_band_whenever_stuck(case):
     # Lines 5-6: v = 0 only when |F~| <= tau and then F_d = F~.  A slip step
