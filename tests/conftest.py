@@ -49,3 +49,16 @@ def copy_tracked_files(target: Path) -> Path:
             (target / name).parent.mkdir(parents=True, exist_ok=True)
             shutil.copy2(ROOT / name, target / name)
     return target
+
+
+def case_kwargs(case) -> dict:
+    """Keyword arguments of the solvers for a :class:`references.Case` (x0, v0, force)."""
+    force = None if case.force is None else L.SwitchedSine(*case.force)
+    return dict(x0=case.x0, v0=case.v0, force=force)
+
+
+def case_table(*names: str) -> dict[str, tuple[float, dict]]:
+    """``name -> (gamma, solver keyword arguments)`` for cases of ``references.CASES``."""
+    from references import CASES
+
+    return {name: (CASES[name].gamma, case_kwargs(CASES[name])) for name in names}

@@ -11,20 +11,17 @@ import pytest
 
 import lumped as L
 from lumped import laws, timestepping
-from conftest import EPS, PAPER_DT
+from conftest import EPS, PAPER_DT, case_table
 
 # Cases for the invariants: (gamma, keyword arguments of backward_euler).
 CASES = {
     "fig5-17a": (1.0, dict(force=L.paper_forcing(0.5))),
-    "fig6-17b": (1.0, dict(force=L.paper_forcing(10.0))),
+    **case_table("fig6-17b"),
     "fig10-x0-0.005": (1.0, dict(x0=0.005)),
-    "fig11-x0-0.5": (1.0, dict(x0=0.5)),
-    "coulomb-x0-0.5": (math.inf, dict(x0=0.5)),
-    "coulomb-17b": (math.inf, dict(force=L.paper_forcing(10.0))),
-    "overdamped-17b": (0.01, dict(force=L.paper_forcing(10.0))),
-    "v0-phase-negative-amp": (2.0, dict(x0=0.1, v0=-3.0, force=L.SwitchedSine(-4.0, 7.0, 0.3, 1.5))),
+    **case_table("fig11-x0-0.5", "coulomb-x0-0.5", "coulomb-17b", "overdamped-17b",
+                 "v0-phase-negative-amp"),
     "callable-force": (1.0, dict(force=lambda t: 3.0 * np.cos(2.0 * t))),
-}
+}  # fmt: skip
 
 
 def _run(gamma: float, kwargs: dict, t_end: float = 3.0, dt: float = PAPER_DT, **extra):

@@ -10,15 +10,7 @@ import pytest
 import lumped as L
 from lumped.laws import bingham_corrector
 from conftest import EPS
-
-
-def _line8(predictor: float, dt: float, m: float, k: float, tau: float, gamma: float):
-    """Algorithm 1, lines 5-9, transcribed literally from the paper (finite gamma)."""
-    if abs(predictor) <= tau:
-        return predictor, 0.0
-    a, b, s = 1 + dt**2 * k / m, dt / m, math.copysign(1.0, predictor)
-    f_d = (gamma * a * s * tau + b * predictor) / (gamma * a + b)
-    return f_d, gamma * (f_d - math.copysign(1.0, f_d) * tau)
+from references import literal_line8
 
 
 @pytest.mark.parametrize("predictor", [-37.0, -1.0000001, -1.0, -0.3, 0.0, 0.999, 1.5, 250.0])
@@ -32,7 +24,7 @@ def test_corrector_matches_the_literal_line_8(predictor, gamma):
     m, k, tau, dt = 1.0, 100.0, 1.0, 1e-4
     eta = m / dt + k * dt
     f_d, v = bingham_corrector(predictor, eta, tau, 1.0 / gamma)
-    ref_f, ref_v = _line8(predictor, dt, m, k, tau, gamma)
+    ref_f, ref_v = literal_line8(predictor, dt, m, k, tau, gamma)
     scale = abs(predictor) + tau
     assert abs(f_d - ref_f) <= 8 * EPS * scale
     assert abs(v - ref_v) <= 8 * EPS * gamma * scale
