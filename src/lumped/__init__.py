@@ -42,4 +42,25 @@ __all__ = [
     "solve_exact",
 ]
 
-__version__ = "0.1.0"
+def _version() -> str:
+    """The installed distribution's version (pyproject.toml is its one source).
+
+    Run from a source tree that was never installed, there is no metadata:
+    the version is then read from ``pyproject.toml`` next to ``src/``.
+    """
+    from importlib import metadata
+
+    try:
+        return metadata.version("lumped")
+    except metadata.PackageNotFoundError:
+        import pathlib
+        import tomllib
+
+        pyproject = pathlib.Path(__file__).resolve().parents[2] / "pyproject.toml"
+        try:
+            return str(tomllib.loads(pyproject.read_text(encoding="utf-8"))["project"]["version"])
+        except (OSError, KeyError, tomllib.TOMLDecodeError):
+            return "unknown"
+
+
+__version__ = _version()

@@ -32,7 +32,7 @@ def _backward_euler(osc: Oscillator, t_end: float, dt: float, x0: float, v0: flo
 
 def _exact(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float,
            force: Force, save_every: int) -> Trajectory:  # fmt: skip
-    """The exact event-driven solution, sampled on the grid."""
+    """Exact event-driven solution, sampled on the grid."""
     sol = solve_exact(osc, t_end, x0=x0, v0=v0, force=force)  # type: ignore[arg-type]
     return sol.sample(dt, save_every)
 
