@@ -41,6 +41,7 @@ import numpy as np
 import lumped as L
 import lumped.config
 from lumped import textbook
+from lumped.results import sign_changes
 
 #: Steps of the convergence study (s); the paper's is 1e-4.
 CONVERGENCE_STEPS = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5)
@@ -106,12 +107,6 @@ def _exact_summary(ex: L.ExactSolution) -> dict[str, Any]:
     }
 
 
-def _reversals(v: np.ndarray) -> int:
-    """Changes of direction: sign changes between successive nonzero velocities."""
-    s = np.sign(v[v != 0.0])
-    return int(np.count_nonzero(s[1:] != s[:-1]))
-
-
 def _example(osc: L.Oscillator, dt: float, run: dict[str, Any]) -> dict[str, Any]:
     exact = L.solve_exact(osc, run["t_end"], x0=run["x0"], force=run["force"])
     be = L.backward_euler(osc, run["t_end"], dt, x0=run["x0"], force=run["force"])
@@ -130,7 +125,7 @@ def _example(osc: L.Oscillator, dt: float, run: dict[str, Any]) -> dict[str, Any
             "min_F_d": float(np.min(be.F_d)),
             "max_F_d": float(np.max(be.F_d)),
             "stick_fraction": float(np.mean(be.v == 0.0)),
-            "reversals": _reversals(be.v),
+            "reversals": sign_changes(be.v),
             "energy_residual": float(np.max(np.abs(be.energy_balance().residual))),
             "steps": int(be.t.size - 1),
         },

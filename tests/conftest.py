@@ -1,8 +1,11 @@
-"""Shared fixtures: the paper's parameters (section 3) and its time step."""
+"""Shared fixtures: the paper's parameters (section 3) and its time step; a repository copy."""
 
 from __future__ import annotations
 
 import os
+import shutil
+import subprocess
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -27,3 +30,35 @@ PAPER_DT = 1e-4
 def paper_oscillator() -> L.Oscillator:
     """gamma = 1, mu_s N_f = 1, m = 1, k = 100 (section 3)."""
     return L.Oscillator.bingham(mass=1.0, stiffness=100.0, threshold=1.0, gamma=1.0)
+
+
+#: The repository's root folder.
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def copy_tracked_files(target: Path) -> Path:
+    """Copy the repository's tracked files (as in the work tree) to ``target``.
+
+    Pipeline tests run Snakemake there, so that they neither read nor write
+    this checkout's ``results/`` and ``figures/``.
+    """
+    listed = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True,
+                            check=True).stdout.decode()  # fmt: skip
+    for name in filter(None, listed.split("\0")):
+        if (ROOT / name).is_file():
+            (target / name).parent.mkdir(parents=True, exist_ok=True)
+            shutil.copy2(ROOT / name, target / name)
+    return target
+
+
+def case_kwargs(case) -> dict:
+    """Keyword arguments of the solvers for a :class:`references.Case` (x0, v0, force)."""
+    force = None if case.force is None else L.SwitchedSine(*case.force)
+    return dict(x0=case.x0, v0=case.v0, force=force)
+
+
+def case_table(*names: str) -> dict[str, tuple[float, dict]]:
+    """``name -> (gamma, solver keyword arguments)`` for cases of ``references.CASES``."""
+    from references import CASES
+
+    return {name: (CASES[name].gamma, case_kwargs(CASES[name])) for name in names}

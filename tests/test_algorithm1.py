@@ -2,27 +2,26 @@
 
 from __future__ import annotations
 
+import importlib
 import math
+import types
 
 import numpy as np
 import pytest
 
 import lumped as L
-from lumped import timestepping
-from conftest import EPS, PAPER_DT
+from lumped import laws, timestepping
+from conftest import EPS, PAPER_DT, case_table
 
 # Cases for the invariants: (gamma, keyword arguments of backward_euler).
 CASES = {
     "fig5-17a": (1.0, dict(force=L.paper_forcing(0.5))),
-    "fig6-17b": (1.0, dict(force=L.paper_forcing(10.0))),
+    **case_table("fig6-17b"),
     "fig10-x0-0.005": (1.0, dict(x0=0.005)),
-    "fig11-x0-0.5": (1.0, dict(x0=0.5)),
-    "coulomb-x0-0.5": (math.inf, dict(x0=0.5)),
-    "coulomb-17b": (math.inf, dict(force=L.paper_forcing(10.0))),
-    "overdamped-17b": (0.01, dict(force=L.paper_forcing(10.0))),
-    "v0-phase-negative-amp": (2.0, dict(x0=0.1, v0=-3.0, force=L.SwitchedSine(-4.0, 7.0, 0.3, 1.5))),
+    **case_table("fig11-x0-0.5", "coulomb-x0-0.5", "coulomb-17b", "overdamped-17b",
+                 "v0-phase-negative-amp"),
     "callable-force": (1.0, dict(force=lambda t: 3.0 * np.cos(2.0 * t))),
-}
+}  # fmt: skip
 
 
 def _run(gamma: float, kwargs: dict, t_end: float = 3.0, dt: float = PAPER_DT, **extra):
@@ -57,6 +56,26 @@ def test_figure10_mass_never_moves(paper_oscillator):
     assert np.all(tr.F_s == 100.0 * x0)
     assert np.all(tr.F_d[1:] == -100.0 * x0)
     assert tr.rest_time == 0.0 and tr.rest_position == x0
+
+
+KERNELS = ["python"] + (["compiled"] if timestepping.KERNEL == "compiled" else [])
+
+
+@pytest.mark.parametrize("kernel", KERNELS)
+def test_released_on_the_band_edge_the_mass_sticks(kernel):
+    # k = 4 and x0 = tau/4 make k*x0 == tau exactly (powers of two), and with
+    # v0 = 0, F = 0 every predictor is F~ = (m/dt)*0 + 0 - k*x0 = -tau exactly:
+    # on the closed band, so lines 5-6 stick (v = 0, F_d = F~ by assignment)
+    # for ever.  The slip formula of line 8 would give the same force in exact
+    # arithmetic; with these values it rounds an ulp off (checked), so a
+    # strict |F~| < tau test shows in F_d.
+    tau, m, k, dt = 1.1, 1.0, 4.0, 1e-3
+    osc = L.Oscillator.bingham(m, k, tau, 1.0)
+    eta, c = m / dt + k * dt, 1.0
+    assert k * (tau / k) == tau and (eta * -tau + c * -tau) / (eta + c) != -tau
+    tr = L.backward_euler(osc, 0.05, dt, x0=tau / k, kernel=kernel)
+    assert np.all(tr.v == 0.0) and np.all(tr.x == tau / k)
+    assert np.all(tr.F_d[1:] == -tau) and tr.rest_time == 0.0
 
 
 @pytest.mark.parametrize("case", CASES)
@@ -135,13 +154,36 @@ def test_coulomb_and_huge_gamma_agree(kwargs):
 
 
 @pytest.mark.skipif(timestepping.KERNEL != "compiled", reason="C kernel not built")
+@pytest.mark.parametrize("save_every", [1, 10**9], ids=["every-step", "huge-save-every"])
 @pytest.mark.parametrize("case", CASES)
-def test_compiled_and_python_kernels_are_bit_identical(case):
+def test_compiled_and_python_kernels_are_bit_identical(case, save_every):
     # Same operations in the same order, no FP contraction: identical bits.
+    # With test_python_loop_corrects_through_bingham_corrector this ties the
+    # C copy of the corrector to laws.bingham_corrector (Coulomb, forced,
+    # callable forcing; a huge save_every keeps only the first and last rows).
     gamma, kwargs = CASES[case]
-    a = _run(gamma, kwargs, t_end=2.0, kernel="compiled")
-    b = _run(gamma, kwargs, t_end=2.0, kernel="python")
+    a = _run(gamma, kwargs, t_end=2.0, kernel="compiled", save_every=save_every)
+    b = _run(gamma, kwargs, t_end=2.0, kernel="python", save_every=save_every)
     assert np.array_equal(a.as_array(), b.as_array())
+
+
+@pytest.mark.parametrize("case", ["coulomb-17b", "callable-force", "fig11-x0-0.5"])
+def test_python_loop_corrects_through_bingham_corrector(case, monkeypatch):
+    # The Python loop must call laws.bingham_corrector once per step and use
+    # what it returns: a spy that counts the calls and records the results
+    # must see every stored (F_d, v) of the run.
+    seen = []
+
+    def spy(predictor, eta, tau, c):
+        out = laws.bingham_corrector(predictor, eta, tau, c)
+        seen.append(out)
+        return out
+
+    monkeypatch.setattr(timestepping, "bingham_corrector", spy)
+    gamma, kwargs = CASES[case]
+    tr = _run(gamma, kwargs, t_end=0.5, dt=1e-3, kernel="python")
+    assert len(seen) == len(tr.t) - 1
+    assert np.array_equal(np.array(seen), np.column_stack([tr.F_d[1:], tr.v[1:]]))
 
 
 @pytest.mark.skipif(timestepping.KERNEL != "compiled", reason="C kernel not built")
@@ -226,3 +268,21 @@ def test_algorithm1_alias_and_simulate_dispatch(paper_oscillator):
     assert np.array_equal(a.as_array(), b.as_array())
     with pytest.raises(ValueError, match="method"):
         L.simulate(paper_oscillator, 0.5, 1e-3, method="rk4")
+
+
+def test_the_driver_is_a_module_and_simulate_a_function():
+    # lumped.simulate is the function (exported by __init__); the module that
+    # holds it and the method registry is lumped.driver, so importing it by
+    # name gives a module whose simulate is that same function.
+    driver = importlib.import_module("lumped.driver")
+    assert driver.simulate is L.simulate and driver.METHODS is L.METHODS
+    assert callable(L.simulate) and not isinstance(L.simulate, types.ModuleType)
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module("lumped.simulate")
+
+
+@pytest.mark.parametrize("method", ["backward-euler", "exact"])
+def test_every_registered_method_runs_through_simulate(paper_oscillator, method):
+    assert tuple(L.METHODS) == ("backward-euler", "exact")
+    tr = L.simulate(paper_oscillator, 0.5, 1e-3, x0=0.5, method=method)
+    assert tr.method == method and len(tr.t) == 501

@@ -164,8 +164,8 @@ def test_a_callable_forcing_is_never_tabulated_whole(monkeypatch):
 LONG_RUN = ["--t-end", "1000", "--dt", "1e-6", "--save-every", "1000000"]
 TIME_BOUND = 5.0
 BIG = str(2**63)
-#: The driver's module (``lumped.simulate`` the attribute is the function).
-DRIVER = importlib.import_module("lumped.simulate")
+#: The driver's module, where the command line looks ``simulate`` up at run time.
+DRIVER = importlib.import_module("lumped.driver")
 
 
 def _one_line(err: str) -> str:

@@ -2,15 +2,19 @@
 
 from __future__ import annotations
 
+import importlib.metadata
 import os
+import re
 import subprocess
 import sys
+import tomllib
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import lumped as L
-from lumped.cli import main
+from lumped.cli import build_parser, main
 
 HEADER = "t,x,v,F_s,F_d,F"
 
@@ -165,3 +169,44 @@ def test_subprocess_errors(tmp_path, args, option):
     assert len(lines) == 1 and option in lines[0] and "Traceback" not in proc.stderr
     assert proc.stdout == ""
     assert _files(tmp_path) == []
+
+
+# --- help and version ---------------------------------------------------------------
+
+ROOT = Path(__file__).resolve().parent.parent
+
+
+def _help(argv, capsys) -> str:
+    assert main(argv) == 0
+    return capsys.readouterr().out
+
+
+def test_top_help_is_plain_text_with_an_example(capsys):
+    text = _help(["--help"], capsys)
+    assert not re.search(r"``|:(mod|func|class|data):`", text), text  # no reStructuredText
+    assert "Bingham" in text and "simulate" in text
+    example = re.search(r"^example.*:\n\s+(python -m lumped simulate .*)$", text, re.M)
+    assert example, text
+    # the example is a command line the parser accepts
+    args = build_parser().parse_args(example.group(1).split()[3:])
+    assert args.command == "simulate" and args.output == "run.csv"
+
+
+def test_simulate_help_lists_the_registered_methods_and_requires_output(capsys):
+    text = " ".join(_help(["simulate", "--help"], capsys).split())  # unwrap the lines
+    assert "--method {" + ",".join(L.METHODS) + "}" in text
+    for name, run in L.METHODS.items():
+        assert f"{name}: {run.__doc__.splitlines()[0].rstrip('.')}" in text
+    usage = text[: text.index("options:")]
+    assert "--output OUTPUT" in usage and "[--output" not in usage  # not optional
+    assert "required arguments: --output OUTPUT" in text
+
+
+def test_version_is_the_distribution_version(tmp_path):
+    # pyproject.toml is the one source: the installed metadata, the package's
+    # __version__ and the command line all say the same.
+    declared = tomllib.loads((ROOT / "pyproject.toml").read_text(encoding="utf-8"))
+    version = declared["project"]["version"]
+    assert L.__version__ == importlib.metadata.version("lumped") == version
+    proc = _run("--version", cwd=tmp_path)
+    assert proc.returncode == 0 and proc.stdout == f"lumped {version}\n" and proc.stderr == ""

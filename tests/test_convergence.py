@@ -18,22 +18,22 @@ import numpy as np
 import pytest
 
 import lumped as L
+from conftest import case_table
+from references import order
 
 PAPER = dict(mass=1.0, stiffness=100.0, threshold=1.0)
 
+HALVING = [4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4]
+# name (of references.CASES) -> (t_end, dts)
+RUNS = {
+    "fig11-x0-0.5": (5.0, HALVING),
+    "fig6-17b": (3.0, HALVING),
+    "coulomb-x0-0.5": (2.0, [1e-3, 5e-4, 2.5e-4, 1.25e-4, 6.25e-5]),
+    "overdamped-17b": (3.0, HALVING),
+    "v0-phase-negative-amp": (3.0, [1e-3, 5e-4, 2.5e-4, 1.25e-4]),
+}
 # name -> (gamma, solver kwargs, t_end, dts)
-CASES = {
-    "free-x0-0.5": (1.0, dict(x0=0.5), 5.0, [4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4]),
-    "forced-17b": (1.0, dict(force=L.paper_forcing(10.0)), 3.0, [4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4]),
-    "coulomb-free": (math.inf, dict(x0=0.5), 2.0, [1e-3, 5e-4, 2.5e-4, 1.25e-4, 6.25e-5]),
-    "overdamped-17b": (0.01, dict(force=L.paper_forcing(10.0)), 3.0, [4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4]),
-    "v0-phase": (2.0, dict(x0=0.1, v0=-3.0, force=L.SwitchedSine(-4.0, 7.0, 0.3, 1.5)), 3.0,
-                 [1e-3, 5e-4, 2.5e-4, 1.25e-4]),
-}  # fmt: skip
-
-
-def _order(dts, errors) -> float:
-    return float(np.polyfit(np.log(dts), np.log(errors), 1)[0])
+CASES = {name: (*case_table(name)[name], *RUNS[name]) for name in RUNS}
 
 
 @pytest.mark.parametrize("case", CASES)
@@ -45,16 +45,14 @@ def test_max_displacement_error_is_first_order(case):
         np.abs(L.backward_euler(osc, t_end, dt, **kwargs).x - sol.sample(dt).x).max()
         for dt in dts
     ]
-    assert 0.9 <= _order(dts, errors) <= 1.1
+    assert 0.9 <= order(dts, errors) <= 1.1
 
 
 # Rest position: the free decay needs dt <= 1e-3 for backward Euler to stop
 # after the same number of half-cycles as the exact solution (at 2e-3 and
 # 4e-3 it stops one earlier: a jump, not O(dt)).
-REST = {
-    "free-x0-0.5": (1.0, dict(x0=0.5), 5.0, [1e-3, 5e-4, 2.5e-4, 1.25e-4]),
-    "forced-17b": (1.0, dict(force=L.paper_forcing(10.0)), 3.0, [4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4]),
-}
+REST_STEPS = {"fig11-x0-0.5": [1e-3, 5e-4, 2.5e-4, 1.25e-4], "fig6-17b": HALVING}
+REST = {name: (*case_table(name)[name], RUNS[name][0], dts) for name, dts in REST_STEPS.items()}
 
 
 @pytest.mark.parametrize("case", REST)
@@ -64,7 +62,7 @@ def test_rest_position_error_is_first_order(case):
     sol = L.solve_exact(osc, t_end, **kwargs)
     errors = [abs(L.backward_euler(osc, t_end, dt, **kwargs).rest_position - sol.rest_position)
               for dt in dts]  # fmt: skip
-    assert 0.9 <= _order(dts, errors) <= 1.1
+    assert 0.9 <= order(dts, errors) <= 1.1
 
 
 @pytest.mark.parametrize("case", REST)

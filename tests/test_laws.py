@@ -10,15 +10,7 @@ import pytest
 import lumped as L
 from lumped.laws import bingham_corrector
 from conftest import EPS
-
-
-def _line8(predictor: float, dt: float, m: float, k: float, tau: float, gamma: float):
-    """Algorithm 1, lines 5-9, transcribed literally from the paper (finite gamma)."""
-    if abs(predictor) <= tau:
-        return predictor, 0.0
-    a, b, s = 1 + dt**2 * k / m, dt / m, math.copysign(1.0, predictor)
-    f_d = (gamma * a * s * tau + b * predictor) / (gamma * a + b)
-    return f_d, gamma * (f_d - math.copysign(1.0, f_d) * tau)
+from references import literal_line8
 
 
 @pytest.mark.parametrize("predictor", [-37.0, -1.0000001, -1.0, -0.3, 0.0, 0.999, 1.5, 250.0])
@@ -32,10 +24,23 @@ def test_corrector_matches_the_literal_line_8(predictor, gamma):
     m, k, tau, dt = 1.0, 100.0, 1.0, 1e-4
     eta = m / dt + k * dt
     f_d, v = bingham_corrector(predictor, eta, tau, 1.0 / gamma)
-    ref_f, ref_v = _line8(predictor, dt, m, k, tau, gamma)
+    ref_f, ref_v = literal_line8(predictor, dt, m, k, tau, gamma)
     scale = abs(predictor) + tau
     assert abs(f_d - ref_f) <= 8 * EPS * scale
     assert abs(v - ref_v) <= 8 * EPS * gamma * scale
+
+
+@pytest.mark.parametrize(("tau", "eta", "c"), [(1.1, 1000.004, 1.0), (0.3, 1000.004, 0.5)])
+@pytest.mark.parametrize("sign", [1.0, -1.0])
+def test_predictor_exactly_on_the_band_edge_sticks(tau, eta, c, sign):
+    # Lines 5-6 stick for |F~| <= tau, the closed band.  At |F~| = tau the slip
+    # formula of line 8 gives the same force in exact arithmetic, so the branch
+    # shows only in rounding: for these values (eta*s*tau + c*F~)/(eta + c)
+    # is an ulp off tau (checked first, so that a strict < stick test fails).
+    predictor = sign * tau
+    slip = (eta * predictor + c * predictor) / (eta + c)
+    assert slip != predictor  # the case can tell the two branches apart
+    assert bingham_corrector(predictor, eta, tau, c) == (predictor, 0.0)
 
 
 @pytest.mark.parametrize("predictor", [-5.0, -1.0, 0.4, 1.0, 3.0])
@@ -101,6 +106,21 @@ def test_monotone_dashpot_trajectory_matches_bingham_kernel(paper_oscillator):
     eta = 1.0 / dt + 100.0 * dt
     assert np.abs(a.x - b.x).max() <= n * 8 * EPS * f_tilde / eta
     assert np.array_equal(a.t, b.t)
+
+
+@pytest.mark.parametrize("velocity", [-40.0, -1.5, -1e-3, 0.0, 2e-3, 0.7, 25.0])
+@pytest.mark.parametrize(("tau", "gamma"), [(1.0, 1.0), (0.5, 20.0), (0.0, 2.0)])
+def test_monotone_dashpot_force_interval_is_the_bingham_inverse_graph(velocity, tau, gamma):
+    # A MonotoneDashpot built from the Bingham graph must return the Bingham
+    # law's interval: (-tau, tau) at v = 0, else the single force
+    # s tau + v/gamma (eq. 7), with the sign of v.  Brent's root of
+    # phi(F) = v is found to rtol 4 eps; phi's own rounding moves it by a few
+    # ulps of |F|: bound 8 eps |F|.
+    generic = L.MonotoneDashpot(_bingham_phi(tau, gamma), threshold=tau)
+    lo, hi = generic.force_interval(velocity)
+    want_lo, want_hi = L.BinghamDashpot(tau, gamma).force_interval(velocity)
+    assert abs(lo - want_lo) <= 8 * EPS * abs(want_lo) and abs(hi - want_hi) <= 8 * EPS * abs(want_hi)
+    assert math.copysign(1.0, lo) == math.copysign(1.0, want_lo) or velocity == 0.0
 
 
 @pytest.mark.parametrize("threshold", [0.0, 0.3, 2.0])

@@ -2,7 +2,8 @@
 
 The checks run ``snakemake`` in dry-run mode (``--dry-run --forceall
 --nolock``), which reads the Snakefile and plans the jobs without running or
-writing anything.
+writing anything; the override check builds ``results/config.yaml`` alone, in
+a copy of the repository.
 """
 
 import re
@@ -13,6 +14,8 @@ from pathlib import Path
 
 import pytest
 
+from conftest import copy_tracked_files
+
 ROOT = Path(__file__).resolve().parent.parent
 SNAKEMAKE = shutil.which("snakemake") or str(Path(sys.executable).with_name("snakemake"))
 FIGURES = [f"{n:02d}" for n in range(1, 15)]
@@ -20,9 +23,9 @@ FIGURES = [f"{n:02d}" for n in range(1, 15)]
 pytestmark = pytest.mark.skipif(not Path(SNAKEMAKE).exists(), reason="snakemake not installed")
 
 
-def _snakemake(*args: str, check: bool = True) -> str:
+def _snakemake(*args: str, check: bool = True, cwd: Path = ROOT) -> str:
     done = subprocess.run(
-        [SNAKEMAKE, "--nolock", *args], cwd=ROOT, capture_output=True, text=True, timeout=120
+        [SNAKEMAKE, "--nolock", *args], cwd=cwd, capture_output=True, text=True, timeout=120
     )
     assert done.returncode == 0 or not check, done.stdout + done.stderr
     return done.stdout + done.stderr
@@ -62,11 +65,38 @@ def test_every_notebook_is_executed_and_figures_come_from_notebooks(dry_run):
     assert figure_jobs == {"notebook_03", "notebook_04", "notebook_05"}
 
 
-def test_config_override_reaches_the_notebooks():
-    """``--config dt=...`` changes the effective config, so every notebook job is planned."""
-    text = _snakemake("--dry-run", "--config", "dt=0.001")
-    producer = _outputs_by_rule(text)
-    assert producer.get("results/config.yaml") == "effective_config", text[-2000:]
+@pytest.fixture(scope="module")
+def configured(tmp_path_factory) -> Path:
+    """A copy of the repository in which only ``results/config.yaml`` is built (about 1 s)."""
+    repo = copy_tracked_files(tmp_path_factory.mktemp("repo"))
+    done = subprocess.run([SNAKEMAKE, "--nolock", "--cores", "1", "results/config.yaml"],
+                          cwd=repo, capture_output=True, text=True, timeout=120)  # fmt: skip
+    assert done.returncode == 0, done.stdout + done.stderr
+    return repo
+
+
+def _plan(repo: Path, *overrides: str) -> str:
+    """The dry-run plan for ``results/config.yaml``, with ``--config`` overrides if any."""
+    args = ["--config", *overrides, "--"] if overrides else []
+    return _snakemake("--dry-run", *args, "results/config.yaml", cwd=repo)
+
+
+def test_config_override_reruns_the_effective_config_for_its_params(configured):
+    """With results/config.yaml up to date, only an override plans its job, for changed params."""
+    assert "Nothing to be done" in _plan(configured)
+    text = _plan(configured, "dt=0.001")
+    assert _outputs_by_rule(text).get("results/config.yaml") == "effective_config", text[-2000:]
+    reason = re.search(r"^\s+reason: (.*)$", text, re.M)
+    assert reason and reason.group(1).startswith("Params have changed"), text[-2000:]
+    assert "dt: 0.0001" in reason.group(1) and "dt: 0.001\\n" in reason.group(1)
+
+
+def test_every_notebook_reads_the_effective_config():
+    """So the override above reaches every notebook job (and hence every figure)."""
+    text = _snakemake("--dry-run", "--forceall")
+    jobs = re.findall(r"^(?:local)?rule (notebook_\w+):\n\s+input: (.*)$", text, re.M)
+    assert len(jobs) == len(list(Path(ROOT, "notebooks").glob("[0-9][0-9]_*.py")))
+    assert all("results/config.yaml" in inputs.split(", ") for _, inputs in jobs), jobs
 
 
 def test_every_rule_has_a_log():

@@ -7,15 +7,15 @@ whose velocity is a function of its force but not the other way round
 Modules, one idea each: :mod:`~lumped.laws` (springs and dashpots),
 :mod:`~lumped.timestepping` (Algorithm 1), :mod:`~lumped.event_driven` (exact
 solution), :mod:`~lumped.textbook` (the ``sgn(0) = 0`` model),
-:mod:`~lumped.forcing`, :mod:`~lumped.simulate`, :mod:`~lumped.results`,
-:mod:`~lumped.cli`.
+:mod:`~lumped.forcing`, :mod:`~lumped.driver` (:func:`simulate`),
+:mod:`~lumped.results`, :mod:`~lumped.cli`.
 """
 
 from lumped.event_driven import Event, ExactSolution, Phase, solve_exact
 from lumped.forcing import SwitchedSine, paper_forcing
 from lumped.laws import BinghamDashpot, Dashpot, DashpotState, LinearSpring, MonotoneDashpot, coulomb
 from lumped.results import COLUMNS, EnergyBalance, Trajectory
-from lumped.simulate import METHODS, simulate
+from lumped.driver import METHODS, simulate
 from lumped.system import Oscillator
 from lumped.timestepping import algorithm1, backward_euler
 
@@ -42,4 +42,25 @@ __all__ = [
     "solve_exact",
 ]
 
-__version__ = "0.1.0"
+def _version() -> str:
+    """The installed distribution's version (pyproject.toml is its one source).
+
+    Run from a source tree that was never installed, there is no metadata:
+    the version is then read from ``pyproject.toml`` next to ``src/``.
+    """
+    from importlib import metadata
+
+    try:
+        return metadata.version("lumped")
+    except metadata.PackageNotFoundError:
+        import pathlib
+        import tomllib
+
+        pyproject = pathlib.Path(__file__).resolve().parents[2] / "pyproject.toml"
+        try:
+            return str(tomllib.loads(pyproject.read_text(encoding="utf-8"))["project"]["version"])
+        except (OSError, KeyError, tomllib.TOMLDecodeError):
+            return "unknown"
+
+
+__version__ = _version()

@@ -3,6 +3,12 @@
  * order, compiled without floating-point contraction, so the numbers are
  * bit-identical to the pure-Python loop.  Uses only the CPython buffer API.
  *
+ * The corrector (lines 5 to 10) below is necessarily a second copy, in C, of
+ * lumped.laws.bingham_corrector, the one Python copy, which the Python loop
+ * calls.  Change both together: tests/test_algorithm1.py compares this kernel
+ * with the Python loop bit for bit (np.array_equal), and checks that the
+ * Python loop goes through bingham_corrector at every step.
+ *
  * One call advances steps n_first..n_last; the driver calls it block by block
  * (so that Ctrl-C is seen between blocks) and carries the state in two small
  * arrays: state = (F_s, v, F_d), counters = (row, rest_start, bad_step,
@@ -36,6 +42,7 @@ static PyObject *bingham_block(PyObject *self, PyObject *args) {
         else if (t <= until) f = amp * sin(omega * t + phase);
         else f = 0.0;
         const double predictor = (m / dt) * v + f - f_s;
+        /* corrector: the C copy of lumped.laws.bingham_corrector */
         if (fabs(predictor) <= tau) {
             v = 0.0;
             f_d = predictor;

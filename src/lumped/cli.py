@@ -25,7 +25,8 @@ from typing import TYPE_CHECKING, BinaryIO
 
 import numpy as np
 
-from lumped import _validate
+from lumped import __version__, _validate
+from lumped.driver import METHODS
 
 if TYPE_CHECKING:
     from lumped.results import Trajectory
@@ -93,22 +94,48 @@ class _Terminated(BaseException):
         self.signum = signum
 
 
+_DESCRIPTION = """\
+Vibrations of a mass on a linear spring and a Bingham (or Coulomb) dashpot,
+solved as a differential-algebraic system (Darbha, Nakshatrala and Rajagopal).
+The simulate command integrates one motion and writes t, x, v, F_s, F_d, F to
+a .csv or .npz file."""
+
+_EXAMPLE = """\
+example (free vibration from x0 = 0.5 m, the paper's Figures 11 to 14):
+  python -m lumped simulate --x0 0.5 --t-end 4 --output run.csv
+
+Run "python -m lumped simulate --help" for the options."""
+
+
+def _method_help() -> str:
+    """One line per registered method: its name and the first line of its docstring."""
+    lines = (f"{name}: {(run.__doc__ or '').strip().splitlines()[0].rstrip('.')}"
+             for name, run in METHODS.items())  # fmt: skip
+    return "; ".join(lines) + " [default: backward-euler]"
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (defaults are the paper's values, section 3).
 
     Abbreviated option names are not accepted: ``--x0`` and ``--x00`` must not
     silently mean the same thing, and every option's value is checked by name.
+    ``--method`` lists the names of :data:`lumped.driver.METHODS`; a bad one is
+    refused by :func:`_clean` with the API's message.
     """
-    parser = _Parser(prog="lumped", description=__doc__.splitlines()[0], allow_abbrev=False)
+    parser = _Parser(prog="lumped", description=_DESCRIPTION, epilog=_EXAMPLE, allow_abbrev=False,
+                     formatter_class=argparse.RawDescriptionHelpFormatter)  # fmt: skip
+    parser.add_argument("--version", action="version", version=f"lumped {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
                                 parser_class=_Parser)  # fmt: skip
     sim = sub.add_parser("simulate", help="integrate one motion and write it to a file",
+                         description="Integrate one motion and write it to a .csv or .npz file.",
                          allow_abbrev=False)  # fmt: skip
     for name, default, text in _OPTIONS:
         sim.add_argument(_flag(name), default=default, help=f"{text} [default: {default}]")
-    sim.add_argument("--method", default="backward-euler",
-                     help="backward-euler (Algorithm 1) or exact [default: backward-euler]")  # fmt: skip
-    sim.add_argument("--output", required=True, help="output file, .csv or .npz")
+    sim.add_argument("--method", default="backward-euler", metavar="{" + ",".join(METHODS) + "}",
+                     help=_method_help())  # fmt: skip
+    required = sim.add_argument_group("required arguments")
+    required.add_argument("--output", required=True, help="output file, .csv or .npz")
     return parser
 
 
@@ -199,8 +226,6 @@ def _check_output(path: str) -> str:
 
 def _clean(args: argparse.Namespace) -> dict[str, object]:
     """Parse and validate every option; the messages use the API's names."""
-    from lumped.simulate import METHODS
-
     values: dict[str, object] = {}
     for name, check in _CHECKS.items():
         parse = _validate.parse_int if check is _validate.positive_int else _validate.parse_float
@@ -294,9 +319,9 @@ def _dump(fh: BinaryIO, columns: dict[str, np.ndarray], suffix: str) -> None:
 
 
 def _compute(values: dict[str, object], method: str) -> Trajectory:
-    """Run ``method`` through the driver :func:`lumped.simulate.simulate`."""
+    """Run ``method`` through the driver :func:`lumped.driver.simulate`."""
     from lumped.forcing import SwitchedSine
-    from lumped.simulate import simulate
+    from lumped.driver import simulate
     from lumped.system import Oscillator
 
     v = values

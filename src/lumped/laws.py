@@ -280,7 +280,8 @@ class MonotoneDashpot(Dashpot):
             hi *= 2.0
         else:
             raise ValueError(f"velocity {velocity} is outside the range of the law")
-        f = brentq(lambda F: self._phi(F) - velocity, 0.0, hi, xtol=1e-300, rtol=4e-16)
+        f = brentq(lambda F: self._phi(F) - velocity, 0.0, hi, xtol=1e-300,
+                   rtol=4 * np.finfo(float).eps)  # the least brentq accepts
         return (f, f)
 
     def _resolvent_impl(self, predictor: float, eta: float) -> DashpotState:

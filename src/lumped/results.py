@@ -11,7 +11,7 @@ import numpy as np
 if TYPE_CHECKING:
     from lumped.system import Oscillator
 
-__all__ = ["COLUMNS", "Trajectory", "EnergyBalance"]
+__all__ = ["COLUMNS", "Trajectory", "EnergyBalance", "sign_changes"]
 
 #: Output columns, in order: time (s), displacement (m), velocity (m/s),
 #: spring force (N), dashpot force (N), external force (N).
@@ -153,3 +153,13 @@ class Trajectory:
     def dissipated_energy(self) -> float:
         """Energy dissipated in the dashpot over the run (J)."""
         return float(self.energy_balance().dissipated[-1])
+
+
+def sign_changes(v: np.ndarray) -> int:
+    """Changes of direction: sign changes between successive nonzero velocities.
+
+    A velocity exactly ``0`` (a stick step, or a grid point on a reversal) is
+    skipped, so ``+, 0, -`` counts one change and ``+, 0, +`` none.
+    """
+    s = np.sign(v[v != 0])
+    return int(np.count_nonzero(s[1:] != s[:-1]))

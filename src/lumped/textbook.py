@@ -24,6 +24,7 @@ import numpy as np
 
 from lumped import _validate
 from lumped.laws import BinghamDashpot
+from lumped.results import sign_changes
 from lumped.system import Oscillator
 
 __all__ = ["TextbookModel", "integrate_fixed", "integrate_adaptive", "AdaptiveOutcome",
@@ -83,8 +84,7 @@ class FixedStepResult:
     @property
     def sign_changes(self) -> int:
         """Number of times ``sgn(v)`` changes between successive nonzero values."""
-        s = np.sign(self.v[self.v != 0])
-        return int(np.count_nonzero(s[1:] != s[:-1]))
+        return sign_changes(self.v)
 
 
 #: Estimated cost (s) of one step of the fixed-step loops, for the run-time

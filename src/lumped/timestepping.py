@@ -34,7 +34,7 @@ import numpy as np
 
 from lumped import _validate
 from lumped.forcing import SwitchedSine, evaluate, validate_force
-from lumped.laws import BinghamDashpot
+from lumped.laws import BinghamDashpot, bingham_corrector
 from lumped.results import COLUMNS, Trajectory
 from lumped.system import Oscillator, check_magnitudes, initial_dashpot_force
 
@@ -62,6 +62,10 @@ def _bingham_block(
     forcing; when it is empty the forcing is the switched sine
     ``amp*sin(omega t + phase)``, ``t <= until``.  Saved rows go to ``out``
     (columns t, x, v, F_s, F_d, F).
+
+    The corrector is :func:`~lumped.laws.bingham_corrector`, the one Python
+    copy of lines 5 to 10; ``_kernel.c`` repeats it in C, and the tests
+    require the two loops to agree bit for bit.
     """
     eta = m / dt + k * dt
     tabulated = force_values.shape[0] > 0
@@ -76,13 +80,7 @@ def _bingham_block(
         else:
             f = 0.0
         predictor = (m / dt) * v + f - f_s  # line 3, eq. (15b)
-        if abs(predictor) <= tau:  # lines 5-6: stick
-            v = 0.0
-            f_d = predictor
-        else:  # lines 8-9, divided through by gamma (see laws.bingham_corrector)
-            signed = math.copysign(tau, predictor)
-            f_d = (eta * signed + c * predictor) / (eta + c)
-            v = (predictor - signed) / (eta + c)
+        f_d, v = bingham_corrector(predictor, eta, tau, c)  # lines 5-10
         f_s = f_s + dt * k * v  # line 11, eq. (14)
         if not (math.isfinite(v) and math.isfinite(f_d) and math.isfinite(f_s)):
             counters[2] = n

@@ -1,7 +1,7 @@
 """Plot helpers (matplotlib).  Each takes ``ax=``, returns the Figure and leaves
 global matplotlib state alone; :func:`save_figure` writes reproducible files."""
 
-from lumped.plotting._base import STYLE, new_axes, save_figure, style
+from lumped.plotting._base import STYLE, new_axes, save_figure, style, styled
 from lumped.plotting.figures import (
     bingham_pair,
     bingham_pictorial,
@@ -22,6 +22,7 @@ __all__ = [
     "save_figure",
     "string_spring_triptych",
     "style",
+    "styled",
     "time_history",
     "time_history_panels",
 ]

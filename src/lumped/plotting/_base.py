@@ -2,22 +2,30 @@
 
 Plot helpers in this package take ``ax=`` (an existing Axes, or ``None`` to make
 a new figure), return the :class:`~matplotlib.figure.Figure`, and never change
-global matplotlib state: the style is applied with a context manager.
+global matplotlib state.  The style is applied one way only: every public
+helper is decorated with :func:`styled`, so it both creates *and draws* inside
+:func:`style` (legends, lines and text take their defaults from the style
+file whether or not the Axes were made by the package).
 """
 
 from __future__ import annotations
 
+import functools
 import os
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
+from typing import ParamSpec, TypeVar
 
 import matplotlib
 import matplotlib.pyplot as plt
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-__all__ = ["STYLE", "style", "new_axes", "save_figure"]
+__all__ = ["STYLE", "style", "styled", "new_axes", "save_figure"]
+
+_P = ParamSpec("_P")
+_R = TypeVar("_R")
 
 #: The project's matplotlib style file.
 STYLE = Path(__file__).with_name("lumped.mplstyle")
@@ -41,15 +49,26 @@ def style() -> Iterator[None]:
     matplotlib.interactive(interactive)
 
 
+def styled(helper: Callable[_P, _R]) -> Callable[_P, _R]:
+    """Decorator: run a plot helper inside :func:`style` (creation and drawing)."""
+
+    @functools.wraps(helper)
+    def wrapper(*args: _P.args, **kwargs: _P.kwargs) -> _R:
+        with style():
+            return helper(*args, **kwargs)
+
+    return wrapper
+
+
+@styled
 def new_axes(ax: Axes | None = None, **subplot_kw: object) -> tuple[Figure, Axes]:
     """Return ``(figure, ax)``: the given Axes and its figure, or a new styled pair."""
     if ax is not None:
         return ax.figure, ax  # type: ignore[return-value]
-    with style():
-        fig, ax = plt.subplots(**subplot_kw)  # type: ignore[arg-type]
-    return fig, ax
+    return plt.subplots(**subplot_kw)  # type: ignore[arg-type,return-value]
 
 
+@styled
 def save_figure(fig: Figure, stem: str, folder: str | os.PathLike[str] | None = None) -> list[Path]:
     """Write ``stem.pdf`` and ``stem.png`` byte-reproducibly; return the paths.
 
@@ -63,7 +82,6 @@ def save_figure(fig: Figure, stem: str, folder: str | os.PathLike[str] | None = 
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
     paths = [out / f"{stem}.pdf", out / f"{stem}.png"]
-    with style():
-        fig.savefig(paths[0], metadata=_PDF_METADATA)
-        fig.savefig(paths[1], metadata=_PNG_METADATA, dpi=200)
+    fig.savefig(paths[0], metadata=_PDF_METADATA)
+    fig.savefig(paths[1], metadata=_PNG_METADATA, dpi=200)
     return paths

@@ -1,7 +1,8 @@
 """The paper's figures: constitutive graphs, the schematic, and time histories.
 
-Each helper draws one picture into ``ax`` (or a new styled figure when
-``ax=None``) and returns the :class:`~matplotlib.figure.Figure`; the multi-panel
+Each helper draws one picture into ``ax`` (or a new figure when ``ax=None``),
+in the project style (:func:`~lumped.plotting._base.styled`), and returns the
+:class:`~matplotlib.figure.Figure`; the multi-panel
 helpers take ``axes=`` likewise.  Nothing here changes global matplotlib state
 or calls ``plt.show()``; the notebooks decide what to save (with
 :func:`~lumped.plotting.save_figure`).
@@ -23,7 +24,7 @@ from matplotlib.figure import Figure
 
 from lumped.event_driven import ExactSolution
 from lumped.laws import BinghamDashpot
-from lumped.plotting._base import new_axes, style
+from lumped.plotting._base import new_axes, styled
 from lumped.results import Trajectory
 
 __all__ = [
@@ -63,8 +64,7 @@ def _axes_row(n: int, axes: Sequence[Axes] | None, width: float = 3.2) -> tuple[
     """``n`` axes side by side (new, styled) or the given ones."""
     if axes is not None:
         return axes[0].figure, list(axes)
-    with style():
-        fig, row = plt.subplots(1, n, figsize=(width * n, 3.0))
+    fig, row = plt.subplots(1, n, figsize=(width * n, 3.0))  # inside the caller's style
     return fig, list(np.atleast_1d(row))
 
 
@@ -85,6 +85,7 @@ def _centre_spines(ax: Axes, xlabel: str, ylabel: str) -> None:
 # --- Figure 1 and Figure 4: the Bingham dashpot, eq. (6) ---------------------
 
 
+@styled
 def bingham_force_of_velocity(law: BinghamDashpot, ax: Axes | None = None,
                               v_max: float = 2.0) -> Figure:  # fmt: skip
     """Figure 1(a): the force as a *set* of values of the velocity.
@@ -109,6 +110,7 @@ def bingham_force_of_velocity(law: BinghamDashpot, ax: Axes | None = None,
     return fig
 
 
+@styled
 def bingham_velocity_of_force(law: BinghamDashpot, ax: Axes | None = None,
                               f_max: float = 3.0) -> Figure:  # fmt: skip
     """Figure 1(b): the velocity as a *function* of the force, eq. (6)."""
@@ -120,6 +122,7 @@ def bingham_velocity_of_force(law: BinghamDashpot, ax: Axes | None = None,
     return fig
 
 
+@styled
 def bingham_pair(law: BinghamDashpot, axes: Sequence[Axes] | None = None) -> Figure:
     """Figure 1: panels (a) and (b) side by side."""
     fig, (left, right) = _axes_row(2, axes)
@@ -128,6 +131,7 @@ def bingham_pair(law: BinghamDashpot, axes: Sequence[Axes] | None = None) -> Fig
     return fig
 
 
+@styled
 def bingham_pictorial(law: BinghamDashpot, ax: Axes | None = None, f_max: float = 3.0) -> Figure:
     """Figure 4: eq. (6) with its two constants marked.
 
@@ -173,6 +177,7 @@ def _blank(ax: Axes) -> None:
     ax.axis("off")
 
 
+@styled
 def string_spring_schematic(ax: Axes | None = None) -> Figure:
     """Figure 2(a): a spring and a slack, inextensible string between a wall and a plate."""
     fig, ax = new_axes(ax)
@@ -192,6 +197,7 @@ def string_spring_schematic(ax: Axes | None = None) -> Figure:
     return fig
 
 
+@styled
 def string_force_of_displacement(ax: Axes | None = None, stiffness: float = 1.0,
                                  length: float = 1.0) -> Figure:  # fmt: skip
     """Figure 2(b): force against displacement.
@@ -217,6 +223,7 @@ def string_force_of_displacement(ax: Axes | None = None, stiffness: float = 1.0,
     return fig
 
 
+@styled
 def string_displacement_of_force(ax: Axes | None = None, stiffness: float = 1.0,
                                  length: float = 1.0) -> Figure:  # fmt: skip
     """Figure 2(c): the displacement as a *function* of the force, ``x = min(F/k, L)``."""
@@ -234,6 +241,7 @@ def string_displacement_of_force(ax: Axes | None = None, stiffness: float = 1.0,
     return fig
 
 
+@styled
 def string_spring_triptych(axes: Sequence[Axes] | None = None, stiffness: float = 1.0,
                            length: float = 1.0) -> Figure:  # fmt: skip
     """Figure 2: panels (a), (b) and (c) side by side."""
@@ -257,6 +265,7 @@ def _dashpot(ax: Axes, x0: float, x1: float, y: float) -> None:
     ax.plot([piston, x1], [y, y], color="k", lw=1.2)
 
 
+@styled
 def oscillator_schematic(ax: Axes | None = None) -> Figure:
     """Figure 3: a mass tied to a wall by a spring and a (Bingham) dashpot in parallel."""
     fig, ax = new_axes(ax, figsize=(5.0, 2.8))
@@ -291,6 +300,7 @@ def exact_fine(solution: ExactSolution, points: int = 20001) -> dict[str, np.nda
     return solution.evaluate(np.unique(np.r_[t, events]))
 
 
+@styled
 def time_history(trajectory: Trajectory, solution: ExactSolution | None, column: str,
                  ax: Axes | None = None, legend: bool = True) -> Figure:  # fmt: skip
     """One column of Algorithm 1 against time, with the exact solution and its events.
@@ -333,14 +343,14 @@ def _mark_events(ax: Axes, solution: ExactSolution, column: str) -> None:
         ax.axvline(rest, color="0.4", lw=0.8, ls=":", label="final rest")
 
 
+@styled
 def time_history_panels(trajectory: Trajectory, solution: ExactSolution | None,
                         columns: Sequence[str] = ("x", "v", "F_s", "F_d"),
                         axes: Sequence[Axes] | None = None) -> Figure:  # fmt: skip
     """Several columns in a grid of two columns (Figures 5 and 10)."""
     if axes is None:
         rows = (len(columns) + 1) // 2
-        with style():
-            fig, grid = plt.subplots(rows, 2, figsize=(8.0, 2.6 * rows), sharex=True)
+        fig, grid = plt.subplots(rows, 2, figsize=(8.0, 2.6 * rows), sharex=True)
         axes = list(np.ravel(grid))
     fig = axes[0].figure
     for i, (name, ax) in enumerate(zip(columns, axes)):

@@ -3,7 +3,7 @@
 Each helper takes ``ax=`` (draw into an existing Axes, or ``None`` for a new
 styled figure), returns the :class:`~matplotlib.figure.Figure`, never calls
 ``plt.show()`` and leaves global matplotlib state alone (the project style is
-applied with :func:`lumped.plotting._base.style` inside the helper only).
+applied by the decorator :func:`lumped.plotting._base.styled`, to the helper only).
 """
 
 from __future__ import annotations
@@ -14,7 +14,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from lumped.plotting._base import new_axes, style
+from lumped.plotting._base import new_axes, styled
 from lumped.results import Trajectory
 from lumped.system import Oscillator
 from lumped.textbook import AdaptiveOutcome, FixedStepResult
@@ -29,6 +29,7 @@ def _power(value: float) -> str:
     return power if mantissa == "1" else rf"{mantissa} \times {power}"
 
 
+@styled
 def acceleration_graph(
     oscillator: Oscillator, x: float, force: float = 0.0, v_max: float = 1e-2,
     ax: Axes | None = None,
@@ -44,20 +45,20 @@ def acceleration_graph(
     net = force - oscillator.stiffness * x
     v = np.linspace(0.0, v_max, 201)[1:]
     fig, ax = new_axes(ax)
-    with style():
-        for side, label in ((1, "eq. (11a), $v > 0$"), (-1, "eq. (11b), $v < 0$")):
-            ax.plot(side * v, (net - law.slip_force(side * v)) / m, label=label)
-        ends = (net - law.threshold) / m, (net + law.threshold) / m
-        ax.plot([0.0, 0.0], ends, color="C3", lw=4, alpha=0.6, label="eq. (11c), $v = 0$")
-        if abs(net) <= law.threshold:
-            ax.plot([0.0], [0.0], "o", color="k", label=rf"$F_d = {net:.3g}$ N: rest")
-        ax.axhline(0.0, color="0.5", lw=0.8)
-        ax.set_xlabel(r"velocity $v$ (m/s)")
-        ax.set_ylabel(r"acceleration $\dot v$ (m/s$^2$)")
-        ax.legend(loc="best")
+    for side, label in ((1, "eq. (11a), $v > 0$"), (-1, "eq. (11b), $v < 0$")):
+        ax.plot(side * v, (net - law.slip_force(side * v)) / m, label=label)
+    ends = (net - law.threshold) / m, (net + law.threshold) / m
+    ax.plot([0.0, 0.0], ends, color="C3", lw=4, alpha=0.6, label="eq. (11c), $v = 0$")
+    if abs(net) <= law.threshold:
+        ax.plot([0.0], [0.0], "o", color="k", label=rf"$F_d = {net:.3g}$ N: rest")
+    ax.axhline(0.0, color="0.5", lw=0.8)
+    ax.set_xlabel(r"velocity $v$ (m/s)")
+    ax.set_ylabel(r"acceleration $\dot v$ (m/s$^2$)")
+    ax.legend(loc="best")
     return fig
 
 
+@styled
 def chatter(
     runs: Mapping[str, FixedStepResult], reference: Trajectory | None = None,
     t_max: float | None = None, ax: Axes | None = None,
@@ -69,20 +70,20 @@ def chatter(
     solution); ``t_max`` (s) crops the time axis.
     """
     fig, ax = new_axes(ax)
-    with style():
-        for i, (label, run) in enumerate(runs.items()):
-            keep = slice(None) if t_max is None else run.t <= t_max
-            ax.step(1e3 * run.t[keep], run.F_d[keep], where="post", lw=0.8, color=f"C{i}",
-                    label=label)  # fmt: skip
-        if reference is not None:
-            keep = slice(None) if t_max is None else reference.t <= t_max
-            ax.plot(1e3 * reference.t[keep], reference.F_d[keep], color="k", lw=2, label="DAE")
-        ax.set_xlabel(r"time $t$ (ms)")
-        ax.set_ylabel(r"dashpot force $F_d$ (N)")
-        ax.legend(loc="center right")
+    for i, (label, run) in enumerate(runs.items()):
+        keep = slice(None) if t_max is None else run.t <= t_max
+        ax.step(1e3 * run.t[keep], run.F_d[keep], where="post", lw=0.8, color=f"C{i}",
+                label=label)  # fmt: skip
+    if reference is not None:
+        keep = slice(None) if t_max is None else reference.t <= t_max
+        ax.plot(1e3 * reference.t[keep], reference.F_d[keep], color="k", lw=2, label="DAE")
+    ax.set_xlabel(r"time $t$ (ms)")
+    ax.set_ylabel(r"dashpot force $F_d$ (N)")
+    ax.legend(loc="center right")
     return fig
 
 
+@styled
 def creep(
     runs: Mapping[float, AdaptiveOutcome], rest: float | None = None, ax: Axes | None = None
 ) -> Figure:
@@ -92,12 +93,11 @@ def creep(
     ``rest`` (m) is the DAE's rest position, drawn as a horizontal line.
     """
     fig, ax = new_axes(ax)
-    with style():
-        for eps, run in runs.items():
-            ax.plot(run.t, run.x, label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {_power(eps)}$ m/s")
-        if rest is not None:
-            ax.axhline(rest, color="k", lw=2, label="DAE (Algorithm 1, exact)")
-        ax.set_xlabel(r"time $t$ (s)")
-        ax.set_ylabel(r"displacement $x$ (m)")
-        ax.legend(loc="best")
+    for eps, run in runs.items():
+        ax.plot(run.t, run.x, label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {_power(eps)}$ m/s")
+    if rest is not None:
+        ax.axhline(rest, color="k", lw=2, label="DAE (Algorithm 1, exact)")
+    ax.set_xlabel(r"time $t$ (s)")
+    ax.set_ylabel(r"displacement $x$ (m)")
+    ax.legend(loc="best")
     return fig

@@ -1,0 +1,31 @@
+"""The switched sine and its canonical form (P >= 0, omega >= 0, same function)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import lumped as L
+from conftest import EPS
+
+#: (amplitude, omega, phase): every sign of P and omega, phases on both sides of 0.
+SIGNS = [(2.0, 3.0, 0.4), (-2.0, 3.0, 0.4), (2.0, -3.0, 0.4), (-2.0, -3.0, -2.9),
+         (1.5, -7.0, 3.0), (-0.5, -0.25, -1.0)]  # fmt: skip
+
+
+@pytest.mark.parametrize(("amplitude", "omega", "phase"), SIGNS)
+def test_canonical_form_is_non_negative_and_the_same_function(amplitude, omega, phase):
+    # The canonical form promises P >= 0, omega >= 0 (the exact solver's
+    # step bound pi/omega and its breakaway formula need omega > 0) and
+    # phase in [-pi, pi].  Same function: sin(-w t + ph) = sin(w t + pi - ph)
+    # and -P sin(a) = P sin(a + pi).  Rounding: the phase moves by a few
+    # roundings of size eps*(|ph| + pi) and w*t by eps*|w t|, so the values
+    # differ by at most |P| * 4 eps (|w t| + |ph| + 2 pi) (sin is 1-Lipschitz).
+    force = L.SwitchedSine(amplitude, omega, phase)
+    p, w, ph = force.canonical()
+    assert p == abs(amplitude) and w == abs(omega) and abs(ph) <= math.pi
+    t = np.linspace(0.0, 3.0, 301)
+    bound = abs(amplitude) * 4 * EPS * (abs(omega) * t + abs(phase) + 2 * math.pi)
+    assert np.all(np.abs(p * np.sin(w * t + ph) - force(t)) <= bound)

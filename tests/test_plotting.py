@@ -1,0 +1,69 @@
+"""Plot helpers: one style mechanism, and global matplotlib state left alone."""
+
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import pytest  # noqa: E402
+from matplotlib.figure import Figure  # noqa: E402
+
+import lumped as L  # noqa: E402
+from lumped import plotting  # noqa: E402
+from lumped.plotting import textbook as textbook_plots  # noqa: E402
+from lumped.textbook import TextbookModel, integrate_adaptive, integrate_fixed  # noqa: E402
+
+#: The style file's own setting (read from the file, not from the package's code).
+STYLE_FRAMEON = matplotlib.rc_params_from_file(plotting.STYLE, use_default_template=False)[
+    "legend.frameon"
+]
+
+
+def _runs():
+    osc = L.Oscillator.bingham()
+    traj = L.backward_euler(osc, 0.5, 1e-3, x0=0.5)
+    exact = L.solve_exact(osc, 0.5, x0=0.5)
+    model = TextbookModel(osc)
+    fixed = {"Euler": integrate_fixed(model, 0.01, 1e-4, x0=0.005)}
+    adaptive = {1e-2: integrate_adaptive(TextbookModel(osc, eps=1e-2), 0.05, x0=0.005)}
+    return osc, traj, exact, fixed, adaptive
+
+
+OSC, TRAJ, EXACT, FIXED, ADAPTIVE = _runs()
+#: Every helper that draws a legend, as a call taking ``ax``.
+LEGENDS = {
+    "time_history": lambda ax: plotting.time_history(TRAJ, EXACT, "x", ax=ax),
+    "time_history_panels": lambda ax: plotting.time_history_panels(TRAJ, EXACT, axes=[ax] * 4),
+    "acceleration_graph": lambda ax: textbook_plots.acceleration_graph(OSC, 0.005, ax=ax),
+    "chatter": lambda ax: textbook_plots.chatter(FIXED, TRAJ, ax=ax),
+    "creep": lambda ax: textbook_plots.creep(ADAPTIVE, rest=0.005, ax=ax),
+}
+
+
+def test_the_style_file_differs_from_matplotlib_on_legend_frames():
+    # Otherwise the next test could not tell styled from unstyled legends.
+    assert STYLE_FRAMEON is False and matplotlib.rcParamsDefault["legend.frameon"] is True
+
+
+@pytest.mark.parametrize("helper", LEGENDS)
+def test_legend_drawn_into_an_unstyled_axes_follows_the_style_file(helper):
+    # Axes made outside the package (default rcParams, frames on): the helper
+    # draws inside the style, so its legend takes the style's legend.frameon.
+    with matplotlib.rc_context(matplotlib.rcParamsDefault):
+        ax = Figure().add_subplot()
+        LEGENDS[helper](ax)
+    assert ax.get_legend() is not None
+    assert ax.get_legend().get_frame_on() is STYLE_FRAMEON
+
+
+@pytest.mark.parametrize("helper", LEGENDS)
+def test_helpers_leave_global_rcparams_alone(helper):
+    before = dict(matplotlib.rcParams)
+    fig = LEGENDS[helper](None) if helper not in ("time_history_panels",) else (
+        plotting.time_history_panels(TRAJ, EXACT))  # fmt: skip
+    assert isinstance(fig, Figure)
+    after = dict(matplotlib.rcParams)
+    assert {k for k in before if before[k] != after[k]} <= {"interactive"}
+    plt.close(fig)
