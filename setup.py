@@ -1,12 +1,43 @@
-"""Build the optional compiled kernel; everything else is in pyproject.toml.
+"""Build the optional compiled kernel and the packaged copy of the paper's values.
 
-If the C compiler is missing, the extension is skipped (``optional=True``) and
-``lumped`` runs the pure-Python loop, which gives the same numbers.
+Everything else is in pyproject.toml.  If the C compiler is missing, the
+extension is skipped (``optional=True``) and ``lumped`` runs the pure-Python
+loop, which gives the same numbers.
+
+``config/config.yaml`` stays the one file holding the paper's values (the
+Snakefile and the users edit it); :class:`build_py` copies it into the built
+package as ``lumped/paper_config.yaml``, which ``lumped.config.load()`` reads
+when the package is installed without its checkout.  MANIFEST.in puts the file
+into the sdist, so a wheel built from the sdist carries it too.
 """
 
+import os
+
 from setuptools import Extension, setup
+from setuptools.command.build_py import build_py as _build_py
+
+CONFIG = os.path.join("config", "config.yaml")
+PACKAGED = os.path.join("lumped", "paper_config.yaml")
+
+
+class build_py(_build_py):
+    """``build_py`` that also copies ``config/config.yaml`` into the package."""
+
+    def run(self) -> None:
+        super().run()
+        if self.editable_mode:  # an editable install reads the checkout's file
+            return
+        if not os.path.isfile(CONFIG):
+            raise FileNotFoundError(f"{CONFIG} is missing: the package must carry the paper's values")
+        self.copy_file(CONFIG, os.path.join(self.build_lib, PACKAGED))
+
+    def get_outputs(self, include_bytecode: bool = True) -> list[str]:
+        extra = [] if self.editable_mode else [os.path.join(self.build_lib, PACKAGED)]
+        return super().get_outputs(include_bytecode) + extra
+
 
 setup(
+    cmdclass={"build_py": build_py},
     ext_modules=[
         Extension(
             "lumped._kernel",
@@ -14,5 +45,5 @@ setup(
             extra_compile_args=["-O2", "-ffp-contract=off", "-fno-fast-math"],
             optional=True,
         )
-    ]
+    ],
 )

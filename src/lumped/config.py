@@ -2,7 +2,10 @@
 
 The notebooks, the Snakemake pipeline and the article all read the same file.
 The environment variable ``LUMPED_CONFIG`` points to another file (the
-pipeline sets it to the configuration after ``--config`` overrides).
+pipeline sets it to the configuration after ``--config`` overrides).  An
+installed package (``pip install .``, no checkout at hand) carries a copy of
+the file as built, ``lumped/paper_config.yaml`` (``setup.py`` copies it), so
+:func:`load` gives the paper's values from any folder.
 
 Every reader checks the values the same way, here: :func:`problems` lists what
 is wrong, one line each, and :func:`check` (which :func:`load` calls) returns
@@ -21,13 +24,14 @@ import math
 import os
 from functools import cache
 from importlib.resources import files
+from importlib.resources.abc import Traversable
 from pathlib import Path
 from typing import Any
 
 from lumped.forcing import SwitchedSine
 from lumped.system import Oscillator
 
-__all__ = ["load", "check", "problems", "schema", "find_root", "oscillator", "forcing"]
+__all__ = ["load", "check", "problems", "schema", "oscillator", "forcing"]
 
 #: End-time keys: dt must be below each of them.
 END_TIMES = ("t_end_forced", "t_end_small", "t_end_large")
@@ -37,17 +41,21 @@ END_TIMES = ("t_end_forced", "t_end_small", "t_end_large")
 MAX_STEPS = 10**7
 
 
-def find_root(start: Path | None = None) -> Path:
-    """The repository root: the first folder upwards holding ``config/config.yaml``."""
-    here = (start or Path.cwd()).resolve()
-    for folder in (here, *here.parents):
-        if (folder / "config" / "config.yaml").is_file():
-            return folder
-    raise ValueError(f"config: no config/config.yaml above {here}")
+#: The copy of config/config.yaml that setup.py puts into the built package.
+PACKAGED_CONFIG = "paper_config.yaml"
 
 
 def load(path: str | os.PathLike[str] | None = None) -> dict[str, Any]:
-    """Read and check the configuration (``path``, else ``$LUMPED_CONFIG``, else the repository's).
+    """Read and check the configuration; the paper's values unless told otherwise.
+
+    Parameters
+    ----------
+    path : str or path-like, optional
+        The file to read.  Without it, the first of: ``$LUMPED_CONFIG``; the
+        ``config/config.yaml`` of the checkout this package is imported from
+        (a source tree or an editable install); the copy built into the
+        package (:data:`PACKAGED_CONFIG`).  The current folder plays no part,
+        so another project's ``config/config.yaml`` is never read by chance.
 
     Returns
     -------
@@ -57,13 +65,33 @@ def load(path: str | os.PathLike[str] | None = None) -> dict[str, Any]:
     Raises
     ------
     ValueError
-        With the line ``config: <key> ...`` of the first problem.
+        With the line ``config: <key> ...`` of the first problem, or
+        ``config: no configuration found ...`` if there is no file to read.
+    OSError
+        If ``path`` or ``$LUMPED_CONFIG`` names a file that cannot be read
+        (never replaced by the default).
     """
     import yaml
 
-    path = path or os.environ.get("LUMPED_CONFIG") or find_root() / "config" / "config.yaml"
-    with open(path, encoding="utf-8") as fh:
-        return check(yaml.safe_load(fh))
+    return check(yaml.safe_load(_source(path).read_text(encoding="utf-8")))
+
+
+def _source(path: str | os.PathLike[str] | None) -> Path | Traversable:
+    """The configuration file :func:`load` reads (see its ``path``)."""
+    chosen = path or os.environ.get("LUMPED_CONFIG")
+    if chosen:
+        return Path(chosen)
+    package = Path(__file__).resolve().parent  # <root>/src/lumped in a checkout
+    checkout = package.parents[1] / "config" / "config.yaml"
+    if package.parent.name == "src" and checkout.is_file():
+        return checkout
+    packaged = files("lumped").joinpath(PACKAGED_CONFIG)
+    if packaged.is_file():
+        return packaged
+    raise ValueError(
+        f"config: no configuration found (lumped in {package} is neither in a checkout"
+        f" nor built with its {PACKAGED_CONFIG}); pass a path or set LUMPED_CONFIG"
+    )
 
 
 @cache

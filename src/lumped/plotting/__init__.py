@@ -1,5 +1,19 @@
 """Plot helpers (matplotlib).  Each takes ``ax=``, returns the Figure and leaves
-global matplotlib state alone; :func:`save_figure` writes reproducible files."""
+global matplotlib state alone; :func:`save_figure` writes reproducible files.
+
+matplotlib is the optional extra ``plot``: ``pip install "lumped[plot]"`` (from
+the checkout, ``pip install ".[plot]"``); the solver itself does not need it.
+"""
+
+try:
+    import matplotlib  # noqa: F401  (only to say which extra is missing)
+except ModuleNotFoundError as err:
+    if err.name != "matplotlib":  # installed but broken: its own message says why
+        raise
+    raise ImportError(
+        "lumped.plotting needs matplotlib, which is not installed:"
+        ' pip install "lumped[plot]" (in the checkout: pip install ".[plot]")'
+    ) from None
 
 from lumped.plotting._base import STYLE, new_axes, save_figure, style, styled
 from lumped.plotting.figures import (
