@@ -39,12 +39,13 @@ import sympy as sp
 
 import lumped as L
 import lumped.config
+import lumped.examples
 from lumped.laws import bingham_corrector
 import lumped.plotting as P
 from lumped.system import initial_dashpot_force
 
 cfg = lumped.config.load()
-osc = lumped.config.oscillator(cfg)
+osc = lumped.examples.oscillator(cfg)
 m, k, tau, gamma, dt = cfg["mass"], cfg["stiffness"], cfg["threshold"], cfg["gamma"], cfg["dt"]
 print(f"m = {m} kg, k = {k} N/m, mu_s N_f = {tau} N, gamma = {gamma} m/(N s), dt = {dt} s")
 
@@ -102,8 +103,9 @@ print("velocity of F_d = 1.5, -0.3, -2.0:", law.velocity(np.array([1.5, -0.3, -2
 
 # %% [markdown]
 # So the inverse graph is an interval at $v = 0$ and a single point
-# elsewhere, where it is the slip force $F_d = \operatorname{sgn}(v)\,\mu_s N_f
-# + v/\gamma$ of (7). The figure is the paper's Figure 1, drawn both ways: (a)
+# elsewhere, where it is the slip force
+# $F_d = \operatorname{sgn}(v)\,\mu_s N_f + v/\gamma$ of (7). The figure is
+# the paper's Figure 1, drawn both ways: (a)
 # the force against the velocity, a relation with a vertical segment at
 # $v = 0$, and (b) the velocity as a function of the force, with a flat piece.
 
@@ -212,9 +214,10 @@ print("(15a):", sp.Eq(lhs_15a, rhs_15a))
 # $F_d^{(n+1)} = \tilde F^{(n+1)}$ satisfies both (15a) and the stick branch of
 # (6): lines 5 and 6 of Algorithm 1.
 #
-# *Slip.* Otherwise put the slip branch of (6), $v^{(n+1)} = \gamma(F_d^{(n+1)}
-# - s\,\mu_s N_f)$ with $s = \operatorname{sgn}\tilde F^{(n+1)}$ from (16),
-# into (15a) and solve the linear equation for $F_d^{(n+1)}$:
+# *Slip.* Otherwise put the slip branch of (6),
+# $v^{(n+1)} = \gamma(F_d^{(n+1)} - s\,\mu_s N_f)$ with
+# $s = \operatorname{sgn}\tilde F^{(n+1)}$ from (16), into (15a) and solve the
+# linear equation for $F_d^{(n+1)}$:
 
 # %%
 Ft_ = sp.Symbol("Ftilde", real=True)
@@ -337,37 +340,77 @@ for x0 in (0.5, 0.005):
           f"v = {hand['v']:+.10e} m/s, x = {hand['x']:.10f} m  (package: identical)")
 
 # %% [markdown]
-# For the slip step the force is a hair above the threshold, $F_d =
-# -(\eta + 50\,c)/(\eta + c) \approx -1.0049$ N, because with $\eta \approx
-# 10^4$ kg/s the implicit step lets the mass pick up only a small velocity,
-# $-49/(\eta + c) \approx -4.9 \times 10^{-3}$ m/s. For the stick step the mass
-# stays put and the dashpot carries exactly the spring's pull, $-0.5$ N.
+# With $\mu_s N_f = 1$ N and $\tilde F = -50$ N, lines 8 and 9 give for the
+# slip step $F_d = -(\eta + 50\,c)/(\eta + c)$ and $v = -49/(\eta + c)$. The
+# implicit step's $\eta = m/\Delta t + k\,\Delta t$ is large (about
+# $m/\Delta t$), so in one step the mass picks up only a small velocity and the
+# force lies just beyond the threshold (exactly on it for $c = 0$):
+
+# %%
+eta, c = m / dt + k * dt, 1.0 / gamma
+print(f"eta = {eta:.8g} kg/s, c = {c:g} N s/m:  -(eta + 50 c)/(eta + c) = "
+      f"{-(eta + 50 * c) / (eta + c):+.10f} N, -49/(eta + c) = {-49 / (eta + c):+.10e} m/s")
+
+# %% [markdown]
+# Both agree with the hand step above. For the stick step the mass stays put
+# and the dashpot carries exactly the spring's pull, $-k x_0 = -0.5$ N.
 
 # %% [markdown]
 # ## Step 8: eq. (16) and the stick condition on a full run
 #
-# Take the forced case of eq. (17b), $F(t) = 10 \sin(5\pi t)$ up to $t = 1$ s,
-# from rest at $x = 0$, and run Algorithm 1 for 2.5 s. From the stored
-# trajectory we rebuild the predictor of every step and check three things:
-# (16) holds at every step; while the mass is held at rest the dashpot carries
-# $F - F_s$ (the hidden condition of Step 3); and (15a) holds to rounding. On
-# the step where the mass *arrives* at rest, $v^{(n)} \ne 0 = v^{(n+1)}$, the
-# stick force is $\tilde F = F - F_s + m v^{(n)}/\Delta t$: the extra term is the
-# discrete impulse that stops the mass, so that step is counted separately.
+# Take the paper's forced run of eq. (17b), the one of its Figures 6 to 9
+# (`lumped.examples.paper()["forced_large"]`): from rest at $x = 0$, pushed by
+# $F(t) = P \sin(5\pi t)$ until the force is switched off. Run Algorithm 1 and
+# rebuild, from the stored trajectory, the predictor (15b) of every step.
 
 # %%
-run = L.backward_euler(osc, cfg["t_end_forced"], dt, force=lumped.config.forcing(cfg, "large"))
+forced = lumped.examples.paper(cfg)["forced_large"]
+run = forced.algorithm1()
 Ft = m / dt * run.v[:-1] + run.F[1:] - run.F_s[:-1]  # eq. (15b) for steps 1..N
 Fd, v = run.F_d[1:], run.v[1:]
-stick, held = v == 0.0, (v == 0.0) & (run.v[:-1] == 0.0)  # held: at rest before and after
+stick = v == 0.0
+print(f"P = {forced.force.amplitude} N until t = {forced.force.until} s, t_end = {forced.t_end} s, "
+      f"dt = {forced.dt} s: {Ft.size} steps, {(~stick).sum()} slip, {stick.sum()} stick")
+
+# %% [markdown]
+# First check, eq. (16): the predictor has the sign of the new dashpot force,
+# at every step, slip or stick.
+
+# %%
 assert np.array_equal(np.sign(Ft), np.sign(Fd))  # eq. (16), every step
-assert np.array_equal(Fd[held], (run.F - run.F_s)[1:][held])  # stick: F_d = F - F_s
-residual = (1 + dt**2 * k / m) * v - dt / m * (Ft - Fd)  # eq. (15a)
-print(f"steps: {Ft.size}: slip {(~stick).sum()}, stick {stick.sum()} "
-      f"(arrivals at rest {(stick & ~held).sum()}, held at rest {held.sum()})")
 print(f"sgn(F~) == sgn(F_d) at {np.sum(np.sign(Ft) == np.sign(Fd))} of {Ft.size} steps")
+
+# %% [markdown]
+# Second check, the hidden condition of Step 3: while the mass is *held* at
+# rest ($v = 0$ before and after the step) the dashpot carries $F - F_s$,
+# exactly. On a step where the mass *arrives* at rest, $v^{(n)} \ne 0 =
+# v^{(n+1)}$, the stick force is $\tilde F = F - F_s + m v^{(n)}/\Delta t$
+# instead: the extra term is the discrete impulse that stops the mass, so
+# those steps are counted apart.
+
+# %%
+held = stick & (run.v[:-1] == 0.0)  # at rest before and after the step
+arrive = stick & ~held
+assert np.array_equal(Fd[held], (run.F - run.F_s)[1:][held])  # stick: F_d = F - F_s
+extra, impulse = (Fd - (run.F - run.F_s)[1:])[arrive], (m / dt * run.v[:-1])[arrive]
+print(f"held at rest: {held.sum()} steps, F_d == F - F_s at all of them")
+print(f"arrivals at rest: {arrive.sum()} steps, F_d - (F - F_s) =",
+      np.array2string(extra, precision=4), "N, m v(n)/dt =", np.array2string(impulse, precision=4), "N")
+
+# %% [markdown]
+# Third check: (15a), the equation both branches solve, holds to rounding.
+
+# %%
+residual = (1 + dt**2 * k / m) * v - dt / m * (Ft - Fd)  # eq. (15a)
 print(f"largest |residual of (15a)|: {np.abs(residual).max():.1e} m/s")
-print(f"largest |F_d| in stick: {np.abs(Fd[stick]).max(initial=0.0):.4f} N  (<= mu_s N_f = {tau})")
+
+# %% [markdown]
+# Fourth check: every stick force lies in the band of (6), so each stick step
+# is consistent with the graph of the dashpot.
+
+# %%
+assert np.all(np.abs(Fd[stick]) <= tau)
+print(f"largest |F_d| in stick: {np.abs(Fd[stick]).max(initial=0.0):.4f} N  (<= mu_s N_f = {tau} N)")
 
 # %% [markdown]
 # ## What to take away
@@ -380,8 +423,9 @@ print(f"largest |F_d| in stick: {np.abs(Fd[stick]).max(initial=0.0):.4f} N  (<= 
 #   value in the band, and it is the dynamics that selects the force, as
 #   $F - F_s$ while the mass sticks.
 # * One backward-Euler step reduces to (15a); since the predictor $\tilde F$
-#   has the sign of the new dashpot force, eq. (16), held at all 25 000 steps
-#   of the forced run, it decides between stick and slip before the step.
+#   has the sign of the new dashpot force, eq. (16), which held at every step
+#   of the forced run in Step 8, it decides between stick and slip before the
+#   step.
 # * Line 8 of Algorithm 1 is the solution of (15a) on the slip branch. Divided
 #   through by $\gamma$ it agrees with the published form to an ulp or two and,
 #   unlike it, stays finite in the Coulomb limit $\gamma = \infty$.

@@ -44,11 +44,12 @@ from scipy.optimize import brentq
 
 import lumped as L
 import lumped.config
+import lumped.examples
 from lumped import textbook as T
 from lumped.plotting.textbook import acceleration_graph, chatter, creep
 
 cfg = lumped.config.load()
-osc = lumped.config.oscillator(cfg)
+osc = lumped.examples.oscillator(cfg)
 m, k, tau, dt = cfg["mass"], cfg["stiffness"], cfg["threshold"], cfg["dt"]
 x0 = osc.static_band / 2  # halfway into the band: the paper's Figure 10 case
 model = T.TextbookModel(osc)  # sgn(0) = 0
@@ -124,12 +125,15 @@ print(f"v < 0: acceleration in [{acc[-1].min():+.3f}, {acc[-1].max():+.3f}] m/s^
 # with $F_d = -k x_0 = -0.5$ N at every instant.
 
 # %%
-print(" dt (s)   sign changes   steps with F_d > 0   min |F_d + k x0|   mean F_d   x(1) - x0 (m)")
+print(" dt (s)   flips of v   F_d > 0   miss (N)   mean F_d (N)   drift (m)")
 euler = {}
 for h in (1e-3, 1e-4, 1e-5):
     r = euler[h] = T.integrate_fixed(model, 1.0, h, x0=x0, scheme="euler")
-    print(f"{h:7.0e} {r.sign_changes:12d} {np.mean(r.F_d > 0):17.1%} {np.abs(r.F_d + k * x0).min():17.3f}"
-          f" {r.F_d.mean():+11.5f} {r.x[-1] - x0:+15.2e}")
+    print(f"{h:7.0e} {r.sign_changes:12d} {np.mean(r.F_d > 0):9.1%} {np.abs(r.F_d + k * x0).min():10.3f}"
+          f" {r.F_d.mean():+14.5f} {r.x[-1] - x0:+11.2e}")
+print("flips of v: sign changes of the velocity in 1 s;  F_d > 0: share of the steps with F_d > 0;\n"
+      "miss: smallest |F_d - (-k x0)|, how close F_d comes to the force that holds the mass;\n"
+      "mean F_d: time average of F_d;  drift: x(1 s) - x0")
 # The textbook force is 0 or at least tau in size, so it misses -k x0 by at least
 # min(k x0, tau - k x0) (rounding is monotone, so also in floating point).
 assert all(np.abs(r.F_d + k * x0).min() >= min(k * x0, tau - k * x0) for r in euler.values())
@@ -138,8 +142,8 @@ assert all(np.abs(r.F_d + k * x0).min() >= min(k * x0, tau - k * x0) for r in eu
 # The velocity changes sign about once every two steps, at every step size: the
 # number of sign changes grows like $1/(2\Delta t)$ and does not converge. The
 # dashpot force jumps between $\approx +1$ and $\approx -1$ N (a quarter of the
-# steps at $+1$) and never comes within $0.5$ N of the force that would hold the
-# mass. Two things do converge as $\Delta t \to 0$: the drift of the mass
+# steps at $+1$) and never comes closer than $0.5$ N to the force that would
+# hold the mass (the column "miss"). Two things do converge as $\Delta t \to 0$: the drift of the mass
 # (proportional to $\Delta t$) and the *time average* of the chattering force,
 # which approaches $-0.5$ N. Keep that average in mind for Step 6.
 #
@@ -157,23 +161,27 @@ class LoggingModel(T.TextbookModel):
         return super().rhs(t, z)
 
 
-print(" dt (s)   sign changes   steps with stages of both signs   mean F_d   x(1) - x0 (m)")
+print(" dt (s)   flips of v   mixed steps   mean F_d (N)   drift (m)")
 rk4 = {}
 for h in (1e-3, 1e-4, 1e-5):
     stage_v.clear()
     r = rk4[h] = T.integrate_fixed(LoggingModel(osc), 1.0, h, x0=x0, scheme="rk4")
     s = np.sign(np.reshape(stage_v, (-1, 4)))
     mixed = np.mean((s.max(axis=1) > 0) & (s.min(axis=1) < 0))
-    print(f"{h:7.0e} {r.sign_changes:12d} {mixed:31.1%} {r.F_d.mean():+12.5f} {r.x[-1] - x0:+13.2e}")
+    print(f"{h:7.0e} {r.sign_changes:12d} {mixed:13.1%} {r.F_d.mean():+14.5f} {r.x[-1] - x0:+11.2e}")
+print("mixed steps: share of the steps whose four stages see velocities of both signs")
 
 # %% [markdown]
 # At the step points RK4's velocity never changes sign; it settles to a small
 # negative value, of order $\Delta t$, so the dashpot force sits at $-1$ N and
 # the mass creeps towards the spring's rest length at a speed proportional to
 # $\Delta t$. Inside the steps, about half of them (61% at $\Delta t = 10^{-3}$,
-# 51% below) evaluate the right-hand side on both sides of $v = 0$: the chatter
-# is still there, averaged away by the Runge-Kutta weights. The figure shows
-# the first few milliseconds of both schemes against the DAE.
+# 51% and 50% at the smaller steps: the column "mixed steps") evaluate the
+# right-hand side on both sides of $v = 0$: the chatter is still there,
+# averaged away by the Runge-Kutta weights. The figure shows the first two
+# milliseconds of both schemes against the DAE (dashed). Forward Euler is the
+# wide light line: between its jumps to $+1$ N it sits at $-1$ N together with
+# RK4, the thin line drawn on top of it.
 
 # %%
 reference = L.backward_euler(osc, 1.0, dt, x0=x0)
@@ -262,8 +270,8 @@ def creep_velocity(x, eps):
     return brentq(balance, -2 * eps * np.arctanh(k * x / tau), 0.0, xtol=1e-300, rtol=1e-15)
 
 
-print(" eps (m/s)   x(5 s) (m)   measured v/x   -k eps/tau   ratio     v_qs/x    ratio"
-      "   m k eps^2/tau^2")
+print("eps (m/s)   x(5 s) (m)   rate (1/s)   linear   rate/linear   quasi-static   rate/q-s"
+      "  inertia  viscous")
 smooth = {}
 for eps in (1e-2, 1e-3, 1e-4, 1e-5):
     run = smooth[eps] = T.integrate_adaptive(T.TextbookModel(osc, eps=eps), 5.0, x0=x0,
@@ -272,25 +280,40 @@ for eps in (1e-2, 1e-3, 1e-4, 1e-5):
     x, rate = run.x[-1], run.v[-1] / run.x[-1]
     linear, quasi = -k * eps / tau, creep_velocity(x, eps) / x
     inertia = m * k * eps**2 / tau**2  # relative size of the neglected m x''
+    viscous = eps * osc.dashpot.viscosity / tau  # relative size of v/gamma next to the friction
     assert run.finished and run.v[-1] != 0.0 and abs(rate / quasi - 1) < 2 * inertia + 1e-5
-    print(f"{eps:9.0e} {x:12.3e} {rate:14.6f} {linear:12.6f} {rate / linear:7.4f}"
-          f" {quasi:10.6f} {rate / quasi:8.5f} {inertia:12.0e}")
+    print(f"{eps:9.0e} {x:12.3e} {rate:12.6f} {linear:10.6f} {rate / linear:12.4f}"
+          f" {quasi:14.6f} {rate / quasi:10.5f} {inertia:8.0e} {viscous:8.0e}")
+print("rate: measured v/x at 5 s;  linear: -k eps/(mu_s N_f);  quasi-static: v_qs(x)/x at that x;\n"
+      "inertia: m k eps^2/(mu_s N_f)^2, relative size of the neglected m x'';\n"
+      "viscous: eps/(gamma mu_s N_f), relative size of v/gamma, neglected in the linear form")
 
 # %% [markdown]
 # The measured creep rate is proportional to $\varepsilon$, as predicted. It
-# matches the quasi-static rate $v_{qs}/x$ up to the inertia that the force
-# balance neglects: with the damping $b \approx \mu_s N_f/\varepsilon$ the slow
-# decay rate of $m\ddot x + b\dot x + kx = 0$ differs from $k/b$ by a relative
-# amount $\approx mk/b^2 = mk\varepsilon^2/(\mu_s N_f)^2$, the last column:
+# matches the quasi-static rate $v_{qs}/x$ (column "rate/q-s") up to the
+# inertia that the force balance neglects: with the damping
+# $b \approx \mu_s N_f/\varepsilon$ the slow decay rate of
+# $m\ddot x + b\dot x + kx = 0$ differs from $k/b$ by a relative amount
+# $\approx mk/b^2 = mk\varepsilon^2/(\mu_s N_f)^2$, the column "inertia":
 # 1% for $\varepsilon = 10^{-2}$, $10^{-4}$ for $\varepsilon = 10^{-3}$, and
-# below the printed digits for smaller $\varepsilon$. It matches the linear
-# closed form $-k\varepsilon/\mu_s N_f$ to within
-# 10%: the gap is the nonlinearity of $\tanh$, since $kx/\mu_s N_f$ is still
-# 0.3 to 0.5 at $t = 5$ s for the three smaller $\varepsilon$ (for
-# $\varepsilon = 10^{-2}$ the mass has already crept almost to $x = 0$, and the
-# linear form holds to the printed digits). Making $\varepsilon$ smaller slows
-# the creep but never stops it: the velocity at 5 s is small but not zero in
-# every run, and the only state the regularised model can rest in is $x = 0$.
+# below the printed digits for smaller $\varepsilon$.
+#
+# It matches the linear closed form $-k\varepsilon/\mu_s N_f$ to within 10%
+# (column "rate/linear"). For the three smaller $\varepsilon$ the gap is the
+# nonlinearity of $\tanh$: at $t = 5$ s the mass is still at $x$ between
+# 0.003 and 0.005 m, so $kx/\mu_s N_f$ is still 0.3 to 0.5. For
+# $\varepsilon = 10^{-2}$ the mass has crept almost to $x = 0$, where $\tanh$ is
+# linear, and what remains are the two terms the linear form neglects, both of
+# relative size $10^{-2}$ (columns "inertia" and "viscous"): inertia makes the
+# decay faster, the viscous force $v/\gamma$ makes it slower, and where the two
+# columns are equal, as with the paper's $\gamma = 1$ m/(N s), they cancel to
+# the printed digits.
+#
+# Making $\varepsilon$ smaller slows the creep but never stops it: the velocity
+# at 5 s is small but not zero in every run (asserted above), and the only
+# state the regularised model can rest in is $x = 0$. In the figure the dashed
+# line is the DAE's rest position, which the smallest $\varepsilon$ follows
+# closely but still leaves.
 
 # %%
 fig = creep(smooth, rest=reference.rest_position)
@@ -351,10 +374,10 @@ print(f"exact solver: events {[(e.kind, e.time) for e in exact.events]}, "
 #   stages on both sides of $v = 0$; RK45 stalls near $t = 10^{-5}$ s after
 #   $10^5$ evaluations; BDF "succeeds" with a trajectory that gains energy.
 # * Regularising with $\tanh(v/\varepsilon)$ gives a well-posed ODE whose mass
-#   creeps towards $x = 0$ at the rate $\approx k\varepsilon/\mu_s N_f$ (within 10%,
-#   and to $10^{-4}$ or better with the quasi-static balance once
-#   $\varepsilon \le 10^{-3}$): it never sticks, and its rest
-#   state is the energy minimiser, not the stretched state the device keeps.
+#   creeps towards $x = 0$ at the rate $\approx k\varepsilon/\mu_s N_f$ (within
+#   10%, and to about $10^{-4}$ or better with the quasi-static balance once
+#   $\varepsilon \le 10^{-3}$): it never sticks, and its rest state is the
+#   energy minimiser, not the stretched state the device keeps.
 # * The dashpot force at rest must be an unknown. Filippov's set (11c) and the
 #   DAE solvers select $F_d = -k x_0 = -0.5$ N, the value the chattering
 #   forward-Euler force only reaches on average.

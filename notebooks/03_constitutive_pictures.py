@@ -12,7 +12,7 @@
 # ---
 
 # %% [markdown]
-# # Constitutive pictures: Figures 1 to 4
+# # 3. Constitutive pictures: Figures 1 to 4
 #
 # **What you will learn.** Why a Bingham dashpot cannot be written as "force =
 # function of velocity" while "velocity = function of force" works; how the same
@@ -27,6 +27,7 @@
 # %%
 import lumped as L
 import lumped.config
+import lumped.examples
 import lumped.plotting as P
 import numpy as np
 
@@ -50,7 +51,7 @@ for v in (-0.5, 0.0, 0.5):
     print(f"v = {v:+.2f} m/s  ->  F_d in [{lo:+.3f}, {hi:+.3f}] N")
 forces = np.array([-2.0, -1.0, -0.3, 0.0, 0.3, 1.0, 2.0])
 print("F_d (N):", np.array2string(forces, precision=2, sign="+"))
-print("v (m/s):", np.array2string(law.velocity(forces), precision=2, sign="+"))
+print("v (m/s):", np.array2string(law.velocity(forces) + 0.0, precision=2, sign="+"))  # + 0.0: no -0
 
 # %% [markdown]
 # Panel (a) draws the force against the velocity, with the vertical segment at
@@ -90,7 +91,7 @@ _ = P.save_figure(fig, "fig02_spring_with_string")
 # $m\ddot x = F - F_s - F_d$.
 
 # %%
-osc = lumped.config.oscillator(cfg)
+osc = lumped.examples.oscillator(cfg)
 print(f"m = {osc.mass:.3f} kg, k = {osc.stiffness:.3f} N/m")
 print(f"largest |x| at which the unforced mass can rest: mu_s N_f / k = {osc.static_band:.4f} m")
 fig = P.oscillator_schematic()
@@ -102,13 +103,15 @@ _ = P.save_figure(fig, "fig03_mass_spring_dashpot")
 # The picture the numerical examples rely on: a flat stretch of width
 # $2\mu_s N_f$ on which the dashpot sticks, and two straight branches of slope
 # $\gamma$. Letting $\gamma \to \infty$ turns the branches vertical and gives the
-# Coulomb graph (Remark 2.1).
+# Coulomb graph (Remark 2.1). The slope is measured below through its inverse,
+# the rise of the slip force $F_d = \operatorname{sgn}(v)\,\mu_s N_f + v/\gamma$
+# per unit velocity, which stays finite (zero) in the Coulomb limit.
 
 # %%
 fig = P.bingham_pictorial(law)
 _ = P.save_figure(fig, "fig04_bingham_pictorial")
-slope = (law.velocity(3.0) - law.velocity(2.0)) / (3.0 - 2.0)
-print(f"measured slope outside the band: {slope:.3f} m/(N s)")
+inverse_slope = (law.slip_force(1.0) - law.slip_force(0.5)) / (1.0 - 0.5)
+print(f"measured 1/slope outside the band: {inverse_slope:.3f} N s/m (1/gamma = {1 / law.gamma:.3f})")
 
 # %% [markdown]
 # ## What to take away

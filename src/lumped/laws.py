@@ -167,7 +167,7 @@ class BinghamDashpot(Dashpot):
     def velocity(self, force: np.ndarray | float) -> np.ndarray | float:
         excess = np.maximum(np.abs(force) - self.threshold, 0.0)
         if math.isinf(self.gamma):
-            return np.where(excess > 0, np.sign(force) * np.inf, 0.0)
+            return np.where(excess > 0, np.copysign(np.inf, force), 0.0)
         return np.sign(force) * self.gamma * excess
 
     def force_interval(self, velocity: float) -> tuple[float, float]:

@@ -68,15 +68,22 @@ def chatter(
     ``runs`` maps a label to a :class:`~lumped.textbook.FixedStepResult`;
     ``reference`` is a trajectory of the DAE (Algorithm 1 or the exact
     solution); ``t_max`` (s) crops the time axis.
+
+    The runs often share values (every scheme sits at ``-mu_s N_f`` for long
+    stretches), so each is drawn wider and lighter than the one after it and
+    below it: where two coincide the earlier shows as a band around the later.
     """
     fig, ax = new_axes(ax)
-    for i, (label, run) in enumerate(runs.items()):
-        keep = slice(None) if t_max is None else run.t <= t_max
-        ax.step(1e3 * run.t[keep], run.F_d[keep], where="post", lw=0.8, color=f"C{i}",
-                label=label)  # fmt: skip
     if reference is not None:
         keep = slice(None) if t_max is None else reference.t <= t_max
-        ax.plot(1e3 * reference.t[keep], reference.F_d[keep], color="k", lw=2, label="DAE")
+        ax.plot(1e3 * reference.t[keep], reference.F_d[keep], color="k", lw=1.5, ls="--",
+                zorder=3, label="DAE")  # fmt: skip
+    n = len(runs)
+    for i, (label, run) in enumerate(runs.items()):
+        keep = slice(None) if t_max is None else run.t <= t_max
+        ax.step(1e3 * run.t[keep], run.F_d[keep], where="post", lw=1.0 + 3.0 * (n - 1 - i),
+                alpha=0.45 if i < n - 1 else 1.0, color=f"C{i}", zorder=2 + i / n,
+                label=label)  # fmt: skip
     ax.set_xlabel(r"time $t$ (ms)")
     ax.set_ylabel(r"dashpot force $F_d$ (N)")
     ax.legend(loc="center right")
@@ -90,13 +97,17 @@ def creep(
     """Displacement (m) against time (s) of regularised runs, one per ``eps``.
 
     ``runs`` maps ``eps`` (m/s) to an :class:`~lumped.textbook.AdaptiveOutcome`;
-    ``rest`` (m) is the DAE's rest position, drawn as a horizontal line.
+    ``rest`` (m) is the DAE's rest position, drawn as a thin dashed line under
+    the runs; a run that creeps very little stays visible above it, and a dot
+    marks where each run ends.
     """
     fig, ax = new_axes(ax)
-    for eps, run in runs.items():
-        ax.plot(run.t, run.x, label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {_power(eps)}$ m/s")
     if rest is not None:
-        ax.axhline(rest, color="k", lw=2, label="DAE (Algorithm 1, exact)")
+        ax.axhline(rest, color="k", lw=1.0, ls=(0, (4, 3)), zorder=1.5,
+                   label="DAE (Algorithm 1, exact)")  # fmt: skip
+    for i, (eps, run) in enumerate(runs.items()):
+        ax.plot(run.t, run.x, color=f"C{i}", lw=1.5, marker="o", markevery=[-1], zorder=2,
+                label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {_power(eps)}$ m/s")  # fmt: skip
     ax.set_xlabel(r"time $t$ (s)")
     ax.set_ylabel(r"displacement $x$ (m)")
     ax.legend(loc="best")
