@@ -14,19 +14,12 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from lumped.plotting._base import new_axes, styled
+from lumped.plotting._base import new_axes, sci_tex, styled
 from lumped.results import Trajectory
 from lumped.system import Oscillator
 from lumped.textbook import AdaptiveOutcome, FixedStepResult
 
 __all__ = ["acceleration_graph", "chatter", "creep"]
-
-
-def _power(value: float) -> str:
-    """``value`` in LaTeX scientific notation, ``10^{-3}`` or ``2 \\times 10^{-3}``."""
-    mantissa, exponent = f"{value:.0e}".split("e")
-    power = rf"10^{{{int(exponent)}}}"
-    return power if mantissa == "1" else rf"{mantissa} \times {power}"
 
 
 @styled
@@ -94,7 +87,8 @@ def creep(
     """
     fig, ax = new_axes(ax)
     for eps, run in runs.items():
-        ax.plot(run.t, run.x, label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {_power(eps)}$ m/s")
+        eps_tex = sci_tex(eps, digits=1, show_one=False)
+        ax.plot(run.t, run.x, label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {eps_tex}$ m/s")
     if rest is not None:
         ax.axhline(rest, color="k", lw=2, label="DAE (Algorithm 1, exact)")
     ax.set_xlabel(r"time $t$ (s)")
