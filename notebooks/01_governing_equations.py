@@ -39,12 +39,13 @@ import sympy as sp
 
 import lumped as L
 import lumped.config
+import lumped.examples
 from lumped.laws import bingham_corrector
 import lumped.plotting as P
 from lumped.system import initial_dashpot_force
 
 cfg = lumped.config.load()
-osc = lumped.config.oscillator(cfg)
+osc = lumped.examples.oscillator(cfg)
 m, k, tau, gamma, dt = cfg["mass"], cfg["stiffness"], cfg["threshold"], cfg["gamma"], cfg["dt"]
 print(f"m = {m} kg, k = {k} N/m, mu_s N_f = {tau} N, gamma = {gamma} m/(N s), dt = {dt} s")
 
@@ -356,7 +357,7 @@ for x0 in (0.5, 0.005):
 # discrete impulse that stops the mass, so that step is counted separately.
 
 # %%
-run = L.backward_euler(osc, cfg["t_end_forced"], dt, force=lumped.config.forcing(cfg, "large"))
+run = L.backward_euler(osc, cfg["t_end_forced"], dt, force=lumped.examples.forcing(cfg, "large"))
 Ft = m / dt * run.v[:-1] + run.F[1:] - run.F_s[:-1]  # eq. (15b) for steps 1..N
 Fd, v = run.F_d[1:], run.v[1:]
 stick, held = v == 0.0, (v == 0.0) & (run.v[:-1] == 0.0)  # held: at rest before and after

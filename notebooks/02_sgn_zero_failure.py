@@ -44,11 +44,12 @@ from scipy.optimize import brentq
 
 import lumped as L
 import lumped.config
+import lumped.examples
 from lumped import textbook as T
 from lumped.plotting.textbook import acceleration_graph, chatter, creep
 
 cfg = lumped.config.load()
-osc = lumped.config.oscillator(cfg)
+osc = lumped.examples.oscillator(cfg)
 m, k, tau, dt = cfg["mass"], cfg["stiffness"], cfg["threshold"], cfg["dt"]
 x0 = osc.static_band / 2  # halfway into the band: the paper's Figure 10 case
 model = T.TextbookModel(osc)  # sgn(0) = 0

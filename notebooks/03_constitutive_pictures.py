@@ -27,6 +27,7 @@
 # %%
 import lumped as L
 import lumped.config
+import lumped.examples
 import lumped.plotting as P
 import numpy as np
 
@@ -90,7 +91,7 @@ _ = P.save_figure(fig, "fig02_spring_with_string")
 # $m\ddot x = F - F_s - F_d$.
 
 # %%
-osc = lumped.config.oscillator(cfg)
+osc = lumped.examples.oscillator(cfg)
 print(f"m = {osc.mass:.3f} kg, k = {osc.stiffness:.3f} N/m")
 print(f"largest |x| at which the unforced mass can rest: mu_s N_f / k = {osc.static_band:.4f} m")
 fig = P.oscillator_schematic()

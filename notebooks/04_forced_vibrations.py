@@ -26,11 +26,12 @@
 # %%
 import lumped as L
 import lumped.config
+import lumped.examples
 import lumped.plotting as P
 import numpy as np
 
 cfg = lumped.config.load()
-osc, dt, t_end = lumped.config.oscillator(cfg), cfg["dt"], cfg["t_end_forced"]
+osc, dt, t_end = lumped.examples.oscillator(cfg), cfg["dt"], cfg["t_end_forced"]
 print(f"m = {osc.mass:.3f} kg, k = {osc.stiffness:.3f} N/m, mu_s N_f = {osc.threshold:.3f} N, "
       f"gamma = {cfg['gamma']:.3f}, dt = {dt:.1e} s, t_end = {t_end:.2f} s")
 
@@ -52,7 +53,7 @@ print(f"m = {osc.mass:.3f} kg, k = {osc.stiffness:.3f} N/m, mu_s N_f = {osc.thre
 # eq. (19), $F_d = F_1$, $x = v = F_s = 0$.
 
 # %%
-force = lumped.config.forcing(cfg, "small")
+force = lumped.examples.forcing(cfg, "small")
 weak = L.backward_euler(osc, t_end, dt, x0=0.0, v0=0.0, force=force)
 weak_exact = L.solve_exact(osc, t_end, x0=0.0, v0=0.0, force=force)
 print(f"max F_1 = {np.abs(weak.F).max():.4f} N  (threshold {osc.threshold:.4f} N)")
@@ -74,7 +75,7 @@ _ = P.save_figure(fig, "fig05_forced_small")
 # the band the motion reverses at once, inside it the mass stops.
 
 # %%
-force = lumped.config.forcing(cfg, "large")
+force = lumped.examples.forcing(cfg, "large")
 strong = L.backward_euler(osc, t_end, dt, x0=0.0, v0=0.0, force=force)
 exact = L.solve_exact(osc, t_end, x0=0.0, v0=0.0, force=force)
 print(f"predicted breakaway arcsin(0.1)/(5 pi) = {np.arcsin(0.1) / (5 * np.pi):.5f} s")

@@ -25,11 +25,12 @@
 # %%
 import lumped as L
 import lumped.config
+import lumped.examples
 import lumped.plotting as P
 import numpy as np
 
 cfg = lumped.config.load()
-osc, dt = lumped.config.oscillator(cfg), cfg["dt"]
+osc, dt = lumped.examples.oscillator(cfg), cfg["dt"]
 print(f"m = {osc.mass:.3f} kg, k = {osc.stiffness:.3f} N/m, mu_s N_f = {osc.threshold:.3f} N, "
       f"gamma = {cfg['gamma']:.3f}, dt = {dt:.1e} s")
 print(f"static band: the unforced mass can rest wherever |x| <= mu_s N_f / k = {osc.static_band:.4f} m")

@@ -40,6 +40,7 @@ import numpy as np
 
 import lumped as L
 import lumped.config
+from lumped import examples
 from lumped import textbook
 from lumped.results import sign_changes
 
@@ -59,16 +60,6 @@ STILL_MOVING = "still moving"
 def _rest(value: float) -> float | str:
     """A rest time or position, or STILL_MOVING where the trajectory gives ``nan``."""
     return STILL_MOVING if math.isnan(value) else value
-
-
-def _examples(cfg: dict[str, Any]) -> dict[str, dict[str, Any]]:
-    """The four examples of section 3: keyword arguments of both solvers and end time."""
-    return {
-        "forced_small": dict(t_end=cfg["t_end_forced"], x0=0.0, force=lumped.config.forcing(cfg, "small")),
-        "forced_large": dict(t_end=cfg["t_end_forced"], x0=0.0, force=lumped.config.forcing(cfg, "large")),
-        "free_small": dict(t_end=cfg["t_end_small"], x0=cfg["x0_small"], force=None),
-        "free_large": dict(t_end=cfg["t_end_large"], x0=cfg["x0_large"], force=None),
-    }
 
 
 def _deviation(be: L.Trajectory, ref: L.Trajectory) -> dict[str, float]:
@@ -218,8 +209,8 @@ def _textbook(osc: L.Oscillator, x0: float) -> dict[str, Any]:
 def compute(cfg: dict[str, Any] | None = None) -> dict[str, Any]:
     """All numbers of the article, as a JSON-ready dictionary."""
     cfg = cfg if cfg is not None else lumped.config.load()
-    osc, dt = lumped.config.oscillator(cfg), float(cfg["dt"])
-    runs = _examples(cfg)
+    osc, dt = examples.oscillator(cfg), float(cfg["dt"])
+    runs = {name: dict(t_end=e.t_end, x0=e.x0, force=e.force) for name, e in examples.paper(cfg).items()}
     out: dict[str, Any] = {
         "parameters": {
             "m": osc.mass,

@@ -12,6 +12,7 @@ import pytest
 from hypothesis import settings
 
 import lumped as L
+import lumped.examples
 
 # In CI the property tests draw the same examples on every run (a red CI then
 # means a change broke something, never that a new random draw was unlucky);
@@ -23,7 +24,10 @@ if os.environ.get("CI"):
 #: Machine epsilon of float64; tolerances below are written in units of it.
 EPS = float(np.finfo(float).eps)
 #: The paper's time step (section 3).
-PAPER_DT = 1e-4
+PAPER_DT = L.examples.ORIGINAL_DT
+#: The forcings of eqs. (17a) and (17b), as lumped.examples defines them.
+F17A = L.examples.paper()["forced_small"].force
+F17B = L.examples.paper()["forced_large"].force
 
 
 @pytest.fixture

@@ -11,11 +11,11 @@ import pytest
 
 import lumped as L
 from lumped import laws, timestepping
-from conftest import EPS, PAPER_DT, case_table
+from conftest import EPS, F17A, F17B, PAPER_DT, case_table
 
 # Cases for the invariants: (gamma, keyword arguments of backward_euler).
 CASES = {
-    "fig5-17a": (1.0, dict(force=L.paper_forcing(0.5))),
+    "fig5-17a": (1.0, dict(force=F17A)),
     **case_table("fig6-17b"),
     "fig10-x0-0.005": (1.0, dict(x0=0.005)),
     **case_table("fig11-x0-0.5", "coulomb-x0-0.5", "coulomb-17b", "overdamped-17b",
@@ -34,7 +34,7 @@ def test_figure5_is_equation_19_exactly(paper_oscillator):
     # F~ = (m/dt)*0 + F_1(t_{n+1}) - 0 = F_1(t_{n+1}) with |F~| <= 0.5 < 1:
     # line 6 sets v = 0 and F_d = F~ by assignment, and line 11 adds dt*k*0 = 0
     # to F_s = 0.  No rounding enters, so eq. (19) holds with ==, not approx.
-    tr = L.backward_euler(paper_oscillator, 2.0, PAPER_DT, force=L.paper_forcing(0.5))
+    tr = L.backward_euler(paper_oscillator, 2.0, PAPER_DT, force=F17A)
     n = np.arange(len(tr.t))
     assert np.array_equal(tr.t, n * PAPER_DT)
     assert np.all(tr.x == 0.0) and np.all(tr.v == 0.0) and np.all(tr.F_s == 0.0)
@@ -130,7 +130,7 @@ def test_energy_balance_refuses_thinned_backward_euler(paper_oscillator):
 
 @pytest.mark.parametrize(
     "kwargs",
-    [dict(x0=0.5), dict(force=L.paper_forcing(10.0)),
+    [dict(x0=0.5), dict(force=F17B),
      dict(x0=0.1, v0=-3.0, force=L.SwitchedSine(-4.0, 7.0, 0.3, 1.5))],
     ids=["free", "17b", "v0-forced"],
 )  # fmt: skip
@@ -188,7 +188,7 @@ def test_python_loop_corrects_through_bingham_corrector(case, monkeypatch):
 
 @pytest.mark.skipif(timestepping.KERNEL != "compiled", reason="C kernel not built")
 def test_kernels_identical_with_thinning_and_ragged_end(paper_oscillator):
-    kw = dict(x0=0.3, force=L.paper_forcing(10.0), save_every=7)
+    kw = dict(x0=0.3, force=F17B, save_every=7)
     a = L.backward_euler(paper_oscillator, 1.2345, 1e-3, kernel="compiled", **kw)
     b = L.backward_euler(paper_oscillator, 1.2345, 1e-3, kernel="python", **kw)
     assert np.array_equal(a.as_array(), b.as_array())
@@ -198,8 +198,8 @@ def test_kernels_identical_with_thinning_and_ragged_end(paper_oscillator):
 def test_save_every_keeps_first_last_and_every_kth(paper_oscillator, save_every):
     # The thinned run must be the full run's rows 0, K, 2K, ... and the last.
     dt, t_end = 1e-3, 1.0  # N = 1000 steps
-    full = L.backward_euler(paper_oscillator, t_end, dt, force=L.paper_forcing(10.0))
-    thin = L.backward_euler(paper_oscillator, t_end, dt, force=L.paper_forcing(10.0),
+    full = L.backward_euler(paper_oscillator, t_end, dt, force=F17B)
+    thin = L.backward_euler(paper_oscillator, t_end, dt, force=F17B,
                             save_every=save_every)  # fmt: skip
     idx = np.arange(0, 1001, save_every)
     if idx[-1] != 1000:
@@ -228,7 +228,7 @@ def test_generic_force_callable_equals_switched_sine(paper_oscillator):
     # static balance by at most delta_F/k, and the step map is non-expansive,
     # so over N steps |dx| <= N * 2 eps max|F| / k (a real mismatch of the two
     # forcing paths, e.g. a phase error, would be O(1e-2) here).
-    sine = L.paper_forcing(10.0)
+    sine = F17B
     a = L.backward_euler(paper_oscillator, 2.0, 1e-3, force=sine)
     b = L.backward_euler(paper_oscillator, 2.0, 1e-3, force=lambda t: sine(t))
     assert np.abs(a.x - b.x).max() <= len(a.t) * 2 * EPS * 10.0 / 100.0

@@ -26,6 +26,7 @@ import numpy as np
 import pytest
 
 import lumped as L
+from conftest import F17B
 from lumped import cli, timestepping
 from lumped.cli import main, option_message
 from lumped.textbook import TextbookModel, integrate_adaptive, integrate_fixed
@@ -132,7 +133,7 @@ def test_rest_time_is_nan_while_moving_and_zero_for_a_mass_that_never_moves():
     assert _run(x0=0.005, save_every=100).rest_time == 0.0
 
 
-@pytest.mark.parametrize("force", [None, L.paper_forcing(10.0), lambda t: 10 * np.sin(5 * np.pi * t)])
+@pytest.mark.parametrize("force", [None, F17B, lambda t: 10 * np.sin(5 * np.pi * t)])
 def test_blocks_do_not_change_a_single_bit(monkeypatch, force):
     whole = L.backward_euler(OSC, 4.0, 1e-4, x0=0.5, force=force, save_every=3)
     monkeypatch.setattr(timestepping, "BLOCK_SINE", 997)

@@ -14,6 +14,7 @@ import numpy as np
 import pytest
 
 import lumped as L
+from conftest import F17B
 from lumped.cli import build_parser, main
 
 HEADER = "t,x,v,F_s,F_d,F"
@@ -53,7 +54,7 @@ def test_npz_has_the_named_arrays(tmp_path):
     assert main(argv) == 0
     with np.load(out) as z:
         assert sorted(z.files) == sorted(HEADER.split(","))
-        ref = L.backward_euler(L.Oscillator.bingham(), 2.0, 1e-3, force=L.paper_forcing(10.0),
+        ref = L.backward_euler(L.Oscillator.bingham(), 2.0, 1e-3, force=F17B,
                                save_every=3)  # fmt: skip
         for name, column in ref.columns().items():
             assert np.array_equal(z[name], column)

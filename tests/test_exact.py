@@ -9,7 +9,7 @@ import pytest
 
 import lumped as L
 import references
-from conftest import EPS, case_table
+from conftest import EPS, F17A, F17B, case_table
 
 
 # (m, k, tau, gamma, x0): paper's free decay (Fig. 11), other x0 and gamma,
@@ -69,7 +69,7 @@ def test_released_inside_the_band_rests_at_once(x0):
 
 def test_figure5_exact_solution_is_equation_19():
     # Forcing (17a) stays in the band: stick throughout, F_d = F_1(t).
-    f1 = L.paper_forcing(0.5)
+    f1 = F17A
     sol = L.solve_exact(L.Oscillator.bingham(), 2.0, force=f1)
     t = np.linspace(0, 2, 201)
     cols = sol.evaluate(t)
@@ -156,7 +156,7 @@ def test_stick_intervals_and_rest_time_match_backward_euler_within_order_dt(dt, 
     # runs of v == 0 in backward Euler (a grid point landing on a reversal)
     # have zero length and are not stick phases.
     osc = L.Oscillator.bingham(gamma=gamma)
-    force = L.paper_forcing(10.0)
+    force = F17B
     sol = L.solve_exact(osc, 3.0, force=force)
     be = L.backward_euler(osc, 3.0, dt, force=force)
     runs = [iv for iv in be.stick_intervals() if iv[1] > iv[0]]
@@ -170,7 +170,7 @@ def test_stick_intervals_and_rest_time_match_backward_euler_within_order_dt(dt, 
 def test_exact_energy_balance_is_second_order():
     # Trapezoid on the sampled exact solution: the power F_d v is continuous
     # and piecewise smooth, so the residual is O(dt^2): fitted order in [1.8, 2.2].
-    sol = L.solve_exact(L.Oscillator.bingham(), 3.0, force=L.paper_forcing(10.0))
+    sol = L.solve_exact(L.Oscillator.bingham(), 3.0, force=F17B)
     dts = np.array([4e-4, 2e-4, 1e-4, 5e-5])
     res = [np.abs(sol.sample(dt).energy_balance().residual).max() for dt in dts]
     assert 1.8 <= references.order(dts, res) <= 2.2

@@ -8,11 +8,12 @@ Modules, one idea each: :mod:`~lumped.laws` (springs and dashpots),
 :mod:`~lumped.timestepping` (Algorithm 1), :mod:`~lumped.event_driven` (exact
 solution), :mod:`~lumped.textbook` (the ``sgn(0) = 0`` model),
 :mod:`~lumped.forcing`, :mod:`~lumped.driver` (:func:`simulate`),
-:mod:`~lumped.results`, :mod:`~lumped.cli`.
+:mod:`~lumped.results`, :mod:`~lumped.cli`; the paper's runs are
+:mod:`~lumped.examples`.
 """
 
 from lumped.event_driven import Event, ExactSolution, Phase, solve_exact
-from lumped.forcing import SwitchedSine, paper_forcing
+from lumped.forcing import SwitchedSine
 from lumped.laws import BinghamDashpot, Dashpot, DashpotState, LinearSpring, MonotoneDashpot, coulomb
 from lumped.results import COLUMNS, EnergyBalance, Trajectory
 from lumped.driver import METHODS, simulate
@@ -37,7 +38,6 @@ __all__ = [
     "algorithm1",
     "backward_euler",
     "coulomb",
-    "paper_forcing",
     "simulate",
     "solve_exact",
 ]

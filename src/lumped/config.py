@@ -1,4 +1,6 @@
-"""The shared parameter file ``config/config.yaml``: its check, and the objects it describes.
+"""The shared parameter file ``config/config.yaml``: where it is, and its check.
+
+The runs it describes are built by :mod:`lumped.examples`.
 
 The notebooks, the Snakemake pipeline and the article all read the same file.
 The environment variable ``LUMPED_CONFIG`` points to another file (the
@@ -24,10 +26,8 @@ from importlib.resources import files
 from pathlib import Path
 from typing import Any
 
-from lumped.forcing import SwitchedSine
-from lumped.system import Oscillator
 
-__all__ = ["load", "check", "problems", "schema", "find_root", "oscillator", "forcing"]
+__all__ = ["load", "check", "problems", "schema", "find_root"]
 
 #: End-time keys: dt must be below each of them.
 END_TIMES = ("t_end_forced", "t_end_small", "t_end_large")
@@ -178,20 +178,3 @@ def _step_problems(values: dict[str, Any]) -> list[str]:
                 f" (a run takes at most {MAX_STEPS:.0e} steps); got {dt:g}"
             ]
     return []
-
-
-def oscillator(cfg: dict[str, Any]) -> Oscillator:
-    """The paper's system with the configured parameters."""
-    return Oscillator.bingham(cfg["mass"], cfg["stiffness"], cfg["threshold"], float(cfg["gamma"]))
-
-
-def forcing(cfg: dict[str, Any], which: str) -> SwitchedSine:
-    """Eq. (17a) for ``which="small"``, eq. (17b) for ``"large"``."""
-    if which not in ("small", "large"):
-        raise ValueError(f"which must be 'small' or 'large', got {which!r}")
-    return SwitchedSine(
-        amplitude=cfg[f"force_amplitude_{which}"],
-        omega=cfg["force_omega_over_pi"] * math.pi,
-        phase=0.0,
-        until=cfg["force_until"],
-    )

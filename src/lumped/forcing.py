@@ -16,7 +16,7 @@ import numpy as np
 
 from lumped import _validate
 
-__all__ = ["SwitchedSine", "paper_forcing", "evaluate", "validate_force"]
+__all__ = ["SwitchedSine", "evaluate", "validate_force"]
 
 
 @dataclass(frozen=True)
@@ -64,11 +64,6 @@ class SwitchedSine:
         if p < 0:
             p, ph = -p, ph + math.pi
         return p, w, math.remainder(ph, 2 * math.pi)
-
-
-def paper_forcing(amplitude: float) -> SwitchedSine:
-    """Forcing of eq. (17a) (``amplitude = 0.5``) or (17b) (``10``): ``5 pi`` rad/s until 1 s."""
-    return SwitchedSine(amplitude=amplitude, omega=5 * math.pi, phase=0.0, until=1.0)
 
 
 def validate_force(force: object) -> SwitchedSine | Callable[[np.ndarray], np.ndarray] | None:
