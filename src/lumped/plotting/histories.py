@@ -51,7 +51,7 @@ EVENT_MARKERS = {"stop": "o", "reversal": "D", "breakaway": "^", "forcing-off": 
 
 #: Size (inches) of a time history with its difference panel, and without one.
 #: The article prints figures at the size they are drawn (``fig()`` in paper.typ).
-SIZE_WITH_DIFFERENCE, SIZE_ALONE = (5.6, 3.8), (5.6, 3.0)
+SIZE_WITH_DIFFERENCE, SIZE_ALONE = (5.4, 3.5), (5.4, 2.8)
 
 #: The points next to a switch "dominate" the difference when the rest of it
 #: would fill less than 1/DOMINATED of the panel's height on a common scale.
