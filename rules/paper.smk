@@ -1,4 +1,5 @@
-# The article: numbers from the package, then the PDF from paper/paper.typ.
+# The article: numbers from the package, its convergence figure, then the PDF
+# from paper/paper.typ (which embeds the figures' PDFs, vector graphics).
 #   snakemake --cores all paper/paper.pdf
 # Included by the Snakefile after rules/common.smk and rules/figures.smk, whose
 # FIGURE_FILES, PACKAGE_SOURCES and effective_config rule it uses.
@@ -17,6 +18,20 @@ rule paper_numbers:
         "LUMPED_CONFIG={input.config} python {input.script} {output} > {log} 2>&1"
 
 
+rule paper_figures:
+    """The article's convergence figure, drawn from numbers.json (scripts/paper_figures.py)."""
+    input:
+        script="scripts/paper_figures.py",
+        numbers=rules.paper_numbers.output[0],
+        package=PACKAGE_SOURCES,
+    output:
+        "paper/build/convergence.pdf",
+    log:
+        "logs/paper_figures.log",
+    shell:
+        "python {input.script} {input.numbers} {output} > {log} 2>&1"
+
+
 rule paper:
     """Typeset paper/paper.typ with the typst Python package (byte-reproducible)."""
     input:
@@ -26,7 +41,8 @@ rule paper:
         metadata="paper/metadata.yaml",
         deviations="paper/deviations.yaml",
         references="paper/references.yaml",
-        figures=[f for f in FIGURE_FILES if f.endswith(".png")],
+        figures=[f for f in FIGURE_FILES if f.endswith(".pdf")],
+        convergence=rules.paper_figures.output[0],
     output:
         pdf="paper/paper.pdf",
     log:

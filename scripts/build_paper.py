@@ -4,9 +4,11 @@ Usage::
 
     python scripts/build_paper.py [--out paper/paper.pdf] [--draft] [FIGURE ...]
 
-The figures are the PNG files ``figures/figNN_<slug>.png`` (``NN`` = 01..14,
-the original's figure numbers); when none are given on the command line they
-are found by that pattern.  Their names go to ``paper/build/figures.json``,
+The figures are the PDF files ``figures/figNN_<slug>.pdf`` (``NN`` = 01..14,
+the original's figure numbers), embedded as vector graphics at the size they
+were drawn; when none are given on the command line they are found by that
+pattern.  The article also embeds ``paper/build/convergence.pdf``
+(``scripts/paper_figures.py``).  Their names go to ``paper/build/figures.json``,
 which the article reads.  A missing figure is an error unless ``--draft`` is
 given, in which case the article shows an empty frame in its place.
 
@@ -26,7 +28,9 @@ from pathlib import Path
 
 ROOT = Path(__file__).resolve().parent.parent
 FIGURE_COUNT = 14
-_PATTERN = re.compile(r"fig(\d\d)_[A-Za-z0-9_-]+\.png$")
+#: The article's own figure (``scripts/paper_figures.py``), key ``"convergence"`` of figures.json.
+CONVERGENCE = ROOT / "paper" / "build" / "convergence.pdf"
+_PATTERN = re.compile(r"fig(\d\d)_[A-Za-z0-9_-]+\.pdf$")
 
 
 def figure_table(files: list[str]) -> dict[str, str]:
@@ -35,7 +39,7 @@ def figure_table(files: list[str]) -> dict[str, str]:
     for name in files:
         match = _PATTERN.search(Path(name).name)
         if not match:
-            raise ValueError(f"figure: {name!r} is not named figures/figNN_<slug>.png")
+            raise ValueError(f"figure: {name!r} is not named figures/figNN_<slug>.pdf")
         number = match.group(1)
         if number in table:
             raise ValueError(f"figure: two files for Figure {int(number)}: {table[number]}, {name}")
@@ -44,8 +48,8 @@ def figure_table(files: list[str]) -> dict[str, str]:
 
 
 def find_figures() -> list[str]:
-    """The PNG files in ``figures/`` that follow the naming pattern."""
-    return sorted(str(p) for p in (ROOT / "figures").glob("fig[0-9][0-9]_*.png"))
+    """The PDF files in ``figures/`` that follow the naming pattern."""
+    return sorted(str(p) for p in (ROOT / "figures").glob("fig[0-9][0-9]_*.pdf"))
 
 
 def build(out: Path, figures: list[str], draft: bool = False) -> Path:
@@ -56,6 +60,10 @@ def build(out: Path, figures: list[str], draft: bool = False) -> Path:
     missing = [f"{n:02d}" for n in range(1, FIGURE_COUNT + 1) if f"{n:02d}" not in table]
     if missing and not draft:
         raise FileNotFoundError(f"figures missing for Figure(s) {', '.join(missing)} (use --draft)")
+    if CONVERGENCE.is_file():
+        table["convergence"] = "/" + CONVERGENCE.relative_to(ROOT).as_posix()
+    elif not draft:
+        raise FileNotFoundError(f"{CONVERGENCE} not found: run scripts/paper_figures.py first")
     numbers = ROOT / "paper" / "build" / "numbers.json"
     if not numbers.is_file():
         raise FileNotFoundError(f"{numbers} not found: run scripts/paper_numbers.py first")
@@ -71,11 +79,11 @@ def build(out: Path, figures: list[str], draft: bool = False) -> Path:
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("figures", nargs="*", help="figures/figNN_<slug>.png files")
+    parser.add_argument("figures", nargs="*", help="figures/figNN_<slug>.pdf files")
     parser.add_argument("--out", type=Path, default=ROOT / "paper" / "paper.pdf")
     parser.add_argument("--draft", action="store_true", help="allow missing figures")
     args = parser.parse_args(argv)
-    figures = [f for f in args.figures if f.endswith(".png")] or find_figures()
+    figures = [f for f in args.figures if f.endswith(".pdf")] or find_figures()
     path = build(args.out, figures, args.draft)
     print(f"wrote {path}")
     return 0

@@ -1,4 +1,5 @@
-"""The article builds, has every figure and at least six pages, and is byte-reproducible.
+"""The article builds, has every figure (as vector graphics) and at least six pages,
+and is byte-reproducible.
 
 Skipped when the ``typst`` Python package is not installed or when the
 figures have not been built yet (``snakemake --cores all`` makes them).
@@ -32,6 +33,8 @@ def builds(tmp_path_factory: pytest.TempPathFactory) -> tuple[bytes, bytes]:
     numbers = ROOT / "paper" / "build" / "numbers.json"
     if not numbers.is_file():
         assert _script("paper_numbers").main([str(numbers)]) == 0
+    if not build.CONVERGENCE.is_file():
+        assert _script("paper_figures").main([str(numbers), str(build.CONVERGENCE)]) == 0
     out = tmp_path_factory.mktemp("paper")
     first, second = out / "a.pdf", out / "b.pdf"
     build.build(first, figures)
@@ -46,6 +49,30 @@ def test_pdf_is_byte_identical_across_builds(builds: tuple[bytes, bytes]) -> Non
 def test_pdf_has_at_least_six_pages(builds: tuple[bytes, bytes]) -> None:
     pages = len(re.findall(rb"/Type\s*/Page(?![sL])", builds[0]))  # not /Pages, /PageLabel
     assert pages >= 6
+
+
+def test_figures_are_embedded_as_vector_graphics(builds: tuple[bytes, bytes]) -> None:
+    # Each embedded PDF becomes a form XObject; a PNG would be an image XObject.
+    assert not re.search(rb"/Subtype\s*/Image", builds[0])
+    assert len(re.findall(rb"/Subtype\s*/Form", builds[0])) >= 15  # 14 figures + convergence
+
+
+def test_only_pdf_figures_are_accepted() -> None:
+    build = _script("build_paper")
+    figure = ROOT / "figures" / "fig09_forced_large_Fd"
+    assert build.figure_table([f"{figure}.pdf"]) == {"09": "/figures/fig09_forced_large_Fd.pdf"}
+    with pytest.raises(ValueError, match="figNN_<slug>.pdf"):
+        build.figure_table([f"{figure}.png"])
+
+
+def test_convergence_figure_is_byte_reproducible(tmp_path: Path) -> None:
+    numbers = ROOT / "paper" / "build" / "numbers.json"
+    if not numbers.is_file():
+        pytest.skip("paper/build/numbers.json not built yet")
+    draw = _script("paper_figures")
+    first, second = draw.write(numbers, tmp_path / "a.pdf"), draw.write(numbers, tmp_path / "b.pdf")
+    assert first.read_bytes() == second.read_bytes()
+    assert b"CreationDate" not in first.read_bytes()
 
 
 def test_every_original_figure_is_shown() -> None:

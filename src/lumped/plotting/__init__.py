@@ -15,13 +15,19 @@ except ModuleNotFoundError as err:
         ' pip install "lumped[plot]" (in the checkout: pip install ".[plot]")'
     ) from None
 
-from lumped.plotting._base import STYLE, new_axes, save_figure, style, styled
+from lumped.plotting._base import STYLE, legend_above, new_axes, save_figure, sci_tex, style, styled
+from lumped.plotting.convergence import convergence
 from lumped.plotting.figures import (
     bingham_pair,
     bingham_pictorial,
-    exact_fine,
     oscillator_schematic,
     string_spring_triptych,
+)
+from lumped.plotting.histories import (
+    difference,
+    exact_fine,
+    exact_on_grid,
+    step_label,
     time_history,
     time_history_panels,
 )
@@ -30,10 +36,16 @@ __all__ = [
     "STYLE",
     "bingham_pair",
     "bingham_pictorial",
+    "convergence",
+    "difference",
     "exact_fine",
+    "exact_on_grid",
+    "legend_above",
     "new_axes",
     "oscillator_schematic",
     "save_figure",
+    "sci_tex",
+    "step_label",
     "string_spring_triptych",
     "style",
     "styled",

@@ -17,12 +17,15 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import ParamSpec, TypeVar
 
+import numpy as np
+
 import matplotlib
 import matplotlib.pyplot as plt
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
+from matplotlib.legend import Legend
 
-__all__ = ["STYLE", "style", "styled", "new_axes", "save_figure"]
+__all__ = ["STYLE", "style", "styled", "new_axes", "save_figure", "sci_tex", "legend_above"]
 
 _P = ParamSpec("_P")
 _R = TypeVar("_R")
@@ -31,8 +34,10 @@ _R = TypeVar("_R")
 STYLE = Path(__file__).with_name("lumped.mplstyle")
 
 #: Metadata that would change from build to build, blanked for reproducible files.
-_PDF_METADATA = {"Creator": None, "Producer": None, "CreationDate": None, "ModDate": None}
-_PNG_METADATA = {"Software": None}
+_METADATA: dict[str, dict[str, None]] = {
+    "pdf": {"Creator": None, "Producer": None, "CreationDate": None, "ModDate": None},
+    "png": {"Software": None},
+}
 
 
 @contextmanager
@@ -69,19 +74,52 @@ def new_axes(ax: Axes | None = None, **subplot_kw: object) -> tuple[Figure, Axes
 
 
 @styled
-def save_figure(fig: Figure, stem: str, folder: str | os.PathLike[str] | None = None) -> list[Path]:
+def save_figure(fig: Figure, stem: str, folder: str | os.PathLike[str] | None = None,
+                formats: tuple[str, ...] = ("pdf", "png")) -> list[Path]:  # fmt: skip
     """Write ``stem.pdf`` and ``stem.png`` byte-reproducibly; return the paths.
 
     ``folder`` defaults to ``$LUMPED_FIGURES_DIR``; when neither is given the
     figure is not written (so running a notebook interactively, or under
     nbval, leaves the working tree alone) and an empty list is returned.
+    ``formats`` selects the files (a subset of ``("pdf", "png")``); the PDF is
+    drawn at the figure's size in inches, which is the size the article prints
+    it at (``fig()`` in ``paper/paper.typ``), so a 10 pt label stays 10 pt.
     """
     folder = folder or os.environ.get("LUMPED_FIGURES_DIR")
     if not folder:
         return []
+    unknown = set(formats) - set(_METADATA)
+    if unknown:
+        raise ValueError(f"formats: {sorted(unknown)} not among {sorted(_METADATA)}")
     out = Path(folder)
     out.mkdir(parents=True, exist_ok=True)
-    paths = [out / f"{stem}.pdf", out / f"{stem}.png"]
-    fig.savefig(paths[0], metadata=_PDF_METADATA)
-    fig.savefig(paths[1], metadata=_PNG_METADATA, dpi=200)
+    paths = [out / f"{stem}.{ext}" for ext in formats]
+    for path, ext in zip(paths, formats):
+        fig.savefig(path, metadata=_METADATA[ext], dpi=200 if ext == "png" else "figure")
     return paths
+
+
+def sci_tex(value: float, digits: int = 3, show_one: bool = True) -> str:
+    """``value`` as mathtext: ``1\\times10^{-4}``, ``2.5\\times10^{-4}``, or ``0.5``.
+
+    Plain decimals for ``0.1 <= |value| < 1000``, scientific notation with at
+    most ``digits`` significant digits (trailing zeros dropped) otherwise;
+    ``show_one=False`` writes a mantissa of 1 as the bare power, ``10^{-2}``.
+    """
+    if value == 0 or not np.isfinite(value):
+        return f"{value:g}"
+    if 0.1 <= abs(value) < 1000:
+        return f"{value:.{digits}g}"
+    mantissa, exponent = f"{value:.{digits - 1}e}".split("e")
+    mantissa = mantissa.rstrip("0").rstrip(".")
+    power = rf"10^{{{int(exponent)}}}"
+    return power if mantissa == "1" and not show_one else rf"{mantissa}\times{power}"
+
+
+def legend_above(ax: Axes, ncol: int = 4, **kw: object) -> Legend:
+    """A legend outside the axes, above them, so that it hides no data.
+
+    Under constrained layout (the style's) the axes shrink to make room.
+    """
+    return ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=ncol,
+                     borderaxespad=0.0, fontsize=8, **kw)  # type: ignore[arg-type]  # fmt: skip

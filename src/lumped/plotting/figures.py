@@ -1,4 +1,4 @@
-"""The paper's figures: constitutive graphs, the schematic, and time histories.
+"""The paper's Figures 1 to 4: constitutive graphs and the schematic of the system.
 
 Each helper draws one picture into ``ax`` (or a new figure when ``ax=None``),
 in the project style (:func:`~lumped.plotting._base.styled`), and returns the
@@ -7,9 +7,10 @@ helpers take ``axes=`` likewise.  Nothing here changes global matplotlib state
 or calls ``plt.show()``; the notebooks decide what to save (with
 :func:`~lumped.plotting.save_figure`).
 
-Time histories always show two things: Algorithm 1 on its grid (a solid line)
-and the exact event-driven solution evaluated on a fine grid (dashed), with
-its events marked.
+The time histories (Figures 5 to 14) are in :mod:`lumped.plotting.histories`.
+Every figure is drawn at the size the article prints it (``fig()`` in
+``paper/paper.typ`` uses the natural size of the PDF), so the style's 10 pt
+text is 10 pt on paper.
 """
 
 from __future__ import annotations
@@ -22,13 +23,10 @@ from matplotlib import patches
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from lumped.event_driven import ExactSolution
 from lumped.laws import BinghamDashpot
 from lumped.plotting._base import new_axes, styled
-from lumped.results import Trajectory
 
 __all__ = [
-    "LABELS",
     "bingham_force_of_velocity",
     "bingham_velocity_of_force",
     "bingham_pictorial",
@@ -38,33 +36,17 @@ __all__ = [
     "string_displacement_of_force",
     "string_spring_triptych",
     "oscillator_schematic",
-    "exact_fine",
-    "time_history",
-    "time_history_panels",
 ]
 
-#: Axis labels of the trajectory columns (with units).
-LABELS = {
-    "x": r"displacement $x$ (m)",
-    "v": r"velocity $v$ (m/s)",
-    "F_s": r"spring force $F_s$ (N)",
-    "F_d": r"dashpot force $F_d$ (N)",
-    "F": r"external force $F$ (N)",
-}
-
-#: Marker of each event kind of the exact solution.
-EVENT_MARKERS = {"stop": "o", "reversal": "D", "breakaway": "^", "forcing-off": "x", "rest": "s"}
-
-_NUMERIC = dict(color="C0", lw=1.6, label="Algorithm 1")
-_EXACT = dict(color="C3", lw=1.0, ls="--", label="exact (event-driven)")
 _GRAPH = dict(color="C0", lw=2.0)
 
 
-def _axes_row(n: int, axes: Sequence[Axes] | None, width: float = 3.2) -> tuple[Figure, list]:
-    """``n`` axes side by side (new, styled) or the given ones."""
+def _axes_row(n: int, axes: Sequence[Axes] | None, width: float = 3.2,
+              height: float = 3.0) -> tuple[Figure, list]:  # fmt: skip
+    """``n`` axes side by side (new, styled, ``width`` inches each) or the given ones."""
     if axes is not None:
         return axes[0].figure, list(axes)
-    fig, row = plt.subplots(1, n, figsize=(width * n, 3.0))  # inside the caller's style
+    fig, row = plt.subplots(1, n, figsize=(width * n, height))  # inside the caller's style
     return fig, list(np.atleast_1d(row))
 
 
@@ -142,7 +124,11 @@ def bingham_pictorial(law: BinghamDashpot, ax: Axes | None = None, f_max: float 
     bingham_velocity_of_force(law, ax=ax, f_max=f_max)
     tau, g = law.threshold, law.gamma
     ax.axvspan(-tau, tau, color="C1", alpha=0.15, lw=0)
-    ax.text(0.5 * tau, -0.6 * g * (f_max - tau), "stick band:\n$v = 0$", ha="center")
+    # The label sits right of the band (where the graph has no points, v < 0)
+    # and points into it, so that the v-axis at F_d = 0 does not cross it.
+    ax.annotate("stick band:\n$v = 0$", (0.5 * tau, -0.3 * g * (f_max - tau)),
+                xytext=(tau + 0.25 * (f_max - tau), -0.6 * g * (f_max - tau)), va="center",
+                arrowprops=dict(arrowstyle="->", color="0.3", lw=0.8))  # fmt: skip
     for s in (1, -1):
         ax.annotate(f"${'-' if s < 0 else ''}\\mu_s N_f$", (s * tau, 0.0), xytext=(-4 * s, 6),
                     textcoords="offset points", ha="right" if s > 0 else "left")  # fmt: skip
@@ -189,11 +175,11 @@ def string_spring_schematic(ax: Axes | None = None) -> Figure:
     ax.annotate("", (2.7, 0.0), (2.08, 0.0), arrowprops=dict(arrowstyle="-|>", color="k"))
     ax.text(2.75, 0.0, "$F$", va="center")
     ax.text(1.0, 0.5, "spring $k$", ha="center")
-    ax.text(1.0, -0.62, "inextensible string (slack)", ha="center", va="top", color="C1")
+    ax.text(1.0, -0.62, "inextensible\nstring (slack)", ha="center", va="top", color="C1")
     ax.set_xlim(-0.3, 3.0)
-    ax.set_ylim(-0.9, 0.8)
+    ax.set_ylim(-1.25, 0.8)
     _blank(ax)
-    ax.set_title("(a) spring and string in parallel")
+    ax.set_title("(a) spring and string\nin parallel")
     return fig
 
 
@@ -219,7 +205,7 @@ def string_force_of_displacement(ax: Axes | None = None, stiffness: float = 1.0,
     ax.plot([0, length], [stiffness * length] * 2, color="0.5", lw=0.8, ls=":")
     _centre_spines(ax, "$x$", "$F$")
     ax.set_xlim(-0.7 * length, 1.4 * length)
-    ax.set_title("(b) force against displacement")
+    ax.set_title("(b) force against\ndisplacement")
     return fig
 
 
@@ -237,15 +223,19 @@ def string_displacement_of_force(ax: Axes | None = None, stiffness: float = 1.0,
     ax.plot([stiffness * length] * 2, [0, length], color="0.5", lw=0.8, ls=":")
     _centre_spines(ax, "$F$", "$x$")
     ax.set_ylim(-0.7 * length, 1.4 * length)
-    ax.set_title("(c) displacement against force")
+    ax.set_title("(c) displacement\nagainst force")
     return fig
 
 
 @styled
 def string_spring_triptych(axes: Sequence[Axes] | None = None, stiffness: float = 1.0,
                            length: float = 1.0) -> Figure:  # fmt: skip
-    """Figure 2: panels (a), (b) and (c) side by side."""
-    fig, (a, b, c) = _axes_row(3, axes)
+    """Figure 2: panels (a), (b) and (c) side by side.
+
+    A new figure is 6.3 in wide, the width of the article's text, so that it
+    is printed at the size it is drawn (no text below the style's 10 pt).
+    """
+    fig, (a, b, c) = _axes_row(3, axes, width=2.1, height=2.6)
     string_spring_schematic(ax=a)
     string_force_of_displacement(ax=b, stiffness=stiffness, length=length)
     string_displacement_of_force(ax=c, stiffness=stiffness, length=length)
@@ -287,74 +277,4 @@ def oscillator_schematic(ax: Axes | None = None) -> Figure:
     ax.set_xlim(-0.3, 4.1)
     ax.set_ylim(-0.4, 1.6)
     _blank(ax)
-    return fig
-
-
-# --- Figures 5 to 14: time histories ------------------------------------------
-
-
-def exact_fine(solution: ExactSolution, points: int = 20001) -> dict[str, np.ndarray]:
-    """The exact solution on a uniform grid of ``points`` times, plus every event time."""
-    t = np.linspace(0.0, solution.t_end, points)
-    events = [e.time for e in solution.events if 0.0 <= e.time <= solution.t_end]
-    return solution.evaluate(np.unique(np.r_[t, events]))
-
-
-@styled
-def time_history(trajectory: Trajectory, solution: ExactSolution | None, column: str,
-                 ax: Axes | None = None, legend: bool = True) -> Figure:  # fmt: skip
-    """One column of Algorithm 1 against time, with the exact solution and its events.
-
-    Parameters
-    ----------
-    trajectory : Trajectory
-        Algorithm 1 (drawn solid).
-    solution : ExactSolution or None
-        Drawn dashed on a fine grid (:func:`exact_fine`), its events marked
-        with :data:`EVENT_MARKERS`; ``None`` draws Algorithm 1 alone.
-    column : {"x", "v", "F_s", "F_d", "F"}
-    """
-    fig, ax = new_axes(ax)
-    ax.plot(trajectory.t, getattr(trajectory, column), **_NUMERIC)
-    if solution is not None:
-        fine = exact_fine(solution)
-        ax.plot(fine["t"], fine[column], **_EXACT)
-        _mark_events(ax, solution, column)
-    ax.set_xlabel("time $t$ (s)")
-    ax.set_ylabel(LABELS[column])
-    ax.set_xlim(0.0, trajectory.t[-1])
-    if legend:
-        ax.legend(loc="best", fontsize=8)
-    return fig
-
-
-def _mark_events(ax: Axes, solution: ExactSolution, column: str) -> None:
-    """One marker per event kind present, on the exact curve (left limit at jumps)."""
-    for kind, marker in EVENT_MARKERS.items():
-        times = solution.event_times(kind)
-        times = times[(times > 0.0) & (times <= solution.t_end)]
-        if kind == "rest" or times.size == 0:
-            continue
-        values = solution.evaluate(times)[column]
-        ax.plot(times, values, ls="none", marker=marker, ms=5, mfc="none", mec="k",
-                label=kind)  # fmt: skip
-    rest = solution.rest_time
-    if np.isfinite(rest) and 0.0 < rest <= solution.t_end:
-        ax.axvline(rest, color="0.4", lw=0.8, ls=":", label="final rest")
-
-
-@styled
-def time_history_panels(trajectory: Trajectory, solution: ExactSolution | None,
-                        columns: Sequence[str] = ("x", "v", "F_s", "F_d"),
-                        axes: Sequence[Axes] | None = None) -> Figure:  # fmt: skip
-    """Several columns in a grid of two columns (Figures 5 and 10)."""
-    if axes is None:
-        rows = (len(columns) + 1) // 2
-        fig, grid = plt.subplots(rows, 2, figsize=(8.0, 2.6 * rows), sharex=True)
-        axes = list(np.ravel(grid))
-    fig = axes[0].figure
-    for i, (name, ax) in enumerate(zip(columns, axes)):
-        time_history(trajectory, solution, name, ax=ax, legend=(i == 0))
-        if i < len(columns) - 2:  # a shared time axis is labelled on the bottom row only
-            ax.set_xlabel("")
     return fig

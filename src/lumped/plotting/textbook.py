@@ -14,19 +14,12 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from lumped.plotting._base import new_axes, styled
+from lumped.plotting._base import new_axes, sci_tex, styled
 from lumped.results import Trajectory
 from lumped.system import Oscillator
 from lumped.textbook import AdaptiveOutcome, FixedStepResult
 
 __all__ = ["acceleration_graph", "chatter", "creep"]
-
-
-def _power(value: float) -> str:
-    """``value`` in LaTeX scientific notation, ``10^{-3}`` or ``2 \\times 10^{-3}``."""
-    mantissa, exponent = f"{value:.0e}".split("e")
-    power = rf"10^{{{int(exponent)}}}"
-    return power if mantissa == "1" else rf"{mantissa} \times {power}"
 
 
 @styled
@@ -107,7 +100,7 @@ def creep(
                    label="DAE (Algorithm 1, exact)")  # fmt: skip
     for i, (eps, run) in enumerate(runs.items()):
         ax.plot(run.t, run.x, color=f"C{i}", lw=1.5, marker="o", markevery=[-1], zorder=2,
-                label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {_power(eps)}$ m/s")  # fmt: skip
+                label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {sci_tex(eps, digits=1, show_one=False)}$ m/s")  # fmt: skip
     ax.set_xlabel(r"time $t$ (s)")
     ax.set_ylabel(r"displacement $x$ (m)")
     ax.legend(loc="best")

@@ -1,0 +1,189 @@
+"""What the article's figures show: the difference panels, legends clear of the data,
+the step in the legend, the convergence figure's reference slope, legible text.
+
+Fast (runs at dt = 1e-3); the figures themselves are built by the notebooks.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import pytest  # noqa: E402
+from matplotlib.text import Text  # noqa: E402
+
+import lumped as L  # noqa: E402
+from lumped import plotting  # noqa: E402
+from lumped.plotting import histories  # noqa: E402
+
+ROOT = Path(__file__).resolve().parent.parent
+OSC = L.Oscillator.bingham()
+DT = 1e-3
+#: Eq. (17b), the forcing of Figures 6 to 9 (m = 1 kg, k = 100 N/m, mu_s N_f = 1 N).
+FORCE = L.SwitchedSine(amplitude=10.0, omega=5.0 * math.pi, phase=0.0, until=1.0)
+FORCED = L.backward_euler(OSC, 2.5, DT, force=FORCE)
+FORCED_EXACT = L.solve_exact(OSC, 2.5, force=FORCE)
+
+
+def _text_width_inches() -> float:
+    """The article's text width: A4 (21 cm) less the two side margins of paper.typ."""
+    typ = (ROOT / "paper" / "paper.typ").read_text(encoding="utf-8")
+    assert 'paper: "a4"' in typ
+    margin = float(re.search(r"margin: \(x: ([\d.]+)cm", typ).group(1))
+    return (21.0 - 2 * margin) / 2.54
+
+
+@pytest.fixture
+def close():
+    yield
+    plt.close("all")
+
+
+@pytest.fixture(scope="module")
+def figure_9():
+    """Figure 9 (F_d under eq. 17b) at dt = 1e-3, drawn once for the tests that read it."""
+    fig = plotting.time_history(FORCED, FORCED_EXACT, "F_d")
+    fig.canvas.draw()
+    yield fig
+    plt.close(fig)
+
+
+@pytest.fixture(scope="module")
+def figure_6():
+    """Figure 6 (x under eq. 17b) at dt = 1e-3."""
+    fig = plotting.time_history(FORCED, FORCED_EXACT, "x")
+    yield fig
+    plt.close(fig)
+
+
+@pytest.mark.parametrize("column", ["x", "F_d"])
+def test_difference_panel_is_algorithm1_minus_exact_on_its_grid(column, figure_6, figure_9):
+    fig = {"x": figure_6, "F_d": figure_9}[column]
+    main, below = fig.axes
+    assert below.get_shared_x_axes().joined(main, below)
+    line = below.lines[0]
+    exact = FORCED_EXACT.sample(FORCED.dt)
+    np.testing.assert_array_equal(line.get_xdata(), FORCED.t)
+    np.testing.assert_array_equal(line.get_ydata(), getattr(FORCED, column) - getattr(exact, column))
+
+
+def test_difference_of_F_d_is_scaled_to_the_points_away_from_switches(figure_9):
+    # The 2 mu_s N_f jumps at reversals leave the panel; every point that does
+    # is within a step of a switch, is marked by a triangle, and the title counts them.
+    below = figure_9.axes[1]
+    gap = below.lines[0].get_ydata()
+    limit = below.get_ylim()[1]
+    off = np.abs(gap) > limit
+    calm = histories.settled(FORCED, FORCED_EXACT.sample(DT))
+    assert off.any() and not (off & calm).any()
+    assert np.abs(gap).max() > 1.9 * OSC.threshold  # the jump is in the data, not hidden
+    marked = sum(len(l.get_xdata()) for l in below.lines if l.get_marker() in ("^", "v"))
+    assert marked == off.sum()
+    assert f"{off.sum()} points off scale" in below.get_title(loc="right")
+
+
+def test_difference_of_x_shows_every_point(figure_6):
+    below = figure_6.axes[1]
+    lo, hi = below.get_ylim()
+    gap = below.lines[0].get_ydata()
+    assert lo <= gap.min() and gap.max() <= hi
+    assert "off scale" not in below.get_title(loc="right")
+
+
+def test_figure_9_legend_hides_no_data_of_the_last_slip(figure_9):
+    ax = figure_9.axes[0]
+    box = ax.get_legend().get_window_extent()
+    assert not box.overlaps(ax.get_window_extent())  # outside the axes altogether
+    curves = ax.lines[:2]  # Algorithm 1 and the exact solution, then event markers
+    assert [c.get_label().split(",")[0] for c in curves] == ["Algorithm 1", "exact (event-driven)"]
+    for line in curves:
+        t, y = (np.asarray(a, dtype=float) for a in line.get_data())
+        keep = (t >= 1.70) & (t <= 1.78)
+        px, py = ax.transData.transform(np.c_[t[keep], y[keep]]).T
+        inside = (px >= box.x0) & (px <= box.x1) & (py >= box.y0) & (py <= box.y1)
+        assert keep.sum() > 50 and not inside.any(), line.get_label()
+
+
+@pytest.mark.parametrize(
+    ("dt", "tex"),
+    [(1e-4, r"1\times10^{-4}"), (2.5e-4, r"2.5\times10^{-4}"), (1e-3, r"1\times10^{-3}"),
+     (1.25e-5, r"1.25\times10^{-5}"), (0.5, "0.5"), (0.01, r"1\times10^{-2}")],
+)  # fmt: skip
+def test_step_is_written_in_scientific_notation(dt, tex):
+    assert plotting.sci_tex(dt) == tex
+
+
+def test_time_history_legend_gives_the_step(figure_6):
+    labels = [t.get_text() for t in figure_6.axes[0].get_legend().get_texts()]
+    assert labels[0] == r"Algorithm 1, $\Delta t = 1\times10^{-3}$ s"
+
+
+NUMBERS = {
+    "parameters": {"x0_large": 0.5},
+    "convergence": {
+        "steps": [1e-2, 1e-3, 1e-4],
+        "forced_large": {"max_x": [1e-2, 1e-3, 1e-4], "max_v": [0.1, 0.01, 0.001],
+                         "int_F_d": [1.0, 0.1, 0.01], "rest_position": [None, 2e-4, 3e-5]},
+        "free_large": {"max_x": [2e-2, 2e-3, 2e-4], "max_v": [0.2, 0.02, 0.002],
+                       "int_F_d": [2.0, 0.2, 0.02], "rest_position": ["still moving", 1e-3, 0.0]},
+    },
+}  # fmt: skip
+
+
+def test_convergence_figure_has_a_slope_one_reference_in_each_panel(close):
+    fig = plotting.convergence(NUMBERS)
+    for ax in fig.axes:
+        assert ax.get_xscale() == ax.get_yscale() == "log"
+        (ref,) = [line for line in ax.lines if line.get_label().startswith("slope 1")]
+        x, y = (np.log10(np.asarray(a, dtype=float)) for a in ref.get_data())
+        assert np.polyfit(x, y, 1)[0] == pytest.approx(1.0, rel=1e-12)
+
+
+def test_convergence_figure_skips_points_without_a_value(close):
+    # None / "still moving" (no rest) and 0 (no log) are left out, nothing else.
+    fig = plotting.convergence(NUMBERS)
+    rest = [[line for line in ax.lines if "rest" in line.get_label()][0] for ax in fig.axes]
+    np.testing.assert_array_equal(rest[0].get_xdata(), [1e-3, 1e-4])
+    np.testing.assert_array_equal(rest[1].get_xdata(), [1e-3])
+
+
+FIGURES = {
+    "fig01": lambda: plotting.bingham_pair(OSC.dashpot),
+    "fig02": plotting.string_spring_triptych,
+    "fig03": plotting.oscillator_schematic,
+    "fig04": lambda: plotting.bingham_pictorial(OSC.dashpot),
+    "fig05": lambda: plotting.time_history_panels(FORCED, FORCED_EXACT),
+    "fig09": None,  # the module's figure_9
+    "convergence": lambda: plotting.convergence(NUMBERS),
+}
+
+
+@pytest.mark.parametrize("name", FIGURES)
+def test_text_is_at_least_8_pt_as_printed(name, figure_9, close):
+    # The article prints a figure at its drawn size, scaled down only if wider
+    # than the text (fig() in paper.typ), so the printed size of a label is its
+    # font size times min(1, text width / figure width).
+    fig = FIGURES[name]() if FIGURES[name] else figure_9
+    fig.canvas.draw()
+    scale = min(1.0, _text_width_inches() / fig.get_figwidth())
+    texts = [t for t in fig.findobj(Text) if t.get_visible() and t.get_text().strip()]
+    assert texts
+    smallest = min(t.get_fontsize() for t in texts) * scale
+    assert smallest >= 8.0, f"{name}: {smallest:.1f} pt"
+    assert fig.get_figwidth() <= _text_width_inches()
+
+
+def test_stick_band_label_is_clear_of_the_velocity_axis(close):
+    fig = plotting.bingham_pictorial(OSC.dashpot)
+    ax = fig.axes[0]
+    fig.canvas.draw()
+    (label,) = [t for t in ax.texts if t.get_text().startswith("stick band")]
+    axis = ax.spines["left"].get_window_extent()
+    assert not label.get_window_extent().overlaps(axis)
