@@ -5,7 +5,7 @@
 # FIGURE_FILES, PACKAGE_SOURCES and effective_config rule it uses.
 # `snakemake --lint` waiver (conda/container per rule): see rules/figures.smk.
 rule paper_numbers:
-    """Every number of the article, computed from the package (scripts/paper_numbers.py)."""
+    """Every number and verdict of the article (lumped.replication, via scripts/paper_numbers.py)."""
     input:
         script="scripts/paper_numbers.py",
         config=rules.effective_config.output[0],
@@ -37,6 +37,7 @@ rule paper:
     input:
         script="scripts/build_paper.py",
         typ="paper/paper.typ",
+        format="paper/format.typ",
         numbers=rules.paper_numbers.output[0],
         metadata="paper/metadata.yaml",
         deviations="paper/deviations.yaml",
