@@ -30,7 +30,7 @@ from importlib.resources.abc import Traversable
 from pathlib import Path
 from typing import Any
 
-__all__ = ["load", "check", "problems", "schema"]
+__all__ = ["load", "default", "check", "problems", "schema"]
 
 #: End-time keys: dt must be below each of them.
 END_TIMES = ("t_end_forced", "t_end_small", "t_end_large")
@@ -72,12 +72,18 @@ def load(path: str | os.PathLike[str] | None = None) -> dict[str, Any]:
     """
     import yaml
 
-    return check(yaml.safe_load(_source(path).read_text(encoding="utf-8")))
+    return check(yaml.safe_load(_source(path or os.environ.get("LUMPED_CONFIG")).read_text(encoding="utf-8")))
 
 
-def _source(path: str | os.PathLike[str] | None) -> Path | Traversable:
-    """The configuration file :func:`load` reads (see its ``path``)."""
-    chosen = path or os.environ.get("LUMPED_CONFIG")
+def default() -> dict[str, Any]:
+    """The repository's configuration, whatever ``$LUMPED_CONFIG`` says (what ``--config`` overrides)."""
+    import yaml
+
+    return check(yaml.safe_load(_source(None).read_text(encoding="utf-8")))
+
+
+def _source(chosen: str | os.PathLike[str] | None) -> Path | Traversable:
+    """The file ``chosen``, else the checkout's ``config/config.yaml``, else the packaged copy."""
     if chosen:
         return Path(chosen)
     package = Path(__file__).resolve().parent  # <root>/src/lumped in a checkout

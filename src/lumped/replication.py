@@ -509,7 +509,7 @@ def _shown(value: Any) -> str:
 
 def _provenance(cfg: dict[str, Any]) -> dict[str, Any]:
     """What built the numbers: Python, packages, machine, command; no clock time."""
-    default = lumped.config.load(lumped.config.find_root() / "config" / "config.yaml")
+    default = lumped.config.default()
     overrides = [f"{k}={_shown(cfg[k])}" for k in sorted(cfg) if cfg[k] != default.get(k)]
     command = "snakemake --cores all" + (" --config " + " ".join(overrides) if overrides else "")
     from lumped.timestepping import KERNEL
