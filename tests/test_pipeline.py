@@ -94,28 +94,52 @@ def up_to_date(tmp_path_factory, dry_run) -> Path:
     return repo
 
 
-def _plan(repo: Path, *overrides: str) -> str:
-    """The dry-run plan of the whole workflow, with ``--config`` overrides if any."""
-    args = ["--config", *overrides, "--"] if overrides else []
-    return _snakemake("--dry-run", *args, cwd=repo)
+#: Overrides that change the configuration: (--config arguments, line before, line after)
+#: in the effective configuration.  gamma=.inf is YAML's infinity (Coulomb friction).
+CHANGES = [(("dt=0.001",), "dt: 0.0001", "dt: 0.001"),
+           (("gamma=.inf", "mass=1"), "gamma: 1.0", "gamma: .inf")]  # fmt: skip
+#: --config overrides whose plans are checked: none, one equal to the default, the changes.
+OVERRIDES = [(), ("dt=1e-4",), *(overrides for overrides, _, _ in CHANGES)]
 
 
-@pytest.mark.parametrize("overrides", [(), ("dt=1e-4",)],
-                         ids=["none", "dt=1e-4"])  # fmt: skip
-def test_nothing_is_planned_when_up_to_date_or_overridden_with_the_default(up_to_date, overrides):
+@pytest.fixture(scope="module")
+def plans(up_to_date) -> dict[tuple[str, ...], str]:
+    """The dry-run plan of the whole workflow in ``up_to_date`` for each of OVERRIDES.
+
+    The dry runs only read the tree, so they run side by side.
+    """
+    started = {}
+    for overrides in OVERRIDES:
+        args = ["--config", *overrides, "--"] if overrides else []
+        started[overrides] = subprocess.Popen([SNAKEMAKE, "--nolock", "--dry-run", *args],
+                                              cwd=up_to_date, stdout=subprocess.PIPE,
+                                              stderr=subprocess.PIPE, text=True)  # fmt: skip
+    texts = {}
+    for overrides, run in started.items():
+        out, err = run.communicate(timeout=120)
+        assert run.returncode == 0, out + err
+        texts[overrides] = out + err
+    return texts
+
+
+@pytest.mark.parametrize("overrides", OVERRIDES[:2], ids=["none", "dt=1e-4"])
+def test_nothing_is_planned_when_up_to_date_or_overridden_with_the_default(plans, overrides):
     """The baseline of the next test: an override equal to the default changes nothing."""
-    text = _plan(up_to_date, *overrides)
+    text = plans[overrides]
     assert "Nothing to be done" in text and _reasons_by_rule(text) == {}, text[-2000:]
 
 
-def test_config_override_reruns_the_effective_config_and_every_notebook(up_to_date):
-    """From an up-to-date tree, dt=0.001 plans effective_config (its params changed) and
-    every job downstream of results/config.yaml: each notebook (hence every figure),
-    the article's numbers and the article."""
-    reasons = _reasons_by_rule(_plan(up_to_date, "dt=0.001"))
+@pytest.mark.parametrize(("overrides", "before", "after"), CHANGES,
+                         ids=[" ".join(c[0]) for c in CHANGES])  # fmt: skip
+def test_config_override_reruns_the_config_and_every_notebook(plans, overrides, before, after):
+    """From an up-to-date tree, an override that changes a value plans effective_config
+    (its params changed) and every job downstream of results/config.yaml: each notebook
+    (hence every figure), the article's numbers and the article."""
+    reasons = _reasons_by_rule(plans[overrides])
     config = reasons.pop("effective_config", "")
     assert config.startswith("Params have changed"), reasons
-    assert "dt: 0.0001" in config and "dt: 0.001\\n" in config, config
+    old, new = config.split(" now: ")
+    assert f"{before}\\n" in old and f"{after}\\n" in new and f"{before}\\n" not in new, config
     notebooks = {f"notebook_{p.stem[:2]}" for p in Path(ROOT, "notebooks").glob("[0-9][0-9]_*.py")}
     assert set(reasons) == notebooks | {"paper_numbers", "paper", "all"}, sorted(reasons)
     for rule in sorted(notebooks | {"paper_numbers"}):
