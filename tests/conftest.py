@@ -13,6 +13,7 @@ from hypothesis import settings
 
 import lumped as L
 import lumped.examples
+from lumped import timestepping
 
 # In CI the property tests draw the same examples on every run (a red CI then
 # means a change broke something, never that a new random draw was unlucky);
@@ -28,6 +29,18 @@ PAPER_DT = L.examples.ORIGINAL_DT
 #: The forcings of eqs. (17a) and (17b), as lumped.examples defines them.
 F17A = L.examples.paper()["forced_small"].force
 F17B = L.examples.paper()["forced_large"].force
+#: The kernels of Algorithm 1 to test: the Python loop always, the C kernel too when built.
+KERNELS = ["python"] + (["compiled"] if timestepping.KERNEL == "compiled" else [])
+
+
+def energy_scale(eb: L.EnergyBalance) -> float:
+    """The energy scale of a run: stored + dissipated + numerical + |external work|.
+
+    Each step's residual of the discrete energy balance is a few roundings of
+    ``eps`` times this.
+    """
+    return float(np.max(eb.kinetic + eb.potential) + eb.dissipated[-1] + eb.numerical[-1]
+                 + np.abs(eb.external_work).max())  # fmt: skip
 
 
 @pytest.fixture

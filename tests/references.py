@@ -5,8 +5,12 @@ from the package, so that a test comparing the package with it can fail.
 
 * :data:`PAPER`: the parameter values stated in section 3 of the paper;
 * :data:`CASES`: the motions the tests run (as plain numbers);
-* :func:`literal_line8` and :func:`literal_algorithm1`: Algorithm 1 typed
-  line by line as printed (line 8 with its factor ``gamma``);
+* :func:`switched_sine`: the forcing of eq. (17), any amplitude, frequency, phase;
+* :data:`FREE_DECAY`: free decays ``(m, k, tau, gamma, x0)`` with no turning
+  point within round-off of the band edge;
+* :func:`bingham_velocity`: the Bingham law's graph ``v = phi(F_d)`` (eq. 7);
+* :func:`line3`, :func:`literal_line8` and :func:`literal_algorithm1`:
+  Algorithm 1 typed line by line as printed (line 8 with its factor ``gamma``);
 * :func:`free_decay`: the half-cycle recurrence of the viscous + Coulomb
   oscillator released at rest (Den Hartog);
 * :func:`slope` and :func:`order`: least-squares slopes (convergence orders);
@@ -44,10 +48,13 @@ class Case(NamedTuple):
     force: tuple[float, float, float, float] | None = None
 
 
-#: Forcing (17b) of the paper.
+#: Forcings (17a) and (17b) of the paper.
+F17A = (0.5, 5 * math.pi, 0.0, 1.0)
 F17B = (10.0, 5 * math.pi, 0.0, 1.0)
 #: The motions several test modules run, by name.
 CASES = {
+    "fig5-17a": Case(1.0, force=F17A),
+    "fig10-x0-0.005": Case(1.0, x0=0.005),
     "fig6-17b": Case(1.0, force=F17B),
     "fig11-x0-0.5": Case(1.0, x0=0.5),
     "coulomb-x0-0.5": Case(math.inf, x0=0.5),
@@ -58,6 +65,40 @@ CASES = {
     "negative-amplitude-phase": Case(1.0, force=(-10.0, 5 * math.pi, 0.7, 1.0)),
     "v0-only": Case(1.0, v0=4.0),
 }
+
+#: Free decays from rest, ``(m, k, tau, gamma, x0)``: the paper's (Figure 11),
+#: other x0 and gamma, Coulomb, other m, k, tau.  x0 chosen so that no turning
+#: point lies within round-off of the band edge (where the count of
+#: half-cycles would be ill-posed).
+FREE_DECAY = {
+    "fig11": (1.0, 100.0, 1.0, 1.0, 0.5),
+    "fig11-negative-x0": (1.0, 100.0, 1.0, 1.0, -0.5),
+    "gamma-2": (1.0, 100.0, 1.0, 2.0, 0.3),
+    "gamma-10": (1.0, 100.0, 1.0, 10.0, -0.37),
+    "gamma-0.2": (1.0, 100.0, 1.0, 0.2, 0.5),
+    "coulomb": (1.0, 100.0, 1.0, math.inf, 0.5),
+    "coulomb-negative-x0": (1.0, 100.0, 1.0, math.inf, -0.2345),
+    "other-m-k-tau": (2.5, 40.0, 0.3, 5.0, 0.41),
+    "coulomb-other-m-k-tau": (0.2, 900.0, 3.0, math.inf, 0.0731),
+    "gamma-1e12": (1.0, 100.0, 1.0, 1e12, 0.2345),
+}
+
+
+def switched_sine(force: tuple[float, float, float, float], t: float) -> float:
+    """``P sin(omega t + phase)`` for ``t <= until``, else 0 (eq. 17), with libm's sin."""
+    amplitude, omega, phase, until = force
+    return amplitude * math.sin(omega * t + phase) if t <= until else 0.0
+
+
+def bingham_velocity(force: float, tau: float, gamma: float) -> float:
+    """Eq. (7): ``v = gamma (|F_d| - tau) sgn(F_d)`` outside the band, 0 inside."""
+    return math.copysign(gamma * max(abs(force) - tau, 0.0), force)
+
+
+def line3(m: float, dt: float, v: np.ndarray | float, force_next: np.ndarray | float,
+          f_s: np.ndarray | float) -> np.ndarray | float:  # fmt: skip
+    """Algorithm 1, line 3 (eq. 15b): the predictor ``F~ = (m/dt) v_n + F_{n+1} - F_s,n``."""
+    return (m / dt) * v + force_next - f_s
 
 
 def literal_line8(predictor: float, dt: float, m: float, k: float, tau: float,
@@ -83,7 +124,7 @@ def literal_algorithm1(t_end: float, dt: float, x0: float, force: Callable[[floa
     net0 = force(0.0) - k * x0
     out[0] = (0.0, x0, 0.0, f_s, math.copysign(min(abs(net0), tau), net0))
     for i in range(1, n + 1):
-        predictor = m / dt * v + force(i * dt) - f_s  # line 3
+        predictor = line3(m, dt, v, force(i * dt), f_s)
         f_d, v = literal_line8(predictor, dt, m, k, tau, gamma)
         f_s = f_s + dt * k * v  # line 11
         out[i] = (i * dt, f_s / k, v, f_s, f_d)

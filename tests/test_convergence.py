@@ -19,9 +19,12 @@ import pytest
 
 import lumped as L
 from conftest import case_table
+import references
 from references import order
 
-PAPER = dict(mass=1.0, stiffness=100.0, threshold=1.0)
+#: m, k and mu_s N_f of the paper (section 3), as Oscillator.bingham keywords.
+PAPER = dict(mass=references.PAPER["m"], stiffness=references.PAPER["k"],
+             threshold=references.PAPER["tau"])  # fmt: skip
 
 HALVING = [4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4]
 # name (of references.CASES) -> (t_end, dts)

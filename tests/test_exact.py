@@ -12,24 +12,8 @@ import references
 from conftest import EPS, F17A, F17B, case_table
 
 
-# (m, k, tau, gamma, x0): paper's free decay (Fig. 11), other x0 and gamma,
-# Coulomb, and other m, k, tau.  x0 chosen so that no turning point lies
-# within round-off of the band edge (where the count would be ill-posed).
-FREE = [
-    (1.0, 100.0, 1.0, 1.0, 0.5),
-    (1.0, 100.0, 1.0, 1.0, -0.5),
-    (1.0, 100.0, 1.0, 2.0, 0.3),
-    (1.0, 100.0, 1.0, 10.0, -0.37),
-    (1.0, 100.0, 1.0, 0.2, 0.5),
-    (1.0, 100.0, 1.0, math.inf, 0.5),
-    (1.0, 100.0, 1.0, math.inf, -0.2345),
-    (2.5, 40.0, 0.3, 5.0, 0.41),
-    (0.2, 900.0, 3.0, math.inf, 0.0731),
-    (1.0, 100.0, 1.0, 1e12, 0.2345),
-]
-
-
-@pytest.mark.parametrize(("m", "k", "tau", "gamma", "x0"), FREE)
+@pytest.mark.parametrize(("m", "k", "tau", "gamma", "x0"), references.FREE_DECAY.values(),
+                         ids=list(references.FREE_DECAY))  # fmt: skip
 def test_free_decay_turning_points_follow_the_half_cycle_recurrence(m, k, tau, gamma, x0):
     osc = L.Oscillator.bingham(mass=m, stiffness=k, threshold=tau, gamma=gamma)
     ref = references.free_decay(m, k, tau, gamma, x0)

@@ -20,6 +20,7 @@ from scipy.integrate import solve_ivp
 
 import lumped as L
 from conftest import EPS, F17B
+from references import FREE_DECAY
 from lumped.event_driven import _event_estimate
 
 
@@ -209,11 +210,15 @@ def test_overdamped_forced_first_stop_matches_dop853():
     assert stop.x == pytest.approx(ref.y_events[0][0][0], rel=1e-9)
 
 
-FREE = [(1.0, 100.0, 1.0, 1.0, 0.5), (1.0, 1e4, 1.0, 1.0, 0.5), (1.0, 1e4, 1.0, math.inf, 0.3),
-        (2.5, 40.0, 0.3, 5.0, 0.41)]  # fmt: skip
+# Free decays of references.FREE_DECAY, and stiff ones with many half-cycles.
+FREE = {
+    **{name: FREE_DECAY[name] for name in ("fig11", "other-m-k-tau")},
+    "stiff": (1.0, 1e4, 1.0, 1.0, 0.5),
+    "stiff-coulomb": (1.0, 1e4, 1.0, math.inf, 0.3),
+}
 
 
-@pytest.mark.parametrize(("m", "k", "tau", "gamma", "x0"), FREE)
+@pytest.mark.parametrize(("m", "k", "tau", "gamma", "x0"), FREE.values(), ids=list(FREE))
 def test_event_estimate_is_not_below_the_count(m, k, tau, gamma, x0):
     # The refusal relies on the estimate; it must not undercount free decay.
     osc = L.Oscillator.bingham(mass=m, stiffness=k, threshold=tau, gamma=gamma)

@@ -10,7 +10,7 @@ import pytest
 import lumped as L
 from lumped.laws import bingham_corrector
 from conftest import EPS
-from references import literal_line8
+from references import bingham_velocity, literal_line8
 
 
 @pytest.mark.parametrize("predictor", [-37.0, -1.0000001, -1.0, -0.3, 0.0, 0.999, 1.5, 250.0])
@@ -70,10 +70,8 @@ def test_resolvent_satisfies_its_equation_and_the_law(predictor, eta):
 
 
 def _bingham_phi(tau: float, gamma: float):
-    def phi(force: float) -> float:
-        return math.copysign(gamma * max(abs(force) - tau, 0.0), force)
-
-    return phi
+    """The Bingham graph of references as a law ``phi(F_d)`` for MonotoneDashpot."""
+    return lambda force: bingham_velocity(force, tau, gamma)
 
 
 @pytest.mark.parametrize("predictor", [-50.0, -2.5, -1.0, -0.2, 0.0, 0.7, 1.0 + 1e-9, 4.0, 1e3])
@@ -110,17 +108,26 @@ def test_monotone_dashpot_trajectory_matches_bingham_kernel(paper_oscillator):
 
 @pytest.mark.parametrize("velocity", [-40.0, -1.5, -1e-3, 0.0, 2e-3, 0.7, 25.0])
 @pytest.mark.parametrize(("tau", "gamma"), [(1.0, 1.0), (0.5, 20.0), (0.0, 2.0)])
-def test_monotone_dashpot_force_interval_is_the_bingham_inverse_graph(velocity, tau, gamma):
-    # A MonotoneDashpot built from the Bingham graph must return the Bingham
-    # law's interval: (-tau, tau) at v = 0, else the single force
-    # s tau + v/gamma (eq. 7), with the sign of v.  Brent's root of
-    # phi(F) = v is found to rtol 4 eps; phi's own rounding moves it by a few
-    # ulps of |F|: bound 8 eps |F|.
-    generic = L.MonotoneDashpot(_bingham_phi(tau, gamma), threshold=tau)
-    lo, hi = generic.force_interval(velocity)
-    want_lo, want_hi = L.BinghamDashpot(tau, gamma).force_interval(velocity)
-    assert abs(lo - want_lo) <= 8 * EPS * abs(want_lo) and abs(hi - want_hi) <= 8 * EPS * abs(want_hi)
-    assert math.copysign(1.0, lo) == math.copysign(1.0, want_lo) or velocity == 0.0
+@pytest.mark.parametrize("kind", ["monotone", "bingham"])
+def test_force_interval_is_the_inverse_of_the_bingham_graph(kind, velocity, tau, gamma):
+    # Both laws, the MonotoneDashpot built from the Bingham graph and the
+    # Bingham law itself, must return the inverse of eq. (7): (-tau, tau) at
+    # v = 0, else the single force s tau + v/gamma with s = sgn(v), which the
+    # graph maps back to v.  Brent's root of phi(F) = v is found to rtol
+    # 4 eps; phi's own rounding moves it by a few ulps of |F|: bound 8 eps |F|
+    # (the closed form of the Bingham law is within an ulp of it).
+    law = (L.MonotoneDashpot(_bingham_phi(tau, gamma), threshold=tau) if kind == "monotone"
+           else L.BinghamDashpot(tau, gamma))  # fmt: skip
+    lo, hi = law.force_interval(velocity)
+    if velocity == 0.0:
+        assert (lo, hi) == (-tau, tau)
+    else:
+        want = math.copysign(tau, velocity) + velocity / gamma
+        assert lo == hi and abs(lo - want) <= 8 * EPS * abs(want)
+        assert math.copysign(1.0, lo) == math.copysign(1.0, velocity)
+        # and the graph maps it back to v (its slope gamma scales the error)
+        back = bingham_velocity(lo, tau, gamma)
+        assert abs(back - velocity) <= gamma * 8 * EPS * abs(want) + 4 * EPS * abs(velocity)
 
 
 @pytest.mark.parametrize("threshold", [0.0, 0.3, 2.0])

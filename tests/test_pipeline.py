@@ -2,10 +2,12 @@
 
 The checks run ``snakemake`` in dry-run mode (``--dry-run --forceall
 --nolock``), which reads the Snakefile and plans the jobs without running or
-writing anything; the override check builds ``results/config.yaml`` alone, in
-a copy of the repository.
+writing anything; the override checks start from a copy of the repository in
+which everything is up to date (``results/config.yaml`` built, the other
+outputs empty files newer than it) and show what an override plans.
 """
 
+import os
 import re
 import shutil
 import subprocess
@@ -14,9 +16,8 @@ from pathlib import Path
 
 import pytest
 
-from conftest import copy_tracked_files
+from conftest import ROOT, copy_tracked_files
 
-ROOT = Path(__file__).resolve().parent.parent
 SNAKEMAKE = shutil.which("snakemake") or str(Path(sys.executable).with_name("snakemake"))
 FIGURES = [f"{n:02d}" for n in range(1, 15)]
 
@@ -31,16 +32,25 @@ def _snakemake(*args: str, check: bool = True, cwd: Path = ROOT) -> str:
     return done.stdout + done.stderr
 
 
-def _outputs_by_rule(text: str) -> dict[str, str]:
-    """Map each planned output file to the rule of its job."""
-    producer = {}
+def _jobs(text: str) -> list[tuple[str, dict[str, str]]]:
+    """The planned jobs of a dry run: (rule, its fields such as output and reason)."""
+    jobs = []
     for block in re.split(r"\n(?=\[.*\]\n)|\n(?=(?:local)?rule \w+:)", text):
         rule = re.search(r"^(?:local)?rule (\w+):", block, re.M)
-        output = re.search(r"^\s+output: (.*)$", block, re.M)
-        if rule and output:
-            for path in output.group(1).split(", "):
-                producer[path.strip()] = rule.group(1)
-    return producer
+        if rule:
+            jobs.append((rule.group(1), dict(re.findall(r"^[ \t]+(\w+): (.*)$", block, re.M))))
+    return jobs
+
+
+def _outputs_by_rule(text: str) -> dict[str, str]:
+    """Map each planned output file to the rule of its job."""
+    return {path.strip(): rule for rule, fields in _jobs(text)
+            for path in fields.get("output", "").split(", ") if path.strip()}  # fmt: skip
+
+
+def _reasons_by_rule(text: str) -> dict[str, str]:
+    """Map each planned rule to the reason Snakemake gives for its job."""
+    return {rule: fields["reason"] for rule, fields in _jobs(text) if "reason" in fields}
 
 
 @pytest.fixture(scope="module")
@@ -66,37 +76,74 @@ def test_every_notebook_is_executed_and_figures_come_from_notebooks(dry_run):
 
 
 @pytest.fixture(scope="module")
-def configured(tmp_path_factory) -> Path:
-    """A copy of the repository in which only ``results/config.yaml`` is built (about 1 s)."""
+def up_to_date(tmp_path_factory, dry_run) -> Path:
+    """A copy of the repository in which every output is up to date (no build).
+
+    ``results/config.yaml`` is built for real (so Snakemake records the params
+    it was made with); every other output of the plan is an empty file a
+    second newer than it (outputs without provenance are judged by times).
+    """
     repo = copy_tracked_files(tmp_path_factory.mktemp("repo"))
-    done = subprocess.run([SNAKEMAKE, "--nolock", "--cores", "1", "results/config.yaml"],
-                          cwd=repo, capture_output=True, text=True, timeout=120)  # fmt: skip
-    assert done.returncode == 0, done.stdout + done.stderr
+    _snakemake("--cores", "1", "results/config.yaml", cwd=repo)
+    later = (repo / "results" / "config.yaml").stat().st_mtime + 1.0
+    for path in dry_run:
+        if path != "results/config.yaml":
+            (repo / path).parent.mkdir(parents=True, exist_ok=True)
+            (repo / path).touch()
+            os.utime(repo / path, (later, later))
     return repo
 
 
-def _plan(repo: Path, *overrides: str) -> str:
-    """The dry-run plan for ``results/config.yaml``, with ``--config`` overrides if any."""
-    args = ["--config", *overrides, "--"] if overrides else []
-    return _snakemake("--dry-run", *args, "results/config.yaml", cwd=repo)
+#: Overrides that change the configuration: (--config arguments, line before, line after)
+#: in the effective configuration.  gamma=.inf is YAML's infinity (Coulomb friction).
+CHANGES = [(("dt=0.001",), "dt: 0.0001", "dt: 0.001"),
+           (("gamma=.inf", "mass=1"), "gamma: 1.0", "gamma: .inf")]  # fmt: skip
+#: --config overrides whose plans are checked: none, one equal to the default, the changes.
+OVERRIDES = [(), ("dt=1e-4",), *(overrides for overrides, _, _ in CHANGES)]
 
 
-def test_config_override_reruns_the_effective_config_for_its_params(configured):
-    """With results/config.yaml up to date, only an override plans its job, for changed params."""
-    assert "Nothing to be done" in _plan(configured)
-    text = _plan(configured, "dt=0.001")
-    assert _outputs_by_rule(text).get("results/config.yaml") == "effective_config", text[-2000:]
-    reason = re.search(r"^\s+reason: (.*)$", text, re.M)
-    assert reason and reason.group(1).startswith("Params have changed"), text[-2000:]
-    assert "dt: 0.0001" in reason.group(1) and "dt: 0.001\\n" in reason.group(1)
+@pytest.fixture(scope="module")
+def plans(up_to_date) -> dict[tuple[str, ...], str]:
+    """The dry-run plan of the whole workflow in ``up_to_date`` for each of OVERRIDES.
+
+    The dry runs only read the tree, so they run side by side.
+    """
+    started = {}
+    for overrides in OVERRIDES:
+        args = ["--config", *overrides, "--"] if overrides else []
+        started[overrides] = subprocess.Popen([SNAKEMAKE, "--nolock", "--dry-run", *args],
+                                              cwd=up_to_date, stdout=subprocess.PIPE,
+                                              stderr=subprocess.PIPE, text=True)  # fmt: skip
+    texts = {}
+    for overrides, run in started.items():
+        out, err = run.communicate(timeout=120)
+        assert run.returncode == 0, out + err
+        texts[overrides] = out + err
+    return texts
 
 
-def test_every_notebook_reads_the_effective_config():
-    """So the override above reaches every notebook job (and hence every figure)."""
-    text = _snakemake("--dry-run", "--forceall")
-    jobs = re.findall(r"^(?:local)?rule (notebook_\w+):\n\s+input: (.*)$", text, re.M)
-    assert len(jobs) == len(list(Path(ROOT, "notebooks").glob("[0-9][0-9]_*.py")))
-    assert all("results/config.yaml" in inputs.split(", ") for _, inputs in jobs), jobs
+@pytest.mark.parametrize("overrides", OVERRIDES[:2], ids=["none", "dt=1e-4"])
+def test_nothing_is_planned_when_up_to_date_or_overridden_with_the_default(plans, overrides):
+    """The baseline of the next test: an override equal to the default changes nothing."""
+    text = plans[overrides]
+    assert "Nothing to be done" in text and _reasons_by_rule(text) == {}, text[-2000:]
+
+
+@pytest.mark.parametrize(("overrides", "before", "after"), CHANGES,
+                         ids=[" ".join(c[0]) for c in CHANGES])  # fmt: skip
+def test_config_override_reruns_the_config_and_every_notebook(plans, overrides, before, after):
+    """From an up-to-date tree, an override that changes a value plans effective_config
+    (its params changed) and every job downstream of results/config.yaml: each notebook
+    (hence every figure), the article's numbers and the article."""
+    reasons = _reasons_by_rule(plans[overrides])
+    config = reasons.pop("effective_config", "")
+    assert config.startswith("Params have changed"), reasons
+    old, new = config.split(" now: ")
+    assert f"{before}\\n" in old and f"{after}\\n" in new and f"{before}\\n" not in new, config
+    notebooks = {f"notebook_{p.stem[:2]}" for p in Path(ROOT, "notebooks").glob("[0-9][0-9]_*.py")}
+    assert set(reasons) == notebooks | {"paper_numbers", "paper", "all"}, sorted(reasons)
+    for rule in sorted(notebooks | {"paper_numbers"}):
+        assert reasons[rule] == "Input files updated by another job: results/config.yaml", rule
 
 
 def test_every_rule_has_a_log():

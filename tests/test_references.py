@@ -54,3 +54,34 @@ def test_literal_line8_satisfies_eq_15a():
     f_d, v = references.literal_line8(predictor, dt, m, k, tau, gamma)
     assert abs(f_d + (m / dt + k * dt) * v - predictor) <= 1e-12 * predictor
     assert v == pytest.approx(gamma * (f_d - tau), rel=1e-15)
+
+
+@pytest.mark.parametrize(("force", "velocity"), [(0.0, 0.0), (0.7, 0.0), (-1.0, 0.0), (1.5, 1.0),
+                                                 (-3.0, -4.0)])  # fmt: skip
+def test_bingham_velocity_is_flat_in_the_band_and_of_slope_gamma_outside(force, velocity):
+    # tau = 1, gamma = 2: v = 2 (|F| - 1) sgn(F) for |F| > 1 (eq. 7)
+    assert references.bingham_velocity(force, 1.0, 2.0) == velocity
+
+
+def test_switched_sine_is_17b_and_off_after_until():
+    # 10 sin(5 pi t): 10 at t = 0.1, -10 at t = 0.3; zero once t > 1
+    assert references.switched_sine(references.F17B, 0.1) == pytest.approx(10.0, rel=1e-15)
+    assert references.switched_sine(references.F17B, 0.3) == pytest.approx(-10.0, rel=1e-15)
+    assert references.switched_sine(references.F17B, 1.0 + 1e-12) == 0.0
+
+
+def test_line3_is_the_predictor_of_a_step_from_rest():
+    # from rest with F_s = k x0, F~ = F_{n+1} - k x0; moving, (m/dt) v is added
+    assert references.line3(1.0, 1e-4, 0.0, 2.0, 50.0) == -48.0
+    assert references.line3(2.0, 0.5, 3.0, 0.0, 0.0) == 12.0
+
+
+@pytest.mark.parametrize(("m", "k", "tau", "gamma", "x0"), references.FREE_DECAY.values(),
+                         ids=list(references.FREE_DECAY))  # fmt: skip
+def test_free_decay_table_keeps_clear_of_the_band_edge(m, k, tau, gamma, x0):
+    # As FREE_DECAY promises: the count of half-cycles is well posed.
+    ref = references.free_decay(m, k, tau, gamma, x0)
+    band = tau / k
+    assert len(ref.times) >= 1
+    assert abs(abs(x0) - band) > 1e-9 * abs(x0)
+    assert np.all(np.abs(np.abs(ref.positions) - band) > 1e-9 * abs(x0))
