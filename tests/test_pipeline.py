@@ -134,14 +134,15 @@ def test_nothing_is_planned_when_up_to_date_or_overridden_with_the_default(plans
 def test_config_override_reruns_the_config_and_every_notebook(plans, overrides, before, after):
     """From an up-to-date tree, an override that changes a value plans effective_config
     (its params changed) and every job downstream of results/config.yaml: each notebook
-    (hence every figure), the article's numbers and the article."""
+    (hence every figure), the article's numbers, the convergence figure drawn from
+    them, and the article."""
     reasons = _reasons_by_rule(plans[overrides])
     config = reasons.pop("effective_config", "")
     assert config.startswith("Params have changed"), reasons
     old, new = config.split(" now: ")
     assert f"{before}\\n" in old and f"{after}\\n" in new and f"{before}\\n" not in new, config
     notebooks = {f"notebook_{p.stem[:2]}" for p in Path(ROOT, "notebooks").glob("[0-9][0-9]_*.py")}
-    assert set(reasons) == notebooks | {"paper_numbers", "paper", "all"}, sorted(reasons)
+    assert set(reasons) == notebooks | {"paper_numbers", "paper_figures", "paper", "all"}, sorted(reasons)
     for rule in sorted(notebooks | {"paper_numbers"}):
         assert reasons[rule] == "Input files updated by another job: results/config.yaml", rule
 
