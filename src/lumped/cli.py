@@ -74,7 +74,10 @@ def _flag(name: str) -> str:
 _API_TO_OPTION = {name: _flag(name) for name in _CHECKS} | {"t_end/dt": "--t-end/--dt"}
 _LEADING_NAME = re.compile(r"^([a-z][a-z0-9_/]*)(?=:| must)")
 #: Options that take a value (the rest of the command line is names and values).
-_TAKES_VALUE = frozenset(_API_TO_OPTION.values()) - {"--t-end/--dt"} | {"--method", "--output"}
+_TAKES_VALUE = frozenset(_API_TO_OPTION.values()) - {"--t-end/--dt"} | {"--method", "--output",
+                                                                           "--system"}
+#: Options that describe the single mass, refused with ``--system``.
+_SINGLE_MASS = frozenset(_flag(name) for name, _, _ in _OPTIONS) - {"--t-end", "--dt", "--save-every"}
 #: Signals that unwind through the cleanup while a run is under way (SIGINT
 #: already does, as KeyboardInterrupt).
 _UNWIND_SIGNALS = tuple(getattr(signal, n) for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n))
@@ -132,6 +135,9 @@ def build_parser() -> argparse.ArgumentParser:
                          allow_abbrev=False)  # fmt: skip
     for name, default, text in _OPTIONS:
         sim.add_argument(_flag(name), default=default, help=f"{text} [default: {default}]")
+    sim.add_argument("--system", default=None, metavar="FILE.toml",
+                     help="a network of masses and elements described in a TOML file (see the "
+                          "README, Networks); only --t-end, --dt, --save-every, --output go with it")
     sim.add_argument("--method", default="backward-euler", metavar="{" + ",".join(METHODS) + "}",
                      help=_method_help())  # fmt: skip
     required = sim.add_argument_group("required arguments")
@@ -204,7 +210,13 @@ def _parse(argv: Sequence[str]) -> argparse.Namespace:
     items = _attach_values(argv)
     if items[:1] == ["simulate"]:
         _refuse_repeats(items[1:])
-    return build_parser().parse_args(items)
+    args = build_parser().parse_args(items)
+    if getattr(args, "system", None) is not None:
+        single = [i.split("=", 1)[0] for i in items[1:] if i.split("=", 1)[0] in _SINGLE_MASS]
+        if single:
+            raise ValueError(f"{single[0]} describes the single mass; it cannot be given "
+                             "with --system, whose file describes the whole system")
+    return args
 
 
 def _check_output(path: str) -> str:
@@ -364,8 +376,30 @@ def _signals_unwind() -> Iterator[None]:
             signal.signal(sig, signal.SIG_DFL if handler is None else handler)
 
 
+def _simulate_system(args: argparse.Namespace, output: _Output) -> str:
+    """``--system``: read the file, reserve the output, run the network, write."""
+    from lumped.network.files import load_system
+    from lumped.network.integrate import simulate_network
+
+    values = {name: _CHECKS[name](name, parse(name, getattr(args, name))) for name, parse in
+              (("t_end", _validate.parse_float), ("dt", _validate.parse_float),
+               ("save_every", _validate.parse_int))}  # fmt: skip
+    if args.method != "backward-euler":
+        raise ValueError(f"--method: a --system network is solved by backward-euler only, "
+                         f"got {args.method!r}")  # fmt: skip
+    _check_output(args.output)
+    network = load_system(args.system)
+    output.create()
+    traj = simulate_network(network, values["t_end"], values["dt"],
+                            save_every=values["save_every"])  # fmt: skip
+    output.commit(traj.columns(os.path.splitext(args.output)[1].lower()))
+    return traj.summary()
+
+
 def _simulate(args: argparse.Namespace, output: _Output) -> str:
     """Validate, reserve the output file, run, write; returns the summary."""
+    if args.system is not None:
+        return _simulate_system(args, output)
     values = _clean(args)
     output.create()
     traj = _compute(values, args.method)

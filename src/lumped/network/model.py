@@ -1,0 +1,249 @@
+"""A network: masses, elements between two points, forces on masses.
+
+The one question asked here about the whole network is whether every step
+is well posed (see :class:`Network`, Notes).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from lumped import _validate
+from lumped.forcing import SwitchedSine, evaluate, validate_force
+from lumped.network.elements import GROUND, Element
+
+__all__ = ["Mass", "Load", "Network", "NAME_PATTERN"]
+
+#: Names of masses and elements: a letter or ``_``, then letters, digits, ``_ . -``
+#: (they become column names of the output).
+NAME_PATTERN = re.compile(r"[A-Za-z_][A-Za-z0-9_.\-]*\Z")
+
+
+def _name(what: str, value: object) -> str:
+    if not isinstance(value, str) or not NAME_PATTERN.match(value):
+        raise ValueError(f"{what} must be a name of letters, digits, '_', '.', '-' "
+                         f"(not starting with a digit, '.' or '-'), got {value!r:.40}")  # fmt: skip
+    return value
+
+
+@dataclass(frozen=True)
+class Mass:
+    """A point mass: ``name``, ``mass`` (kg, > 0), ``x0`` (m), ``v0`` (m/s).
+
+    ``x0`` is measured from the position where every element is unstretched.
+    """
+
+    name: str
+    mass: float
+    x0: float = 0.0
+    v0: float = 0.0
+
+    def __post_init__(self) -> None:
+        _name("name", self.name)
+        if self.name == GROUND:
+            raise ValueError(f"name {GROUND!r} is reserved for the fixed point")
+        object.__setattr__(self, "mass", _validate.positive("mass", self.mass))
+        object.__setattr__(self, "x0", _validate.finite("x0", self.x0))
+        object.__setattr__(self, "v0", _validate.finite("v0", self.v0))
+
+
+@dataclass(frozen=True)
+class Load:
+    """An external force (N) on the mass ``on``: a :class:`SwitchedSine` or a callable of time."""
+
+    on: str
+    force: SwitchedSine | Callable[[np.ndarray], np.ndarray]
+
+    def __post_init__(self) -> None:
+        _name("on", self.on)
+        if validate_force(self.force) is None:
+            raise ValueError("force must be a SwitchedSine or a callable of time, got None")
+
+
+@dataclass(frozen=True)
+class Network:
+    """Masses, elements and loads, validated as a whole.
+
+    Parameters
+    ----------
+    masses : sequence of Mass
+    elements : sequence of Element
+        Each between two points: mass names or ``"ground"``.
+    loads : sequence of Load
+
+    Notes
+    -----
+    **Which steps are well posed.**  With ``v`` the masses' new velocities,
+    one backward-Euler step minimises
+
+        sum_i m_i/(2 dt) (v_i - v_n,i)^2 - F_i v_i + sum_e psi_e(w_e)
+
+    over ``v``, with ``w = v_second - v_first`` and ``psi_e`` the convex
+    potential of element ``e``'s step graph (a spring's energy at the new
+    position over ``dt``, a dashpot's dissipation potential, the indicator
+    of a string's ``e <= L`` or of a lock's ``|w| <= v_lock``).  Every mass
+    is positive, so the first sum is strictly convex and the minimiser,
+    hence every velocity, is unique; so is the force of every element whose
+    step graph is single-valued at its rate.  "Two Coulomb elements in
+    series with nothing compliant between them" cannot be written here: any
+    two elements in series meet at a point, and every point but the ground
+    is a mass, whose ``m/dt`` is the compliance of the step.  What *can* be
+    non-unique is the force of elements that are *rigid* at the solution (a
+    sticking Bingham or Coulomb element, a taut string, a locked or sticking
+    locking dashpot): they fix their rate and take whatever force balances
+    the masses, and a closed loop of such elements (two in parallel between
+    the same points, or a ring through masses and the ground) carries any
+    circulating force on top of a solution.  So a network is refused when
+    its elements that can be rigid (:attr:`Element.rigid_capable`) close a
+    loop; the message names them.  Then the rigid elements of every step
+    form a forest and their forces are unique (found leaf to root by the
+    momentum balance of each mass).  The test is exact for loops containing
+    a Bingham, Coulomb or locking element (they all stick together at rest);
+    for a loop of strings only it is conservative (strings whose lengths do
+    not close the loop are never taut together).
+    """
+
+    masses: tuple[Mass, ...]
+    elements: tuple[Element, ...]
+    loads: tuple[Load, ...] = field(default=())
+
+    def __post_init__(self) -> None:
+        for what in ("masses", "elements", "loads"):
+            value = getattr(self, what)
+            if isinstance(value, (str, bytes)) or not isinstance(value, Sequence):
+                raise ValueError(f"{what} must be a sequence, got {type(value).__name__}")
+            object.__setattr__(self, what, tuple(value))
+        self._check_items()
+        self._check_names()
+        self._check_loops()
+
+    def _check_items(self) -> None:
+        for what, cls in (("masses", Mass), ("elements", Element), ("loads", Load)):
+            for item in getattr(self, what):
+                if not isinstance(item, cls):
+                    raise ValueError(f"{what} must hold {cls.__name__} objects, "
+                                     f"got {type(item).__name__}")  # fmt: skip
+        if not self.masses:
+            raise ValueError("masses: a network needs at least one mass")
+
+    def _check_names(self) -> None:
+        for what, items in (("mass", self.masses), ("element", self.elements)):
+            seen: set[str] = set()
+            for item in items:
+                if item.name in seen:
+                    raise ValueError(f"{what} {item.name!r}: the name is used twice")
+                seen.add(item.name)
+        known = {m.name for m in self.masses} | {GROUND}
+        for el in self.elements:
+            for point in el.between:
+                if point not in known:
+                    raise ValueError(f"element {el.name!r}: between names {point!r}, "
+                                     "which is neither a mass nor 'ground'")  # fmt: skip
+        for load in self.loads:
+            if load.on not in known - {GROUND}:
+                raise ValueError(f"force on {load.on!r}: there is no mass of that name")
+
+    def _check_loops(self) -> None:
+        index = self.point_index()
+        loop = rigid_loop(index, [((index[el.between[0]], index[el.between[1]]), el)
+                                  for el in self.elements if el.rigid_capable])
+        if loop:
+            names = ", ".join(repr(el.name) for el in loop)
+            raise ValueError(
+                f"elements {names} close a loop of elements that can all be rigid at once "
+                "(sticking, taut or locked), so their forces would not be unique; "
+                "merge them into one element or put a compliant element in the loop")
+
+    # -- indices ------------------------------------------------------------
+    def point_index(self) -> dict[str, int]:
+        """Point name -> index: masses in order, then the ground (``len(masses)``)."""
+        index = {m.name: i for i, m in enumerate(self.masses)}
+        index[GROUND] = len(self.masses)
+        return index
+
+    def index_of(self, el: Element) -> tuple[int, int]:
+        """``(first, second)`` point indices of an element."""
+        index = self.point_index()
+        return index[el.between[0]], index[el.between[1]]
+
+    @property
+    def mass_names(self) -> list[str]:
+        return [m.name for m in self.masses]
+
+    @property
+    def element_names(self) -> list[str]:
+        return [el.name for el in self.elements]
+
+    def incidence(self) -> tuple[np.ndarray, np.ndarray]:
+        """Arrays ``first``, ``second`` of point indices (the ground is ``len(masses)``)."""
+        index = self.point_index()
+        pairs = np.array([(index[el.between[0]], index[el.between[1]]) for el in self.elements],
+                         dtype=np.intp)  # fmt: skip
+        pairs = pairs.reshape(len(self.elements), 2)
+        return pairs[:, 0].copy(), pairs[:, 1].copy()
+
+    def initial_positions(self) -> tuple[np.ndarray, np.ndarray]:
+        """``x0``, ``v0`` of the masses, with the ground's 0 appended."""
+        x = np.array([m.x0 for m in self.masses] + [0.0])
+        v = np.array([m.v0 for m in self.masses] + [0.0])
+        return x, v
+
+    def load_table(self, t: np.ndarray) -> np.ndarray:
+        """External force on each mass at the times ``t``: shape ``(len(t), masses)``."""
+        index = self.point_index()
+        out = np.zeros((t.size, len(self.masses)))
+        for load in self.loads:
+            out[:, index[load.on]] += evaluate(load.force, t)
+        return out
+
+    def max_load(self) -> float:
+        """Sum of the amplitudes of the switched sines (``inf`` if a callable is present)."""
+        total = 0.0
+        for load in self.loads:
+            total += abs(load.force.amplitude) if isinstance(load.force, SwitchedSine) else math.inf
+        return total
+
+
+def rigid_loop(points: dict[str, int], edges: list[tuple[tuple[int, int], Element]]) -> list[Element]:
+    """The elements of a closed loop in the graph ``edges``, or ``[]`` if it is a forest."""
+    parent = list(range(len(points)))
+
+    def root(i: int) -> int:
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for k, ((a, b), el) in enumerate(edges):
+        ra, rb = root(a), root(b)
+        if ra != rb:
+            parent[ra] = rb
+            continue
+        return _path(edges[:k], a, b) + [el]
+    return []
+
+
+def _path(edges: list[tuple[tuple[int, int], Element]], start: int, goal: int) -> list[Element]:
+    """Elements on the path from ``start`` to ``goal`` in a forest (breadth first)."""
+    adjacent: dict[int, list[tuple[int, Element]]] = {}
+    for (a, b), el in edges:
+        adjacent.setdefault(a, []).append((b, el))
+        adjacent.setdefault(b, []).append((a, el))
+    came: dict[int, tuple[int, Element] | None] = {start: None}
+    queue = [start]
+    while queue:
+        node = queue.pop(0)
+        for nxt, el in adjacent.get(node, []):
+            if nxt not in came:
+                came[nxt] = (node, el)
+                queue.append(nxt)
+    out, node = [], goal
+    while came.get(node) is not None:
+        node, el = came[node]  # type: ignore[misc]
+        out.append(el)
+    return out[::-1]
