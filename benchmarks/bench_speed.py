@@ -42,42 +42,63 @@ def bench_api(osc: L.Oscillator, n: int, repeats: int) -> None:
     )
     run("auto", 10)  # load the kernel once
     secs = best_of(repeats, lambda: run("auto", n))
-    print(f"Algorithm 1, API, {timestepping.KERNEL} kernel: {n:.0e} steps in {secs:.3f} s "
-          f"= {n / secs:.3g} steps/s")  # fmt: skip
+    print(f"Algorithm 1, API, {timestepping.KERNEL} kernel: {n:.0e} steps in {secs:.3f} s = {n / secs:.3g} steps/s")
     n_py = max(n // 100, 1000)
     secs = best_of(1, lambda: run("python", n_py))
-    print(f"Algorithm 1, API, pure-Python loop: {n_py:.0e} steps in {secs:.3f} s "
-          f"= {n_py / secs:.3g} steps/s")  # fmt: skip
+    print(f"Algorithm 1, API, pure-Python loop: {n_py:.0e} steps in {secs:.3f} s = {n_py / secs:.3g} steps/s")
 
 
 def bench_cli(n: int, repeats: int) -> None:
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "run.npz")
-        cmd = [sys.executable, "-m", "lumped", "simulate", "--x0", "0.5", "--dt", "1e-4",
-               "--t-end", repr(n * 1e-4), "--save-every", "1000", "--output", out]  # fmt: skip
+        cmd = [
+            sys.executable,
+            "-m",
+            "lumped",
+            "simulate",
+            "--x0",
+            "0.5",
+            "--dt",
+            "1e-4",
+            "--t-end",
+            repr(n * 1e-4),
+            "--save-every",
+            "1000",
+            "--output",
+            out,
+        ]
         call = lambda c: subprocess.run(c, check=True, capture_output=True)  # noqa: E731
         secs = best_of(repeats, lambda: call(cmd))
         bare = best_of(repeats, lambda: call([sys.executable, "-c", "import numpy"]))
-    print(f"Algorithm 1, command line: {n:.0e} steps in {secs:.3f} s wall, start-up included "
-          f"= {n / secs:.3g} steps/s (python + import numpy alone: {bare:.3f} s)")  # fmt: skip
+    print(
+        f"Algorithm 1, command line: {n:.0e} steps in {secs:.3f} s wall, start-up included "
+        f"= {n / secs:.3g} steps/s (python + import numpy alone: {bare:.3f} s)"
+    )
 
 
 def bench_exact(osc: L.Oscillator, repeats: int) -> None:
     sol = L.solve_exact(osc, 5.0, x0=0.5)
     secs = best_of(repeats, lambda: L.solve_exact(osc, 5.0, x0=0.5))
-    print(f"exact solver, free vibration x0 = 0.5: rest at t = {sol.rest_time:.10f} s, "
-          f"x = {sol.rest_position:.10f} m, {len(sol.events)} events, in {secs * 1e3:.2f} ms")
+    print(
+        f"exact solver, free vibration x0 = 0.5: rest at t = {sol.rest_time:.10f} s, "
+        f"x = {sol.rest_position:.10f} m, {len(sol.events)} events, in {secs * 1e3:.2f} ms"
+    )
 
 
 def bench_textbook(osc: L.Oscillator, budget: float) -> None:
-    cases = [("sgn(0) = 0, RK45", textbook.TextbookModel(osc), "RK45"),
-             ("tanh(v/1e-3), RK45", textbook.TextbookModel(osc, eps=1e-3), "RK45"),
-             ("tanh(v/1e-3), Radau", textbook.TextbookModel(osc, eps=1e-3), "Radau")]  # fmt: skip
+    cases = [
+        ("sgn(0) = 0, RK45", textbook.TextbookModel(osc), "RK45"),
+        ("tanh(v/1e-3), RK45", textbook.TextbookModel(osc, eps=1e-3), "RK45"),
+        ("tanh(v/1e-3), Radau", textbook.TextbookModel(osc, eps=1e-3), "Radau"),
+    ]
     for label, model, method in cases:
-        out = textbook.integrate_adaptive(model, 5.0, x0=0.5, method=method, rtol=1e-8,
-                                          max_nfev=2_000_000, max_seconds=budget)  # fmt: skip
-        print(f"solve_ivp on the textbook model, {label}, x0 = 0.5 over 5 s: "
-              f"{out.wall_time:.3f} s, {out.nfev} evaluations; {out.message}")
+        out = textbook.integrate_adaptive(
+            model, 5.0, x0=0.5, method=method, rtol=1e-8, max_nfev=2_000_000, max_seconds=budget
+        )
+        print(
+            f"solve_ivp on the textbook model, {label}, x0 = 0.5 over 5 s: "
+            f"{out.wall_time:.3f} s, {out.nfev} evaluations; {out.message}"
+        )
 
 
 def main() -> None:

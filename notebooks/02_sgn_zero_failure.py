@@ -104,7 +104,7 @@ for v in (0.0, 1e-12, -1e-12):
 xs = np.linspace(-0.999, 0.999, 201) * osc.static_band
 vs = np.geomspace(1e-12, 1e-1, 12)
 acc = {s: np.array([[model.rhs(0.0, np.array([x, s * v]))[1] for v in vs] for x in xs])
-       for s in (1, -1)}  # fmt: skip
+       for s in (1, -1)}
 assert np.all(acc[1] < 0) and np.all(acc[-1] > 0)
 print(f"v > 0: acceleration in [{acc[1].min():+.3f}, {acc[1].max():+.3f}] m/s^2, all negative")
 print(f"v < 0: acceleration in [{acc[-1].min():+.3f}, {acc[-1].max():+.3f}] m/s^2, all positive")
@@ -186,7 +186,7 @@ print("mixed steps: share of the steps whose four stages see velocities of both 
 # %%
 reference = L.backward_euler(osc, 1.0, dt, x0=x0)
 fig = chatter({r"forward Euler, $\Delta t = 10^{-4}$": euler[1e-4],
-               r"RK4, $\Delta t = 10^{-4}$": rk4[1e-4]}, reference, t_max=2e-3)  # fmt: skip
+               r"RK4, $\Delta t = 10^{-4}$": rk4[1e-4]}, reference, t_max=2e-3)
 
 # %% [markdown]
 # ## Step 4: an adaptive integrator collapses its step
@@ -199,7 +199,7 @@ fig = chatter({r"forward Euler, $\Delta t = 10^{-4}$": euler[1e-4],
 
 # %%
 rk45 = T.integrate_adaptive(model, 1.0, x0=x0, method="RK45", rtol=1e-8, atol=1e-10,
-                            max_nfev=100_000, max_seconds=600.0)  # fmt: skip
+                            max_nfev=100_000, max_seconds=600.0)
 assert not rk45.finished
 print(f"finished: {rk45.finished}, t reached: {rk45.t_reached:.3e} s of 1 s")
 print(f"evaluations: {rk45.nfev}, accepted steps: {rk45.t.size - 1}, "
@@ -217,7 +217,7 @@ print(f"evaluations: {rk45.nfev}, accepted steps: {rk45.t.size - 1}, "
 
 # %%
 bdf = T.integrate_adaptive(model, 1.0, x0=x0, method="BDF", rtol=1e-8, atol=1e-10,
-                           max_nfev=100_000, max_seconds=600.0)  # fmt: skip
+                           max_nfev=100_000, max_seconds=600.0)
 energy = lambda x, v: 0.5 * m * v**2 + 0.5 * k * x**2  # noqa: E731
 gain = energy(bdf.x[-1], bdf.v[-1]) / energy(x0, 0.0)
 a0 = model.rhs(0.0, np.array([x0, 0.0]))[1]  # the acceleration at v = 0, -k x0 / m
@@ -276,7 +276,7 @@ smooth = {}
 for eps in (1e-2, 1e-3, 1e-4, 1e-5):
     run = smooth[eps] = T.integrate_adaptive(T.TextbookModel(osc, eps=eps), 5.0, x0=x0,
                                              method="LSODA", rtol=1e-8, atol=1e-12,
-                                             max_seconds=600.0)  # fmt: skip
+                                             max_seconds=600.0)
     x, rate = run.x[-1], run.v[-1] / run.x[-1]
     linear, quasi = -k * eps / tau, creep_velocity(x, eps) / x
     inertia = m * k * eps**2 / tau**2  # relative size of the neglected m x''

@@ -71,9 +71,12 @@ def build(out: Path, figures: list[str], draft: bool = False) -> Path:
     listing.write_text(json.dumps(table, indent=1, sort_keys=True) + "\n", encoding="utf-8")
     out.parent.mkdir(parents=True, exist_ok=True)
     typst.compile(
-        str(ROOT / "paper" / "paper.typ"), output=str(out), root=str(ROOT),
-        ignore_system_fonts=True, sys_inputs={"draft": "true" if draft else "false"},
-    )  # fmt: skip
+        str(ROOT / "paper" / "paper.typ"),
+        output=str(out),
+        root=str(ROOT),
+        ignore_system_fonts=True,
+        sys_inputs={"draft": "true" if draft else "false"},
+    )
     return out
 
 

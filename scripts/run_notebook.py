@@ -61,8 +61,12 @@ def normalise(notebook) -> None:
         outputs = []
         for output in cell.get("outputs", []):
             previous = outputs[-1] if outputs else None
-            if (output["output_type"] == "stream" and previous is not None
-                    and previous["output_type"] == "stream" and previous["name"] == output["name"]):
+            if (
+                output["output_type"] == "stream"
+                and previous is not None
+                and previous["output_type"] == "stream"
+                and previous["name"] == output["name"]
+            ):
                 previous["text"] += output["text"]
             else:
                 outputs.append(output)
@@ -104,8 +108,9 @@ def update_committed(sources: list[Path]) -> None:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("notebooks", nargs="*", type=Path, help="jupytext .py notebooks")
-    parser.add_argument("--update-committed", action="store_true",
-                        help="overwrite the paired .ipynb of each notebook (default: all)")
+    parser.add_argument(
+        "--update-committed", action="store_true", help="overwrite the paired .ipynb of each notebook (default: all)"
+    )
     parser.add_argument("--output", type=Path, help="where to write the executed notebook")
     parser.add_argument("--figures", type=Path, help="folder for the figure files")
     parser.add_argument("--config", type=Path, help="configuration file for the notebook")

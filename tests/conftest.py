@@ -39,8 +39,9 @@ def energy_scale(eb: L.EnergyBalance) -> float:
     Each step's residual of the discrete energy balance is a few roundings of
     ``eps`` times this.
     """
-    return float(np.max(eb.kinetic + eb.potential) + eb.dissipated[-1] + eb.numerical[-1]
-                 + np.abs(eb.external_work).max())  # fmt: skip
+    return float(
+        np.max(eb.kinetic + eb.potential) + eb.dissipated[-1] + eb.numerical[-1] + np.abs(eb.external_work).max()
+    )
 
 
 @pytest.fixture
@@ -59,8 +60,7 @@ def copy_tracked_files(target: Path) -> Path:
     Pipeline tests run Snakemake there, so that they neither read nor write
     this checkout's ``results/`` and ``figures/``.
     """
-    listed = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True,
-                            check=True).stdout.decode()  # fmt: skip
+    listed = subprocess.run(["git", "ls-files", "-z"], cwd=ROOT, capture_output=True, check=True).stdout.decode()
     for name in filter(None, listed.split("\0")):
         if (ROOT / name).is_file():
             (target / name).parent.mkdir(parents=True, exist_ok=True)

@@ -29,10 +29,18 @@ import numpy as np
 #: Delta t = 1e-4"; forcings (17a), (17b): P sin(5 pi t) for 0 <= t <= 1 with
 #: P = 0.5 and 10; section 3.2: x(0) = 0.005 and x(0) = 0.5.
 PAPER = {
-    "m": 1.0, "k": 100.0, "tau": 1.0, "gamma": 1.0, "dt": 1e-4,
-    "omega_over_pi": 5.0, "force_until": 1.0, "P_small": 0.5, "P_large": 10.0,
-    "x0_small": 0.005, "x0_large": 0.5,
-}  # fmt: skip
+    "m": 1.0,
+    "k": 100.0,
+    "tau": 1.0,
+    "gamma": 1.0,
+    "dt": 1e-4,
+    "omega_over_pi": 5.0,
+    "force_until": 1.0,
+    "P_small": 0.5,
+    "P_large": 10.0,
+    "x0_small": 0.005,
+    "x0_large": 0.5,
+}
 
 
 class Case(NamedTuple):
@@ -95,14 +103,14 @@ def bingham_velocity(force: float, tau: float, gamma: float) -> float:
     return math.copysign(gamma * max(abs(force) - tau, 0.0), force)
 
 
-def line3(m: float, dt: float, v: np.ndarray | float, force_next: np.ndarray | float,
-          f_s: np.ndarray | float) -> np.ndarray | float:  # fmt: skip
+def line3(
+    m: float, dt: float, v: np.ndarray | float, force_next: np.ndarray | float, f_s: np.ndarray | float
+) -> np.ndarray | float:
     """Algorithm 1, line 3 (eq. 15b): the predictor ``F~ = (m/dt) v_n + F_{n+1} - F_s,n``."""
     return (m / dt) * v + force_next - f_s
 
 
-def literal_line8(predictor: float, dt: float, m: float, k: float, tau: float,
-                  gamma: float) -> tuple[float, float]:  # fmt: skip
+def literal_line8(predictor: float, dt: float, m: float, k: float, tau: float, gamma: float) -> tuple[float, float]:
     """Algorithm 1, lines 5 to 9, as printed (finite ``gamma``): ``(F_d, v)``."""
     if abs(predictor) <= tau:  # lines 5-6
         return predictor, 0.0
@@ -111,8 +119,9 @@ def literal_line8(predictor: float, dt: float, m: float, k: float, tau: float,
     return f_d, gamma * (f_d - math.copysign(1.0, f_d) * tau)  # line 9
 
 
-def literal_algorithm1(t_end: float, dt: float, x0: float, force: Callable[[float], float],
-                       m: float, k: float, tau: float, gamma: float) -> dict[str, np.ndarray]:  # fmt: skip
+def literal_algorithm1(
+    t_end: float, dt: float, x0: float, force: Callable[[float], float], m: float, k: float, tau: float, gamma: float
+) -> dict[str, np.ndarray]:
     """Algorithm 1 (lines 3 to 11) from rest at ``x0``; columns ``t, x, v, F_s, F_d``.
 
     ``F_d(0)`` is the consistent value at rest: the net force, clipped to the band.
@@ -174,8 +183,7 @@ def free_decay(m: float, k: float, tau: float, gamma: float, x0: float) -> FreeD
     return FreeDecay(x0, np.array(times), np.array(xs), starts, half, sigma, omega_d)
 
 
-def free_decay_state(ref: FreeDecay, k: float, m: float, tau: float,
-                     t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:  # fmt: skip
+def free_decay_state(ref: FreeDecay, k: float, m: float, tau: float, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``x(t), v(t)`` of the recurrence solution (closed form within each half-cycle)."""
     x = np.full_like(t, ref.rest[1])
     v = np.zeros_like(t)

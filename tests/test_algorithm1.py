@@ -17,10 +17,18 @@ from references import line3, switched_sine
 
 # Cases for the invariants: (gamma, keyword arguments of backward_euler).
 CASES = {
-    **case_table("fig5-17a", "fig6-17b", "fig10-x0-0.005", "fig11-x0-0.5", "coulomb-x0-0.5",
-                 "coulomb-17b", "overdamped-17b", "v0-phase-negative-amp"),
+    **case_table(
+        "fig5-17a",
+        "fig6-17b",
+        "fig10-x0-0.005",
+        "fig11-x0-0.5",
+        "coulomb-x0-0.5",
+        "coulomb-17b",
+        "overdamped-17b",
+        "v0-phase-negative-amp",
+    ),
     "callable-force": (1.0, dict(force=lambda t: 3.0 * np.cos(2.0 * t))),
-}  # fmt: skip
+}
 
 
 def _run(gamma: float, kwargs: dict, t_end: float = 3.0, dt: float = PAPER_DT, **extra):
@@ -188,8 +196,7 @@ def test_save_every_keeps_first_last_and_every_kth(paper_oscillator, save_every)
     # The thinned run must be the full run's rows 0, K, 2K, ... and the last.
     dt, t_end = 1e-3, 1.0  # N = 1000 steps
     full = L.backward_euler(paper_oscillator, t_end, dt, force=F17B)
-    thin = L.backward_euler(paper_oscillator, t_end, dt, force=F17B,
-                            save_every=save_every)  # fmt: skip
+    thin = L.backward_euler(paper_oscillator, t_end, dt, force=F17B, save_every=save_every)
     idx = np.arange(0, 1001, save_every)
     if idx[-1] != 1000:
         idx = np.append(idx, 1000)

@@ -67,26 +67,28 @@ API = {
     "force returns nan": ("force", lambda: _run(force=lambda t: np.full(np.shape(t), np.nan))),
     "force raises": ("force", lambda: _run(force=lambda t: 1 / 0)),
     "law not monotone": ("velocity_of_force", lambda: _run(oscillator=_monotone(lambda f: -f), x0=0.5)),
-    "law returns nan": ("velocity_of_force", lambda: _run(
-        oscillator=_monotone(lambda f: math.nan if f > 0.5 else f), x0=0.5)),
+    "law returns nan": (
+        "velocity_of_force",
+        lambda: _run(oscillator=_monotone(lambda f: math.nan if f > 0.5 else f), x0=0.5),
+    ),
     "law returns an array": ("velocity_of_force", lambda: _monotone(lambda f: np.array([f, f]))),
     "law returns a string": ("velocity_of_force", lambda: _monotone(lambda f: "fast")),
     "x0=1e307": ("x0", lambda: _run(x0=1e307)),
     "v0=1e307": ("v0", lambda: _run(v0=1e307)),
     "force amplitude 1e307": ("force_amplitude", lambda: _run(force=L.SwitchedSine(1e307, 1.0))),
-    "stiffness 1e300, x0 1e10": ("x0", lambda: _run(
-        oscillator=L.Oscillator.bingham(stiffness=1e300), x0=1e10)),
+    "stiffness 1e300, x0 1e10": ("x0", lambda: _run(oscillator=L.Oscillator.bingham(stiffness=1e300), x0=1e10)),
     "gamma 1e400 (an overflow, not Coulomb)": ("gamma", lambda: L.BinghamDashpot(1.0, 10**400)),
-    "a monotone law for 1e3 s at 1e-5 s": ("t_end/dt", lambda: _run(
-        oscillator=_monotone(lambda f: f), t_end=1e3, dt=1e-5, save_every=10**6)),
+    "a monotone law for 1e3 s at 1e-5 s": (
+        "t_end/dt",
+        lambda: _run(oscillator=_monotone(lambda f: f), t_end=1e3, dt=1e-5, save_every=10**6),
+    ),
     "rtol nan": ("rtol", lambda: integrate_adaptive(TextbookModel(OSC), 1.0, rtol=math.nan)),
     "rtol inf": ("rtol", lambda: integrate_adaptive(TextbookModel(OSC), 1.0, rtol=math.inf)),
     "rtol 0": ("rtol", lambda: integrate_adaptive(TextbookModel(OSC), 1.0, rtol=0.0)),
     "rtol '1e-6'": ("rtol", lambda: integrate_adaptive(TextbookModel(OSC), 1.0, rtol="1e-6")),
     "atol -1": ("atol", lambda: integrate_adaptive(TextbookModel(OSC), 1.0, atol=-1.0)),
     "atol nan": ("atol", lambda: integrate_adaptive(TextbookModel(OSC), 1.0, atol=math.nan)),
-    "textbook Euler for 1.2e8 steps": ("t_end/dt", lambda: integrate_fixed(
-        TextbookModel(OSC), 1.2e4, 1e-4)),
+    "textbook Euler for 1.2e8 steps": ("t_end/dt", lambda: integrate_fixed(TextbookModel(OSC), 1.2e4, 1e-4)),
 }
 API = {key: value for key, value in API.items() if value is not None}
 
@@ -203,10 +205,13 @@ BAD = [  # (arguments after "simulate", folders to create first, words the line 
     (["--mas", "2", "--output", "o.csv"], [], ["--mas"]),  # no abbreviations
     (["--gamma", "1e400", "--output", "o.csv"], [], ["--gamma", "double precision"]),
     (["--save-every", "-1", "--output", "o.csv"], [], ["--save-every", "integer >= 1"]),
-    (["--t-end", "1e5", "--dt", "1e-4", "--output", "o.csv"], [], ["--save-every", "GiB"]),  # fmt: skip
+    (["--t-end", "1e5", "--dt", "1e-4", "--output", "o.csv"], [], ["--save-every", "GiB"]),
     (["--t-end", "1e9", "--dt", "1e-9", "--output", "o.csv"], [], ["--t-end/--dt"]),
-    (["--method", "exact", "--force-amplitude", "10", "--force-omega", "1e300",
-      "--output", "o.csv"], [], ["exact"]),  # fmt: skip  (API: will name --force-omega instead)
+    (
+        ["--method", "exact", "--force-amplitude", "10", "--force-omega", "1e300", "--output", "o.csv"],
+        [],
+        ["exact"],
+    ),  # (API: will name --force-omega instead)
 ]
 
 
@@ -226,28 +231,34 @@ def test_bad_command_line(tmp_path, monkeypatch, capsys, args, folders, words):
 
 
 def test_gamma_inf_is_coulomb_and_writes(tmp_path, capsys):
-    status, line = _main(["simulate", "--gamma", "inf", "--x0", "0.5", "--t-end", "0.2",
-                          "--output", str(tmp_path / "c.csv")], capsys)  # fmt: skip
+    status, line = _main(
+        ["simulate", "--gamma", "inf", "--x0", "0.5", "--t-end", "0.2", "--output", str(tmp_path / "c.csv")], capsys
+    )
     assert status == 0 and "wrote" in line
     assert os.listdir(tmp_path) == ["c.csv"]
 
 
 def test_huge_save_every_gives_one_line(tmp_path, capsys):
     """Status 0 (t = 0 and the last point) or 2, never a traceback."""
-    status, line = _main(["simulate", "--t-end", "0.01", "--save-every", BIG,
-                          "--output", str(tmp_path / "o.csv")], capsys)  # fmt: skip
+    status, line = _main(
+        ["simulate", "--t-end", "0.01", "--save-every", BIG, "--output", str(tmp_path / "o.csv")], capsys
+    )
     assert status in (0, 2) and line.startswith("lumped simulate")
     assert os.listdir(tmp_path) == (["o.csv"] if status == 0 else [])
 
 
-@pytest.mark.parametrize("method", [
-    "backward-euler",
-    "exact",
-])  # fmt: skip
+@pytest.mark.parametrize(
+    "method",
+    [
+        "backward-euler",
+        "exact",
+    ],
+)
 def test_huge_save_every_keeps_first_and_last(tmp_path, capsys, method):
     out = tmp_path / "o.csv"
-    status, _ = _main(["simulate", "--method", method, "--t-end", "0.01", "--save-every", BIG,
-                       "--output", str(out)], capsys)  # fmt: skip
+    status, _ = _main(
+        ["simulate", "--method", method, "--t-end", "0.01", "--save-every", BIG, "--output", str(out)], capsys
+    )
     assert status == 0
     assert np.loadtxt(out, delimiter=",", skiprows=1)[:, 0].tolist() == [0.0, 0.01]
 
@@ -263,8 +274,7 @@ OVERFLOW = [
 
 @pytest.mark.parametrize(("args", "options"), OVERFLOW, ids=[" ".join(a) for a, _ in OVERFLOW])
 def test_overflow_is_refused_naming_the_option(tmp_path, capsys, args, options):
-    status, line = _main(["simulate", *args, "--t-end", "0.01", "--output",
-                          str(tmp_path / "o.csv")], capsys)  # fmt: skip
+    status, line = _main(["simulate", *args, "--t-end", "0.01", "--output", str(tmp_path / "o.csv")], capsys)
     assert status == 2 and any(option in line for option in options), line
     assert os.listdir(tmp_path) == []
 
@@ -285,31 +295,40 @@ def _sigterm(*args, **kwargs):
 
 
 FAILURES = [  # (the driver's behaviour, status, the whole line after "lumped simulate: ")
-    (_raise(ValueError("x0: the initial state overflows (|x0| k = 1e310 N)")), 2,
-     "error: --x0: the initial state overflows (|x0| k = 1e310 N)"),
-    (_raise(ValueError("force_amplitude must be finite, got inf")), 2,
-     "error: --force-amplitude must be finite, got inf"),
-    (_raise(ValueError("t_end/dt: 3e+10 steps would take about 700 s; raise dt or shorten t_end")), 2,
-     "error: --t-end/--dt: 3e+10 steps would take about 700 s; raise dt or shorten t_end"),
-    (_raise(ValueError("the run overflowed at t = 1.5: x = inf")), 2,
-     "error: the run overflowed at t = 1.5: x = inf"),
+    (
+        _raise(ValueError("x0: the initial state overflows (|x0| k = 1e310 N)")),
+        2,
+        "error: --x0: the initial state overflows (|x0| k = 1e310 N)",
+    ),
+    (
+        _raise(ValueError("force_amplitude must be finite, got inf")),
+        2,
+        "error: --force-amplitude must be finite, got inf",
+    ),
+    (
+        _raise(ValueError("t_end/dt: 3e+10 steps would take about 700 s; raise dt or shorten t_end")),
+        2,
+        "error: --t-end/--dt: 3e+10 steps would take about 700 s; raise dt or shorten t_end",
+    ),
+    (_raise(ValueError("the run overflowed at t = 1.5: x = inf")), 2, "error: the run overflowed at t = 1.5: x = inf"),
     (_raise(ValueError("two\nlines")), 2, "error: two lines"),
-    (_raise(OverflowError("math range error")), 2,
-     "error: the backward-euler run failed: OverflowError: math range error"),
-    (_raise(FloatingPointError("overflow")), 2,
-     "error: the backward-euler run failed: FloatingPointError: overflow"),
+    (
+        _raise(OverflowError("math range error")),
+        2,
+        "error: the backward-euler run failed: OverflowError: math range error",
+    ),
+    (_raise(FloatingPointError("overflow")), 2, "error: the backward-euler run failed: FloatingPointError: overflow"),
     (_raise(MemoryError()), 2, "error: out of memory; raise --save-every or --dt"),
     (_raise(KeyboardInterrupt()), 130, "interrupted; no output written"),
     (_sigterm, 143, "interrupted; no output written"),
-]  # fmt: skip
+]
 
 
 @pytest.mark.parametrize(("run", "status", "line"), FAILURES, ids=[f[2][:40] for f in FAILURES])
 def test_failure_during_the_run(tmp_path, monkeypatch, capsys, run, status, line):
     monkeypatch.setattr(DRIVER, "simulate", run)
     before = signal.getsignal(signal.SIGTERM)
-    assert _main(["simulate", "--output", str(tmp_path / "o.csv")], capsys) == (
-        status, "lumped simulate: " + line)
+    assert _main(["simulate", "--output", str(tmp_path / "o.csv")], capsys) == (status, "lumped simulate: " + line)
     assert os.listdir(tmp_path) == []
     assert signal.getsignal(signal.SIGTERM) is before  # handlers restored
 
@@ -322,8 +341,7 @@ def test_disk_full_during_the_write(tmp_path, monkeypatch, capsys):
     out = tmp_path / "o.csv"
     status, line = _main(["simulate", "--t-end", "0.01", "--output", str(out)], capsys)
     assert status == 2
-    assert line == ("lumped simulate: error: --output: "
-                    f"cannot write {str(out)!r}: No space left on device")  # fmt: skip
+    assert line == (f"lumped simulate: error: --output: cannot write {str(out)!r}: No space left on device")
     assert os.listdir(tmp_path) == []
 
 
@@ -335,8 +353,7 @@ def test_unwritable_folder_is_refused_before_the_run(tmp_path, monkeypatch, caps
     monkeypatch.setattr(DRIVER, "simulate", _raise(AssertionError("ran")))
     status, line = _main(["simulate", "--output", str(tmp_path / "o.csv")], capsys)
     assert status == 2
-    assert line == ("lumped simulate: error: --output: "
-                    f"cannot create a file in {str(tmp_path)!r}: Permission denied")  # fmt: skip
+    assert line == (f"lumped simulate: error: --output: cannot create a file in {str(tmp_path)!r}: Permission denied")
 
 
 def _make_unwritable(folder) -> list[str]:
@@ -378,7 +395,7 @@ def test_read_only_folder(tmp_path, capsys):
         ("the run overflowed at t = 2: dt too large", "the run overflowed at t = 2: dt too large"),
         ("t must be sorted", "t must be sorted"),  # an API name with no option
     ],
-)  # fmt: skip
+)
 def test_option_message(message, expected):
     assert option_message(message) == expected
 
@@ -389,22 +406,36 @@ def test_option_message(message, expected):
 def test_summary_independent_of_save_every(tmp_path, capsys):
     lines = []
     for k in ("1", "1000"):
-        argv = ["simulate", "--x0", "0.5", "--t-end", "4", "--dt", "1e-4", "--save-every", k,
-                "--output", str(tmp_path / f"k{k}.npz")]  # fmt: skip
+        argv = "simulate --x0 0.5 --t-end 4 --dt 1e-4 --save-every".split() + [
+            k,
+            "--output",
+            str(tmp_path / f"k{k}.npz"),
+        ]
         lines.append(_main(argv, capsys)[1].split(";")[0])
     assert lines[0] == lines[1]
     assert "at rest from t = 3.1458 s" in lines[0]
 
 
 def test_exact_summary_is_the_event_time(tmp_path, capsys):
-    argv = ["simulate", "--method", "exact", "--x0", "0.5", "--t-end", "4", "--dt", "1e-4",
-            "--save-every", "1000", "--output", str(tmp_path / "e.npz")]  # fmt: skip
+    argv = "simulate --method exact --x0 0.5 --t-end 4 --dt 1e-4 --save-every 1000 --output".split()
+    argv.append(str(tmp_path / "e.npz"))
     assert "at rest from t = 3.145527023 s" in _main(argv, capsys)[1]
 
 
 def test_still_moving_names_the_grids_last_time(tmp_path, capsys):
-    argv = ["simulate", "--x0", "0.5", "--t-end", "1.00005", "--dt", "1e-4", "--save-every", "7",
-            "--output", str(tmp_path / "m.csv")]  # fmt: skip
+    argv = [
+        "simulate",
+        "--x0",
+        "0.5",
+        "--t-end",
+        "1.00005",
+        "--dt",
+        "1e-4",
+        "--save-every",
+        "7",
+        "--output",
+        str(tmp_path / "m.csv"),
+    ]
     assert "still moving at t = 1.0001 s" in _main(argv, capsys)[1]
 
 
@@ -412,8 +443,9 @@ def test_still_moving_names_the_grids_last_time(tmp_path, capsys):
 
 
 def _cli(*args, cwd, **kwargs) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "lumped", *args], cwd=cwd, capture_output=True,
-                          text=True, timeout=30, **kwargs)  # fmt: skip
+    return subprocess.run(
+        [sys.executable, "-m", "lumped", *args], cwd=cwd, capture_output=True, text=True, timeout=30, **kwargs
+    )
 
 
 def test_no_command(tmp_path):
@@ -427,12 +459,15 @@ def test_help(tmp_path):
     assert proc.stdout.startswith("usage: lumped simulate") and "--save-every" in proc.stdout
 
 
-@pytest.mark.parametrize(("umask", "existing", "mode"), [
-    (0o022, None, 0o644),
-    (0o077, None, 0o600),
-    (0o077, 0o644, 0o644),
-    (0o022, 0o600, 0o600),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    ("umask", "existing", "mode"),
+    [
+        (0o022, None, 0o644),
+        (0o077, None, 0o600),
+        (0o077, 0o644, 0o644),
+        (0o022, 0o600, 0o600),
+    ],
+)
 def test_file_mode(tmp_path, umask, existing, mode):
     out = tmp_path / "o.csv"
     if existing is not None:
@@ -448,9 +483,14 @@ def _interrupt(tmp_path, args, sig, *, started, env=None, wait=3.0):
     """Start a run, wait until ``started(temporary file)``, send ``sig``; returns the
     finished process and the seconds it took after the signal (at most ``wait``)."""
     env = {**os.environ, **(env or {})}
-    proc = subprocess.Popen([sys.executable, "-m", "lumped", "simulate", *args, "--output", "o.csv"],
-                            cwd=tmp_path, env=env, stderr=subprocess.PIPE, text=True,
-                            preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))  # fmt: skip
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "lumped", "simulate", *args, "--output", "o.csv"],
+        cwd=tmp_path,
+        env=env,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
     try:
         deadline = time.monotonic() + 10
         while not any(started(tmp_path / f) for f in os.listdir(tmp_path)):
@@ -475,11 +515,10 @@ def _has_data(path) -> bool:
 
 PHASES = {  # the phase the signal reaches -> (arguments, environment, when to send)
     # Algorithm 1 in the Python loop (1e8 steps, about 30 s): interruptible anywhere
-    "run": (["--t-end", "100", "--dt", "1e-6", "--save-every", "100000000"],
-            {"LUMPED_PURE_PYTHON": "1"}, _exists),
+    "run": (["--t-end", "100", "--dt", "1e-6", "--save-every", "100000000"], {"LUMPED_PURE_PYTHON": "1"}, _exists),
     # 2e6 rows: the C kernel takes 0.05 s, writing the 55 MB of CSV about 5 s
     "write": (["--t-end", "20", "--dt", "1e-5"], None, _has_data),
-}  # fmt: skip
+}
 
 
 @pytest.mark.parametrize("phase", PHASES)

@@ -31,8 +31,7 @@ def _status(argv) -> int:
 
 def test_csv_matches_the_api_and_keeps_first_and_last_rows(tmp_path, capsys):
     out = tmp_path / "run.csv"
-    argv = ["simulate", "--x0", "0.5", "--t-end", "0.1003", "--dt", "1e-4", "--save-every", "7",
-            "--output", str(out)]  # fmt: skip
+    argv = ["simulate", "--x0", "0.5", "--t-end", "0.1003", "--dt", "1e-4", "--save-every", "7", "--output", str(out)]
     assert main(argv) == 0
     err = capsys.readouterr().err
     assert "wrote" in err and len(err.strip().splitlines()) == 1
@@ -48,14 +47,27 @@ def test_csv_matches_the_api_and_keeps_first_and_last_rows(tmp_path, capsys):
 
 def test_npz_has_the_named_arrays(tmp_path):
     out = tmp_path / "run.npz"
-    argv = ["simulate", "--force-amplitude", "10", "--force-omega", str(5 * np.pi),
-            "--force-until", "1", "--t-end", "2", "--dt", "1e-3", "--save-every", "3",
-            "--output", str(out)]  # fmt: skip
+    argv = [
+        "simulate",
+        "--force-amplitude",
+        "10",
+        "--force-omega",
+        str(5 * np.pi),
+        "--force-until",
+        "1",
+        "--t-end",
+        "2",
+        "--dt",
+        "1e-3",
+        "--save-every",
+        "3",
+        "--output",
+        str(out),
+    ]
     assert main(argv) == 0
     with np.load(out) as z:
         assert sorted(z.files) == sorted(HEADER.split(","))
-        ref = L.backward_euler(L.Oscillator.bingham(), 2.0, 1e-3, force=F17B,
-                               save_every=3)  # fmt: skip
+        ref = L.backward_euler(L.Oscillator.bingham(), 2.0, 1e-3, force=F17B, save_every=3)
         for name, column in ref.columns().items():
             assert np.array_equal(z[name], column)
         assert z["t"][0] == 0.0 and z["t"][-1] == 2.0
@@ -63,8 +75,10 @@ def test_npz_has_the_named_arrays(tmp_path):
 
 def test_exact_method(tmp_path):
     out = tmp_path / "exact.npz"
-    assert main(["simulate", "--method", "exact", "--x0", "0.5", "--t-end", "5", "--dt", "1e-3",
-                 "--output", str(out)]) == 0  # fmt: skip
+    assert (
+        main(["simulate", "--method", "exact", "--x0", "0.5", "--t-end", "5", "--dt", "1e-3", "--output", str(out)])
+        == 0
+    )
     sol = L.solve_exact(L.Oscillator.bingham(), 5.0, x0=0.5)
     with np.load(out) as z:
         assert np.array_equal(z["x"], sol.sample(1e-3).x)
@@ -73,8 +87,9 @@ def test_exact_method(tmp_path):
 
 def test_coulomb_from_the_command_line(tmp_path):
     out = tmp_path / "c.csv"
-    assert main(["simulate", "--gamma", "inf", "--x0", "0.5", "--t-end", "0.5", "--dt", "1e-3",
-                 "--output", str(out)]) == 0  # fmt: skip
+    assert (
+        main(["simulate", "--gamma", "inf", "--x0", "0.5", "--t-end", "0.5", "--dt", "1e-3", "--output", str(out)]) == 0
+    )
     data = np.loadtxt(out, delimiter=",", skiprows=1)
     ref = L.backward_euler(L.Oscillator.bingham(gamma=np.inf), 0.5, 1e-3, x0=0.5)
     assert np.array_equal(data, ref.as_array())
@@ -144,24 +159,25 @@ def test_missing_output_directory(tmp_path, capsys):
 
 
 def _run(*args, cwd):
-    return subprocess.run([sys.executable, "-m", "lumped", *args], cwd=cwd, capture_output=True,
-                          text=True, timeout=60)  # fmt: skip
+    return subprocess.run([sys.executable, "-m", "lumped", *args], cwd=cwd, capture_output=True, text=True, timeout=60)
 
 
 def test_subprocess_success(tmp_path):
-    proc = _run("simulate", "--t-end", "0.2", "--dt", "1e-3", "--x0", "0.005", "--output",
-                "o.csv", cwd=tmp_path)  # fmt: skip
+    proc = _run("simulate", "--t-end", "0.2", "--dt", "1e-3", "--x0", "0.005", "--output", "o.csv", cwd=tmp_path)
     assert proc.returncode == 0, proc.stderr
     assert "at rest from t = 0 s" in proc.stderr
     data = np.loadtxt(tmp_path / "o.csv", delimiter=",", skiprows=1)
     assert np.all(data[:, 1] == 0.005) and np.all(data[:, 2] == 0.0)
 
 
-@pytest.mark.parametrize(("args", "option"), [
-    (["--gamma", "-1"], "--gamma"),
-    (["--t-end", "1e9", "--dt", "1e-9"], "--t-end"),
-    ([], "--output"),
-])  # fmt: skip
+@pytest.mark.parametrize(
+    ("args", "option"),
+    [
+        (["--gamma", "-1"], "--gamma"),
+        (["--t-end", "1e9", "--dt", "1e-9"], "--t-end"),
+        ([], "--output"),
+    ],
+)
 def test_subprocess_errors(tmp_path, args, option):
     extra = [] if option == "--output" else ["--output", "o.csv"]
     proc = _run("simulate", *args, *extra, cwd=tmp_path)

@@ -39,22 +39,32 @@ BAD = [
     (["dtt=1e-3"], "config: unknown key dtt; did you mean dt?"),
     (["gamma=0"], "config: gamma must be a number > 0, or inf for Coulomb friction (m/(N s)); got 0"),
     (["gamma=-inf"], "config: gamma must be a number > 0, or inf for Coulomb friction (m/(N s)); got -inf"),
-    (["threshold=-0.5"], "config: threshold must be a finite number > 0 (N) for the tutorial,"
-                         " whose demonstrations need a static band; got -0.5"),
-    (["threshold=0"], "config: threshold must be a finite number > 0 (N) for the tutorial,"
-                      " whose demonstrations need a static band; got 0"),
+    (
+        ["threshold=-0.5"],
+        "config: threshold must be a finite number > 0 (N) for the tutorial,"
+        " whose demonstrations need a static band; got -0.5",
+    ),
+    (
+        ["threshold=0"],
+        "config: threshold must be a finite number > 0 (N) for the tutorial,"
+        " whose demonstrations need a static band; got 0",
+    ),
     (["force_amplitude_large=inf"], "config: force_amplitude_large must be a finite number (N); got inf"),
-    (["force_until=-1"], "config: force_until must be a number >= 0, or inf for a forcing never"
-                         " switched off (s); got -1"),
+    (
+        ["force_until=-1"],
+        "config: force_until must be a number >= 0, or inf for a forcing never switched off (s); got -1",
+    ),
     (["force_omega_over_pi=0"], "config: force_omega_over_pi must be a finite number > 0 (1/s); got 0"),
     (["x0_small=inf"], "config: x0_small must be a finite number (m); got inf"),
     (["x0_large=True"], "config: x0_large must be a finite number (m); got True"),
     (["t_end_small=nan"], "config: t_end_small must be a finite number > 0 (s); got nan"),
     (["dt=3"], "config: dt must be smaller than t_end_forced = 2.5 s; got 3"),
     (["dt=2", "t_end_forced=5"], "config: dt must be smaller than t_end_small = 1 s; got 2"),
-    (["dt=1e-9"], "config: dt must be at least t_end_forced/1e+07 = 2.5e-07 s"
-                  " (a run takes at most 1e+07 steps); got 1e-09"),
-]  # fmt: skip
+    (
+        ["dt=1e-9"],
+        "config: dt must be at least t_end_forced/1e+07 = 2.5e-07 s (a run takes at most 1e+07 steps); got 1e-09",
+    ),
+]
 
 
 @pytest.mark.parametrize(("overrides", "expected"), BAD, ids=[" ".join(c) for c, _ in BAD])
@@ -102,11 +112,23 @@ def test_an_integer_beyond_double_range_is_refused():
 
 # The paper's values varied one at a time: each is a valid configuration.
 VALID = [
-    ["gamma=inf"], ["gamma=.inf"], ["force_until=inf"], ["force_until=.inf"], ["mass=1", "dt=1e-3"],
-    ["x0_small=0.05"], ["x0_small=-0.005"], ["force_amplitude_small=5"], ["force_amplitude_large=-10"],
-    ["t_end_large=10"], ["mass=2"], ["stiffness=50"], ["gamma=10"], ["dt=5e-4"],
-    ["force_omega_over_pi=1"], ["threshold=1e-3"],
-]  # fmt: skip
+    ["gamma=inf"],
+    ["gamma=.inf"],
+    ["force_until=inf"],
+    ["force_until=.inf"],
+    ["mass=1", "dt=1e-3"],
+    ["x0_small=0.05"],
+    ["x0_small=-0.005"],
+    ["force_amplitude_small=5"],
+    ["force_amplitude_large=-10"],
+    ["t_end_large=10"],
+    ["mass=2"],
+    ["stiffness=50"],
+    ["gamma=10"],
+    ["dt=5e-4"],
+    ["force_omega_over_pi=1"],
+    ["threshold=1e-3"],
+]
 
 
 @pytest.mark.parametrize("overrides", VALID, ids=" ".join)

@@ -34,9 +34,7 @@ pytestmark = pytest.mark.skipif(not Path(SNAKEMAKE).exists(), reason="snakemake 
 
 def _snakemake(repo: Path, *args: str, timeout: int = 300) -> subprocess.CompletedProcess:
     env = {k: v for k, v in os.environ.items() if k != "LUMPED_CONFIG"}
-    return subprocess.run(
-        [SNAKEMAKE, *args], cwd=repo, capture_output=True, text=True, timeout=timeout, env=env
-    )
+    return subprocess.run([SNAKEMAKE, *args], cwd=repo, capture_output=True, text=True, timeout=timeout, env=env)
 
 
 def _made(repo: Path) -> list[str]:
@@ -137,8 +135,10 @@ def test_executed_notebook_is_the_same_bytes_twice(tmp_path):
     for name in ("a.ipynb", "b.ipynb"):
         done = subprocess.run(
             [sys.executable, str(runner), str(notebook), "--output", str(tmp_path / name)],
-            capture_output=True, text=True, timeout=300,
-        )  # fmt: skip
+            capture_output=True,
+            text=True,
+            timeout=300,
+        )
         assert done.returncode == 0 and done.stdout + done.stderr == "", done.stdout + done.stderr
         written.append((tmp_path / name).read_bytes())
     assert written[0] == written[1]

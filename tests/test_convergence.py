@@ -23,8 +23,7 @@ import references
 from references import order
 
 #: m, k and mu_s N_f of the paper (section 3), as Oscillator.bingham keywords.
-PAPER = dict(mass=references.PAPER["m"], stiffness=references.PAPER["k"],
-             threshold=references.PAPER["tau"])  # fmt: skip
+PAPER = dict(mass=references.PAPER["m"], stiffness=references.PAPER["k"], threshold=references.PAPER["tau"])
 
 HALVING = [4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4]
 # name (of references.CASES) -> (t_end, dts)
@@ -44,10 +43,7 @@ def test_max_displacement_error_is_first_order(case):
     gamma, kwargs, t_end, dts = CASES[case]
     osc = L.Oscillator.bingham(gamma=gamma, **PAPER)
     sol = L.solve_exact(osc, t_end, **kwargs)
-    errors = [
-        np.abs(L.backward_euler(osc, t_end, dt, **kwargs).x - sol.sample(dt).x).max()
-        for dt in dts
-    ]
+    errors = [np.abs(L.backward_euler(osc, t_end, dt, **kwargs).x - sol.sample(dt).x).max() for dt in dts]
     assert 0.9 <= order(dts, errors) <= 1.1
 
 
@@ -63,8 +59,7 @@ def test_rest_position_error_is_first_order(case):
     gamma, kwargs, t_end, dts = REST[case]
     osc = L.Oscillator.bingham(gamma=gamma, **PAPER)
     sol = L.solve_exact(osc, t_end, **kwargs)
-    errors = [abs(L.backward_euler(osc, t_end, dt, **kwargs).rest_position - sol.rest_position)
-              for dt in dts]  # fmt: skip
+    errors = [abs(L.backward_euler(osc, t_end, dt, **kwargs).rest_position - sol.rest_position) for dt in dts]
     assert 0.9 <= order(dts, errors) <= 1.1
 
 
@@ -76,6 +71,5 @@ def test_rest_time_error_is_order_dt(case):
     gamma, kwargs, t_end, dts = REST[case]
     osc = L.Oscillator.bingham(gamma=gamma, **PAPER)
     sol = L.solve_exact(osc, t_end, **kwargs)
-    for_each = [abs(L.backward_euler(osc, t_end, dt, **kwargs).rest_time - sol.rest_time) / dt
-                for dt in dts]  # fmt: skip
+    for_each = [abs(L.backward_euler(osc, t_end, dt, **kwargs).rest_time - sol.rest_time) / dt for dt in dts]
     assert max(for_each) <= 5.0

@@ -12,8 +12,9 @@ import references
 from conftest import EPS, F17A, F17B, case_table
 
 
-@pytest.mark.parametrize(("m", "k", "tau", "gamma", "x0"), references.FREE_DECAY.values(),
-                         ids=list(references.FREE_DECAY))  # fmt: skip
+@pytest.mark.parametrize(
+    ("m", "k", "tau", "gamma", "x0"), references.FREE_DECAY.values(), ids=list(references.FREE_DECAY)
+)
 def test_free_decay_turning_points_follow_the_half_cycle_recurrence(m, k, tau, gamma, x0):
     osc = L.Oscillator.bingham(mass=m, stiffness=k, threshold=tau, gamma=gamma)
     ref = references.free_decay(m, k, tau, gamma, x0)
@@ -64,8 +65,15 @@ def test_figure5_exact_solution_is_equation_19():
     assert sol.rest_time == 0.0 and sol.rest_position == 0.0
 
 
-CASES = case_table("fig6-17b", "v0-phase-negative-amp", "overdamped-17b", "overdamped-free",
-                   "coulomb-17b", "negative-amplitude-phase", "v0-only")
+CASES = case_table(
+    "fig6-17b",
+    "v0-phase-negative-amp",
+    "overdamped-17b",
+    "overdamped-free",
+    "coulomb-17b",
+    "negative-amplitude-phase",
+    "v0-only",
+)
 
 
 @pytest.mark.parametrize("case", CASES)
@@ -193,7 +201,6 @@ def test_negative_omega_is_solved_as_the_same_forcing_with_positive_omega(phase)
     pos = L.SwitchedSine(10.0, 5 * math.pi, math.pi - phase, 1.0)
     a, b = L.solve_exact(osc, 3.0, force=neg), L.solve_exact(osc, 3.0, force=pos)
     assert [e.kind for e in a.events] == [e.kind for e in b.events]
-    np.testing.assert_allclose([e.time for e in a.events], [e.time for e in b.events],
-                               rtol=1e-12, atol=0)  # fmt: skip
+    np.testing.assert_allclose([e.time for e in a.events], [e.time for e in b.events], rtol=1e-12, atol=0)
     np.testing.assert_allclose([e.x for e in a.events], [e.x for e in b.events], rtol=0, atol=1e-12)
     assert abs(a.rest_position - b.rest_position) <= 1e-12

@@ -152,8 +152,9 @@ def _overdamped_free(m, c, k, tau, x0, v0, t):
     return np.array([float(v) for v in xs]), (l1, l2, a, b, s)
 
 
-@pytest.mark.parametrize(("osc_kw", "t_end"), [(dict(gamma=1e-6), 2.0), (dict(mass=1e-12), 2.0),
-                                               (dict(gamma=1e-3), 50.0)])  # fmt: skip
+@pytest.mark.parametrize(
+    ("osc_kw", "t_end"), [(dict(gamma=1e-6), 2.0), (dict(mass=1e-12), 2.0), (dict(gamma=1e-3), 50.0)]
+)
 def test_heavily_overdamped_free_creep_matches_the_closed_form(osc_kw, t_end):
     # From rest v is a sum of two exponentials vanishing only at t = 0: no
     # event, and x creeps towards the band edge tau/k.  Each term is a root
@@ -202,8 +203,9 @@ def test_overdamped_forced_first_stop_matches_dop853():
         return y[1]
 
     v_zero.terminal, v_zero.direction = True, -1
-    ref = solve_ivp(rhs, (breakaway.time, 1.0), [0.0, 0.0], method="DOP853", rtol=1e-12,
-                    atol=1e-15, events=v_zero, first_step=1e-6)  # fmt: skip
+    ref = solve_ivp(
+        rhs, (breakaway.time, 1.0), [0.0, 0.0], method="DOP853", rtol=1e-12, atol=1e-15, events=v_zero, first_step=1e-6
+    )
     assert ref.status == 1
     assert len(ref.t) < 1000
     assert stop.time == pytest.approx(ref.t_events[0][0], abs=1e-9)

@@ -113,9 +113,15 @@ def test_figure_9_legend_hides_no_data_of_the_last_slip(figure_9):
 
 @pytest.mark.parametrize(
     ("dt", "tex"),
-    [(1e-4, r"1\times10^{-4}"), (2.5e-4, r"2.5\times10^{-4}"), (1e-3, r"1\times10^{-3}"),
-     (1.25e-5, r"1.25\times10^{-5}"), (0.5, "0.5"), (0.01, r"1\times10^{-2}")],
-)  # fmt: skip
+    [
+        (1e-4, r"1\times10^{-4}"),
+        (2.5e-4, r"2.5\times10^{-4}"),
+        (1e-3, r"1\times10^{-3}"),
+        (1.25e-5, r"1.25\times10^{-5}"),
+        (0.5, "0.5"),
+        (0.01, r"1\times10^{-2}"),
+    ],
+)
 def test_step_is_written_in_scientific_notation(dt, tex):
     assert plotting.sci_tex(dt) == tex
 
@@ -129,12 +135,20 @@ NUMBERS = {
     "parameters": {"x0_large": 0.5},
     "convergence": {
         "steps": [1e-2, 1e-3, 1e-4],
-        "forced_large": {"max_x": [1e-2, 1e-3, 1e-4], "max_v": [0.1, 0.01, 0.001],
-                         "int_F_d": [1.0, 0.1, 0.01], "rest_position": [None, 2e-4, 3e-5]},
-        "free_large": {"max_x": [2e-2, 2e-3, 2e-4], "max_v": [0.2, 0.02, 0.002],
-                       "int_F_d": [2.0, 0.2, 0.02], "rest_position": ["still moving", 1e-3, 0.0]},
+        "forced_large": {
+            "max_x": [1e-2, 1e-3, 1e-4],
+            "max_v": [0.1, 0.01, 0.001],
+            "int_F_d": [1.0, 0.1, 0.01],
+            "rest_position": [None, 2e-4, 3e-5],
+        },
+        "free_large": {
+            "max_x": [2e-2, 2e-3, 2e-4],
+            "max_v": [0.2, 0.02, 0.002],
+            "int_F_d": [2.0, 0.2, 0.02],
+            "rest_position": ["still moving", 1e-3, 0.0],
+        },
     },
-}  # fmt: skip
+}
 
 
 def test_convergence_figure_has_a_slope_one_reference_in_each_panel(close):

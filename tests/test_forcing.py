@@ -13,8 +13,7 @@ import references
 from references import switched_sine
 
 #: (amplitude, omega, phase): every sign of P and omega, phases on both sides of 0.
-SIGNS = [(2.0, 3.0, 0.4), (-2.0, 3.0, 0.4), (2.0, -3.0, 0.4), (-2.0, -3.0, -2.9),
-         (1.5, -7.0, 3.0), (-0.5, -0.25, -1.0)]  # fmt: skip
+SIGNS = [(2.0, 3.0, 0.4), (-2.0, 3.0, 0.4), (2.0, -3.0, 0.4), (-2.0, -3.0, -2.9), (1.5, -7.0, 3.0), (-0.5, -0.25, -1.0)]
 
 
 @pytest.mark.parametrize(("amplitude", "omega", "phase"), SIGNS)
@@ -36,8 +35,7 @@ def test_canonical_form_is_non_negative_and_the_same_function(amplitude, omega, 
     assert np.all(np.abs(force(t) - want) <= bound)
 
 
-@pytest.mark.parametrize(("force", "paper"), [(F17A, references.F17A), (F17B, references.F17B)],
-                         ids=["17a", "17b"])  # fmt: skip
+@pytest.mark.parametrize(("force", "paper"), [(F17A, references.F17A), (F17B, references.F17B)], ids=["17a", "17b"])
 def test_the_examples_forcings_are_equations_17(force, paper):
     # lumped.examples builds them from config/config.yaml (the tests use
     # those); eq. (17): P sin(5 pi t) for 0 <= t <= 1, P = 0.5 and 10.

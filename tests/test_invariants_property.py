@@ -14,8 +14,7 @@ from lumped import timestepping
 from conftest import EPS, KERNELS, energy_scale
 import references
 
-SETTINGS = settings(max_examples=40, deadline=None,
-                    suppress_health_check=[HealthCheck.too_slow])  # fmt: skip
+SETTINGS = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
 masses = st.floats(0.1, 10.0)
 stiffnesses = st.floats(1.0, 1000.0)
@@ -25,9 +24,14 @@ positions = st.floats(-1.0, 1.0)
 velocities = st.floats(-5.0, 5.0)
 forcings = st.one_of(
     st.none(),
-    st.builds(L.SwitchedSine, amplitude=st.floats(-20.0, 20.0), omega=st.floats(0.0, 50.0),
-              phase=st.floats(-math.pi, math.pi), until=st.floats(0.0, 2.0)),
-)  # fmt: skip
+    st.builds(
+        L.SwitchedSine,
+        amplitude=st.floats(-20.0, 20.0),
+        omega=st.floats(0.0, 50.0),
+        phase=st.floats(-math.pi, math.pi),
+        until=st.floats(0.0, 2.0),
+    ),
+)
 steps = st.sampled_from([1e-3, 5e-4, 2e-4])
 
 
@@ -102,8 +106,13 @@ def test_coulomb_limit_of_huge_gamma(m, k, tau, x0, v0, force, dt):
 
 
 @settings(max_examples=30, deadline=None)
-@given(st.floats(0.2, 5.0), st.floats(5.0, 500.0), st.floats(0.1, 3.0),
-       st.one_of(st.just(math.inf), st.floats(0.0, 0.9)), st.floats(-1.0, 1.0))  # fmt: skip
+@given(
+    st.floats(0.2, 5.0),
+    st.floats(5.0, 500.0),
+    st.floats(0.1, 3.0),
+    st.one_of(st.just(math.inf), st.floats(0.0, 0.9)),
+    st.floats(-1.0, 1.0),
+)
 def test_exact_free_decay_follows_recurrence(m, k, tau, zeta, x0):
     # gamma from a damping ratio zeta < 1 (zeta = inf stands for Coulomb).
     gamma = math.inf if math.isinf(zeta) or zeta == 0 else 1.0 / (2 * zeta * math.sqrt(k * m))

@@ -116,8 +116,11 @@ def test_force_interval_is_the_inverse_of_the_bingham_graph(kind, velocity, tau,
     # graph maps back to v.  Brent's root of phi(F) = v is found to rtol
     # 4 eps; phi's own rounding moves it by a few ulps of |F|: bound 8 eps |F|
     # (the closed form of the Bingham law is within an ulp of it).
-    law = (L.MonotoneDashpot(_bingham_phi(tau, gamma), threshold=tau) if kind == "monotone"
-           else L.BinghamDashpot(tau, gamma))  # fmt: skip
+    law = (
+        L.MonotoneDashpot(_bingham_phi(tau, gamma), threshold=tau)
+        if kind == "monotone"
+        else L.BinghamDashpot(tau, gamma)
+    )
     lo, hi = law.force_interval(velocity)
     if velocity == 0.0:
         assert (lo, hi) == (-tau, tau)

@@ -11,8 +11,19 @@ from scipy.integrate import solve_ivp
 
 import lumped as L
 from lumped import examples
-from lumped.network import (Bingham, LinearDashpot, Load, LockingBingham, Mass, MaxwellBingham,
-                            Monotone, Network, Spring, SpringString, simulate_network)  # fmt: skip
+from lumped.network import (
+    Bingham,
+    LinearDashpot,
+    Load,
+    LockingBingham,
+    Mass,
+    MaxwellBingham,
+    Monotone,
+    Network,
+    Spring,
+    SpringString,
+    simulate_network,
+)
 
 from conftest import EPS
 from references import order
@@ -22,10 +33,14 @@ PAPER = examples.paper()
 
 def paper_network(run: examples.Example) -> Network:
     osc = run.oscillator
-    return Network([Mass("m1", osc.mass, run.x0, run.v0)],
-                   [Spring("spring", ("ground", "m1"), osc.stiffness),
-                    Bingham("dashpot", ("ground", "m1"), osc.threshold, osc.dashpot.gamma)],
-                   [Load("m1", run.force)] if run.force else [])  # fmt: skip
+    return Network(
+        [Mass("m1", osc.mass, run.x0, run.v0)],
+        [
+            Spring("spring", ("ground", "m1"), osc.stiffness),
+            Bingham("dashpot", ("ground", "m1"), osc.threshold, osc.dashpot.gamma),
+        ],
+        [Load("m1", run.force)] if run.force else [],
+    )
 
 
 # -- the paper's system --------------------------------------------------------
@@ -131,28 +146,29 @@ def maxwell_reference(t_end: float, k_m: float, tau: float, gamma: float, x0: fl
     system x' = v, v' = -100 x - f, f' = k_m (v - phi(f)) is an ODE with a
     Lipschitz right-hand side: DOP853 at rtol 1e-12 is an independent reference.
     """
+
     def rhs(t, y):
         x, v, f = y
         phi = math.copysign(gamma * max(abs(f) - tau, 0.0), f)
         return [v, -100.0 * x - f, k_m * (v - phi)]
 
-    sol = solve_ivp(rhs, (0, t_end), [x0, 0.0, 0.0], method="DOP853", rtol=1e-12,
-                    atol=1e-14, dense_output=True)  # fmt: skip
+    sol = solve_ivp(rhs, (0, t_end), [x0, 0.0, 0.0], method="DOP853", rtol=1e-12, atol=1e-14, dense_output=True)
     return sol.sol
 
 
 def test_maxwell_bingham_converges_at_order_one() -> None:
     k_m, tau, gamma, x0, t_end = 50.0, 0.5, 2.0, 0.3, 1.0
     ref = maxwell_reference(t_end, k_m, tau, gamma, x0)
-    net = Network([Mass("m", 1.0, x0)], [Spring("k", ("ground", "m"), 100.0),
-                                          MaxwellBingham("mx", ("ground", "m"), k_m, tau, gamma)])
+    net = Network(
+        [Mass("m", 1.0, x0)],
+        [Spring("k", ("ground", "m"), 100.0), MaxwellBingham("mx", ("ground", "m"), k_m, tau, gamma)],
+    )
     dts = np.array([2e-3, 1e-3, 5e-4, 2.5e-4])
     errors = []
     for dt in dts:
         tr = simulate_network(net, t_end, dt)
         exact = ref(tr.t)
-        errors.append(max(np.max(np.abs(tr.x[:, 0] - exact[0])),
-                          np.max(np.abs(tr.force[:, 1] - exact[2])) / 100.0))  # fmt: skip
+        errors.append(max(np.max(np.abs(tr.x[:, 0] - exact[0])), np.max(np.abs(tr.force[:, 1] - exact[2])) / 100.0))
     assert 0.9 <= order(dts, np.array(errors)) <= 1.1
     assert errors[-1] < 1e-2
 
@@ -187,9 +203,14 @@ def test_stuck_pair_moves_as_one_mass() -> None:
     """Two masses joined by a Coulomb element that never slips are one mass m1 + m2:
     Algorithm 1 on the merged mass agrees, to roundings propagated by a
     non-expansive step (N steps of a few eps of the largest state)."""
-    net = Network([Mass("a", 0.4, 0.5), Mass("b", 0.6, 0.5)],
-                  [Spring("k", ("ground", "a"), 100.0), Bingham("d", ("ground", "a"), 1.0, 1.0),
-                   Bingham("glue", ("a", "b"), 1e6, math.inf)])  # fmt: skip
+    net = Network(
+        [Mass("a", 0.4, 0.5), Mass("b", 0.6, 0.5)],
+        [
+            Spring("k", ("ground", "a"), 100.0),
+            Bingham("d", ("ground", "a"), 1.0, 1.0),
+            Bingham("glue", ("a", "b"), 1e6, math.inf),
+        ],
+    )
     tr = simulate_network(net, 4.0, 1e-3)
     ref = L.backward_euler(L.Oscillator.bingham(1.0, 100.0, 1.0, 1.0), 4.0, 1e-3, x0=0.5)
     assert np.all(tr.v[:, 0] == tr.v[:, 1])  # exactly together
@@ -232,7 +253,8 @@ def check_invariants(tr) -> None:
             assert np.all(tr.state[:, e] <= el.length)
     balance, removed = energy_residual(tr)
     scale = np.max(np.abs(tr.force)) * np.max(np.abs(tr.v)) * tr.dt + np.max(
-        np.array([mm.mass for mm in net.masses])) * np.max(tr.v**2)
+        np.array([mm.mass for mm in net.masses])
+    ) * np.max(tr.v**2)
     assert np.max(np.abs(balance)) <= 64 * EPS * scale * len(net.elements)
     assert np.min(removed) >= -64 * EPS * scale
 
@@ -243,9 +265,14 @@ def test_chain_invariants(gamma: float) -> None:
 
 
 def test_string_invariants() -> None:
-    net = Network([Mass("a", 1.0, 0.0, 2.0), Mass("b", 2.0)],
-                  [SpringString("s1", ("ground", "a"), 50.0, 0.1),
-                   SpringString("s2", ("a", "b"), 80.0, 0.05), LinearDashpot("d", ("ground", "b"), 0.5)])
+    net = Network(
+        [Mass("a", 1.0, 0.0, 2.0), Mass("b", 2.0)],
+        [
+            SpringString("s1", ("ground", "a"), 50.0, 0.1),
+            SpringString("s2", ("a", "b"), 80.0, 0.05),
+            LinearDashpot("d", ("ground", "b"), 0.5),
+        ],
+    )
     tr = simulate_network(net, 2.0, 1e-3)
     assert tr.rigid[:, 0].any() and tr.rigid[:, 1].any()
     check_invariants(tr)
@@ -253,8 +280,10 @@ def test_string_invariants() -> None:
 
 # -- other kinds ------------------------------------------------------------------
 def test_locking_bingham_never_exceeds_its_lock() -> None:
-    net = Network([Mass("m", 1.0, 0.5)], [Spring("k", ("ground", "m"), 100.0),
-                                           LockingBingham("lock", ("ground", "m"), 1.0, math.inf, 2.0)])
+    net = Network(
+        [Mass("m", 1.0, 0.5)],
+        [Spring("k", ("ground", "m"), 100.0), LockingBingham("lock", ("ground", "m"), 1.0, math.inf, 2.0)],
+    )
     tr = simulate_network(net, 2.0, 1e-3)
     assert np.max(np.abs(tr.v)) == 2.0  # reached, exactly, never passed
     locked = tr.rigid[:, 1] & (np.abs(tr.v[:, 0]) == 2.0)
@@ -264,16 +293,17 @@ def test_locking_bingham_never_exceeds_its_lock() -> None:
 def test_linear_dashpot_matches_the_monotone_law() -> None:
     """A linear dashpot and the same law as a Monotone element give the same motion."""
     law = L.MonotoneDashpot(lambda f: 0.5 * f)
-    nets = [Network([Mass("m", 1.0, 0.5)], [Spring("k", ("ground", "m"), 100.0), d])
-            for d in (LinearDashpot("d", ("ground", "m"), 2.0), Monotone("d", ("ground", "m"), law))]
+    nets = [
+        Network([Mass("m", 1.0, 0.5)], [Spring("k", ("ground", "m"), 100.0), d])
+        for d in (LinearDashpot("d", ("ground", "m"), 2.0), Monotone("d", ("ground", "m"), law))
+    ]
     a, b = (simulate_network(n, 1.0, 1e-3) for n in nets)
     assert np.max(np.abs(a.x - b.x)) <= 1e-12
 
 
 def test_monotone_element_matches_the_generic_loop() -> None:
     law = L.MonotoneDashpot(lambda f: math.copysign(max(abs(f) - 1.0, 0.0) ** 2, f), threshold=1.0)
-    net = Network([Mass("m", 1.0, 0.5)], [Spring("k", ("ground", "m"), 100.0),
-                                           Monotone("d", ("ground", "m"), law)])
+    net = Network([Mass("m", 1.0, 0.5)], [Spring("k", ("ground", "m"), 100.0), Monotone("d", ("ground", "m"), law)])
     tr = simulate_network(net, 1.0, 1e-3)
     ref = L.backward_euler(L.Oscillator(1.0, L.LinearSpring(100.0), law), 1.0, 1e-3, x0=0.5)
     assert np.max(np.abs(tr.v[:, 0] - ref.v)) <= 1e-10
@@ -282,19 +312,30 @@ def test_monotone_element_matches_the_generic_loop() -> None:
 # -- well-posedness -------------------------------------------------------------------
 def test_parallel_rigid_elements_are_refused_by_name() -> None:
     with pytest.raises(ValueError, match="'b1', 'b2' close a loop"):
-        Network([Mass("m", 1.0)], [Bingham("b1", ("ground", "m"), 1.0, math.inf),
-                                   Bingham("b2", ("m", "ground"), 2.0, 1.0)])
+        Network(
+            [Mass("m", 1.0)], [Bingham("b1", ("ground", "m"), 1.0, math.inf), Bingham("b2", ("m", "ground"), 2.0, 1.0)]
+        )
 
 
 def test_ring_through_masses_is_refused() -> None:
     with pytest.raises(ValueError, match="'c[123]', 'c[123]', 'c3' close a loop"):
-        Network([Mass("a", 1.0), Mass("b", 1.0)],
-                [Bingham("c1", ("ground", "a"), 1.0, math.inf), Bingham("c2", ("a", "b"), 1.0, 1.0),
-                 SpringString("c3", ("b", "ground"), 1.0, 1.0)])
+        Network(
+            [Mass("a", 1.0), Mass("b", 1.0)],
+            [
+                Bingham("c1", ("ground", "a"), 1.0, math.inf),
+                Bingham("c2", ("a", "b"), 1.0, 1.0),
+                SpringString("c3", ("b", "ground"), 1.0, 1.0),
+            ],
+        )
 
 
 def test_series_coulomb_through_a_mass_is_well_posed() -> None:
-    net = Network([Mass("a", 1e-3), Mass("b", 1.0, 0.2)],
-                  [Bingham("c1", ("ground", "a"), 1.0, math.inf),
-                   Bingham("c2", ("a", "b"), 1.0, math.inf), Spring("k", ("ground", "b"), 100.0)])
+    net = Network(
+        [Mass("a", 1e-3), Mass("b", 1.0, 0.2)],
+        [
+            Bingham("c1", ("ground", "a"), 1.0, math.inf),
+            Bingham("c2", ("a", "b"), 1.0, math.inf),
+            Spring("k", ("ground", "b"), 100.0),
+        ],
+    )
     check_invariants(simulate_network(net, 1.0, 1e-3))

@@ -29,9 +29,7 @@ def test_py_and_ipynb_have_the_same_cells(source):
     assert twin.is_file(), f"{source.name} has no committed {twin.name}"
     from_py, from_ipynb = jupytext.read(source), jupytext.read(twin)
     py_cells, nb_cells = _cells(from_py), _cells(from_ipynb)
-    assert len(py_cells) == len(nb_cells), (
-        f"{source.name}: {len(py_cells)} cells, {twin.name}: {len(nb_cells)}"
-    )
+    assert len(py_cells) == len(nb_cells), f"{source.name}: {len(py_cells)} cells, {twin.name}: {len(nb_cells)}"
     for i, (a, b) in enumerate(zip(py_cells, nb_cells)):
         assert a == b, f"cell {i} differs between {source.name} and {twin.name}"
 

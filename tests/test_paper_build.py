@@ -88,7 +88,7 @@ def test_no_number_typed_by_hand_in_the_prose() -> None:
     """
     text = (ROOT / "paper" / "paper.typ").read_text(encoding="utf-8")
     deviations = (ROOT / "paper" / "deviations.yaml").read_text(encoding="utf-8")
-    body = re.sub(r"//.*", "", text[text.index("= Introduction"):])  # Typst comments
+    body = re.sub(r"//.*", "", text[text.index("= Introduction") :])  # Typst comments
     body += re.sub(r"^\s*#.*", "", deviations, flags=re.M)  # YAML comments
     body = re.sub(r"\d+(\.\d+)?(pt|em|cm|fr)\b", "", body)  # lengths of the layout
     body = re.sub(r"Sections? \d+\.\d+ and \d+\.\d+", "", body)  # the original's numbering

@@ -41,20 +41,19 @@ CASES = [
     ("plain(100.0)", "100"),
     ("plain(1e-4)", "1 × 10−4"),
     ("plain(1.5e-7)", "1.5 × 10−7"),
-    ("plain(\"inf\")", "∞"),
+    ('plain("inf")', "∞"),
     ("num(none)", "n/a"),
     ("pct(0.3812)", "38 %"),
-    ("column((0.000055, 0.00103, 0)).join(\"; \")", "5.50 × 10−5; 1.03 × 10−3; 0"),
-    ("column((0.0077, 0.005, \"still moving\")).join(\"; \")", "0.00770; 0.00500; still moving"),
-    ("column((1.5, 25.0, 100.0)).join(\"; \")", "1.50; 25.00; 100.00"),
+    ('column((0.000055, 0.00103, 0)).join("; ")', "5.50 × 10−5; 1.03 × 10−3; 0"),
+    ('column((0.0077, 0.005, "still moving")).join("; ")', "0.00770; 0.00500; still moving"),
+    ('column((1.5, 25.0, 100.0)).join("; ")', "1.50; 25.00; 100.00"),
 ]
 
 
 def _typeset(tmp_path: Path, call: str) -> str:
     shutil.copy(ROOT / "paper" / "format.typ", tmp_path / "format.typ")
     doc = tmp_path / "case.typ"
-    doc.write_text('#import "format.typ": *\n#set page(width: 30cm, height: auto)\n#(' + call + ")\n",
-                   encoding="utf-8")  # fmt: skip
+    doc.write_text('#import "format.typ": *\n#set page(width: 30cm, height: auto)\n#(' + call + ")\n", encoding="utf-8")
     pdf = typst.compile(str(doc), ignore_system_fonts=True)
     return pypdf.PdfReader(io.BytesIO(pdf)).pages[0].extract_text().strip()
 
@@ -67,5 +66,5 @@ def test_format(tmp_path: Path, call: str, expected: str) -> None:
 @pytest.mark.parametrize("value", ["1.0", "3.7", "-5.2", "12.0", "999.0"])
 def test_no_times_ten_to_the_zero(tmp_path: Path, value: str) -> None:
     """Values between 1 and 10 never print a factor 10⁰, whatever the formatter."""
-    text = _typeset(tmp_path, f"(num({value}), sci({value}), plain({value})).join(\"; \")")
+    text = _typeset(tmp_path, f'(num({value}), sci({value}), plain({value})).join("; ")')
     assert "× 100" not in text  # an exponent 0 would read "× 10" then "0"

@@ -113,8 +113,7 @@ def forced_reference(P: float, t_end: float) -> dict[str, Any]:
             return z[1]
 
         stop.terminal, stop.direction = True, -s
-        sol = solve_ivp(rhs, (t, t_stop), y, method="DOP853", rtol=1e-12, atol=1e-14,
-                        events=stop, dense_output=True)  # fmt: skip
+        sol = solve_ivp(rhs, (t, t_stop), y, method="DOP853", rtol=1e-12, atol=1e-14, events=stop, dense_output=True)
         pieces.append((t, sol.t[-1], s, sol.sol))
         t, y = float(sol.t[-1]), sol.y[:, -1].copy()
         if sol.status == 1:  # velocity zero
@@ -183,15 +182,18 @@ def be_block(be: dict[str, np.ndarray], F: Callable[[float], float]) -> dict[str
         "max_F_d": Near(np.max(be["F_d"]), **BE),
         "stick_fraction": Near(np.mean(be["v"] == 0), abs=1e-12, why="same stick decisions"),
         "reversals": exact(references.sign_changes(be["v"])),
-        "energy_residual": Holds(lambda e: 0 <= e < 1e-9 and discrete_energy_residual(be, F) < 1e-9,
-                                 "a round-off residual (< 1e-9 J), as the literal BE's"),
+        "energy_residual": Holds(
+            lambda e: 0 <= e < 1e-9 and discrete_energy_residual(be, F) < 1e-9,
+            "a round-off residual (< 1e-9 J), as the literal BE's",
+        ),
         "steps": exact(be["t"].size - 1),
         "dt": exact(DT),
-    }  # fmt: skip
+    }
 
 
-def error_block(be: dict[str, np.ndarray], ref: dict[str, np.ndarray], rest: tuple[float, float],
-                tol: dict[str, Any]) -> dict[str, Any]:  # fmt: skip
+def error_block(
+    be: dict[str, np.ndarray], ref: dict[str, np.ndarray], rest: tuple[float, float], tol: dict[str, Any]
+) -> dict[str, Any]:
     t_rest, x_rest = rest_of(be)
     dt = be["t"][1] - be["t"][0]
     out = {f"max_{c}": Near(np.max(np.abs(be[c] - ref[c])), **tol) for c in ("x", "v", "F_s", "F_d")}
@@ -207,19 +209,40 @@ def expected_forced_small() -> dict[str, Any]:
     zero = exact(0.0)
     steps = int(round(CFG["t_end_forced"] / DT))
     return {
-        "exact": {"rest_time": zero, "rest_position": zero, "reversals": exact(0), "breakaways": exact(0),
-                  "first_event_time": exact(None), "reversal_times": exact([]),
-                  "reversal_positions": exact([]), "peak_x": zero, "peak_v": zero,
-                  "int_abs_F_d": Near(DT * sum(abs(force(P)(n * DT)) for n in range(1, steps + 1)), rel=1e-9)},
-        "be": {"rest_time": zero, "rest_position": zero, "peak_x": zero, "peak_v": zero, "dt": exact(DT),
-               "min_F_d": Near(-P, abs=1e-12, why="F_1 peaks at t = 0.3 on the grid"),
-               "max_F_d": Near(P, abs=1e-12, why="F_1 peaks at t = 0.1 on the grid"),
-               "stick_fraction": exact(1.0), "reversals": exact(0), "energy_residual": zero,
-               "steps": exact(steps)},
+        "exact": {
+            "rest_time": zero,
+            "rest_position": zero,
+            "reversals": exact(0),
+            "breakaways": exact(0),
+            "first_event_time": exact(None),
+            "reversal_times": exact([]),
+            "reversal_positions": exact([]),
+            "peak_x": zero,
+            "peak_v": zero,
+            "int_abs_F_d": Near(DT * sum(abs(force(P)(n * DT)) for n in range(1, steps + 1)), rel=1e-9),
+        },
+        "be": {
+            "rest_time": zero,
+            "rest_position": zero,
+            "peak_x": zero,
+            "peak_v": zero,
+            "dt": exact(DT),
+            "min_F_d": Near(-P, abs=1e-12, why="F_1 peaks at t = 0.3 on the grid"),
+            "max_F_d": Near(P, abs=1e-12, why="F_1 peaks at t = 0.1 on the grid"),
+            "stick_fraction": exact(1.0),
+            "reversals": exact(0),
+            "energy_residual": zero,
+            "steps": exact(steps),
+        },
         "error": {k: zero for k in ("max_x", "max_v", "max_F_s", "max_F_d", "int_F_d", "rest_position", "rest_time")},
-        "eq19": {"max_F1": Near(P, abs=1e-12, why="P sin(pi/2) on the grid"), "eq19_max_F_d": zero,
-                 "eq19_max_x": zero, "eq19_max_v": zero, "eq19_max_F_s": zero},
-    }  # fmt: skip
+        "eq19": {
+            "max_F1": Near(P, abs=1e-12, why="P sin(pi/2) on the grid"),
+            "eq19_max_F_d": zero,
+            "eq19_max_x": zero,
+            "eq19_max_v": zero,
+            "eq19_max_F_s": zero,
+        },
+    }
 
 
 def expected_free_small() -> dict[str, Any]:
@@ -228,16 +251,33 @@ def expected_free_small() -> dict[str, Any]:
     assert K * x0 < TAU
     zero = exact(0.0)
     return {
-        "exact": {"rest_time": zero, "rest_position": exact(x0), "reversals": exact(0), "breakaways": exact(0),
-                  "first_event_time": exact(None), "reversal_times": exact([]),
-                  "reversal_positions": exact([]), "peak_x": exact(x0), "peak_v": zero,
-                  "int_abs_F_d": Near(K * x0 * CFG["t_end_small"], rel=1e-9, why="F_d = -k x0 throughout")},
-        "be": {"rest_time": zero, "rest_position": exact(x0), "peak_x": exact(x0), "peak_v": zero, "dt": exact(DT),
-               "min_F_d": Near(-K * x0, abs=1e-15), "max_F_d": Near(-K * x0, abs=1e-15),
-               "stick_fraction": exact(1.0), "reversals": exact(0), "energy_residual": zero,
-               "steps": exact(int(round(CFG["t_end_small"] / DT)))},
+        "exact": {
+            "rest_time": zero,
+            "rest_position": exact(x0),
+            "reversals": exact(0),
+            "breakaways": exact(0),
+            "first_event_time": exact(None),
+            "reversal_times": exact([]),
+            "reversal_positions": exact([]),
+            "peak_x": exact(x0),
+            "peak_v": zero,
+            "int_abs_F_d": Near(K * x0 * CFG["t_end_small"], rel=1e-9, why="F_d = -k x0 throughout"),
+        },
+        "be": {
+            "rest_time": zero,
+            "rest_position": exact(x0),
+            "peak_x": exact(x0),
+            "peak_v": zero,
+            "dt": exact(DT),
+            "min_F_d": Near(-K * x0, abs=1e-15),
+            "max_F_d": Near(-K * x0, abs=1e-15),
+            "stick_fraction": exact(1.0),
+            "reversals": exact(0),
+            "energy_residual": zero,
+            "steps": exact(int(round(CFG["t_end_small"] / DT))),
+        },
         "error": {k: zero for k in ("max_x", "max_v", "max_F_s", "max_F_d", "int_F_d", "rest_position", "rest_time")},
-    }  # fmt: skip
+    }
 
 
 def free_large_reference(dt: float) -> tuple[dict, dict, dict, tuple[float, float]]:
@@ -256,20 +296,25 @@ def expected_free_large() -> dict[str, Any]:
     x0 = CFG["x0_large"]
     return {
         "exact": {
-            "rest_time": Near(rest[0], **RECURRENCE), "rest_position": Near(rest[1], **RECURRENCE),
-            "reversals": exact(len(rec.times) - 1), "breakaways": exact(0),
+            "rest_time": Near(rest[0], **RECURRENCE),
+            "rest_position": Near(rest[1], **RECURRENCE),
+            "reversals": exact(len(rec.times) - 1),
+            "breakaways": exact(0),
             "first_event_time": Near(rec.half, **RECURRENCE),
-            "reversal_times": Holds(lambda g: np.allclose(g, rec.times[:-1], rtol=1e-9, atol=1e-10),
-                                    "the recurrence's reversal times"),
-            "reversal_positions": Holds(lambda g: np.allclose(g, rec.positions[:-1], rtol=1e-9, atol=1e-10),
-                                        "the recurrence's reversal positions"),
+            "reversal_times": Holds(
+                lambda g: np.allclose(g, rec.times[:-1], rtol=1e-9, atol=1e-10), "the recurrence's reversal times"
+            ),
+            "reversal_positions": Holds(
+                lambda g: np.allclose(g, rec.positions[:-1], rtol=1e-9, atol=1e-10),
+                "the recurrence's reversal positions",
+            ),
             "peak_x": Near(x0, abs=1e-15),
             "peak_v": Near(np.max(np.abs(ref["v"])), **RECURRENCE),
             "int_abs_F_d": Near(np.sum(np.abs(ref["F_d"])[1:]) * DT, abs=1e-9, rel=1e-6),
         },
         "be": be_block(be, lambda t: 0.0),
         "error": error_block(be, ref, rest, dict(abs=1e-9, rel=1e-6, why="recurrence vs exact solver on the grid")),
-    }  # fmt: skip
+    }
 
 
 def forced_large_reference(dt: float) -> tuple[dict, dict, dict, tuple[float, float]]:
@@ -284,20 +329,26 @@ def expected_forced_large() -> dict[str, Any]:
     ref, be, sampled, rest = forced_large_reference(DT)
     return {
         "exact": {
-            "rest_time": Near(rest[0], **REF_ACC), "rest_position": Near(rest[1], **REF_ACC),
-            "reversals": exact(len(ref["reversals"])), "breakaways": exact(1),
+            "rest_time": Near(rest[0], **REF_ACC),
+            "rest_position": Near(rest[1], **REF_ACC),
+            "reversals": exact(len(ref["reversals"])),
+            "breakaways": exact(1),
             "first_event_time": Near(math.asin(TAU / P) / W, abs=1e-14, why="arcsin closed form"),
-            "reversal_times": Holds(lambda g: np.allclose(g, [r[0] for r in ref["reversals"]], rtol=1e-7, atol=1e-8),
-                                    "the DOP853 reversal times"),
-            "reversal_positions": Holds(lambda g: np.allclose(g, [r[1] for r in ref["reversals"]], rtol=1e-7, atol=1e-8),
-                                        "the DOP853 reversal positions"),
+            "reversal_times": Holds(
+                lambda g: np.allclose(g, [r[0] for r in ref["reversals"]], rtol=1e-7, atol=1e-8),
+                "the DOP853 reversal times",
+            ),
+            "reversal_positions": Holds(
+                lambda g: np.allclose(g, [r[1] for r in ref["reversals"]], rtol=1e-7, atol=1e-8),
+                "the DOP853 reversal positions",
+            ),
             "peak_x": Near(np.max(np.abs(sampled["x"])), **REF_ACC),
             "peak_v": Near(np.max(np.abs(sampled["v"])), **REF_ACC),
             "int_abs_F_d": Near(np.sum(np.abs(sampled["F_d"])[1:]) * DT, abs=1e-7, rel=1e-5),
         },
         "be": be_block(be, force(P)),
         "error": error_block(be, sampled, rest, dict(abs=1e-7, rel=1e-5, why="DOP853 reference on the grid")),
-    }  # fmt: skip
+    }
 
 
 def _reference_runs(dt: float) -> dict[str, tuple]:
@@ -306,25 +357,35 @@ def _reference_runs(dt: float) -> dict[str, tuple]:
 
 def expected_convergence() -> dict[str, Any]:
     steps = list(R.CONVERGENCE_STEPS)
-    out: dict[str, Any] = {"steps": Holds(
-        lambda g: g == sorted(g, reverse=True) and R.ORIGINAL_DT in g and g[0] / g[-1] > 999,
-        "decreasing steps spanning three decades, the original's among them")}  # fmt: skip
-    for name, tol in (("forced_large", dict(abs=1e-7, rel=1e-5, why="DOP853 reference")),
-                      ("free_large", dict(abs=1e-9, rel=1e-6, why="recurrence reference"))):  # fmt: skip
+    out: dict[str, Any] = {
+        "steps": Holds(
+            lambda g: g == sorted(g, reverse=True) and R.ORIGINAL_DT in g and g[0] / g[-1] > 999,
+            "decreasing steps spanning three decades, the original's among them",
+        )
+    }
+    for name, tol in (
+        ("forced_large", dict(abs=1e-7, rel=1e-5, why="DOP853 reference")),
+        ("free_large", dict(abs=1e-9, rel=1e-6, why="recurrence reference")),
+    ):
         runs = [_reference_runs(dt)[name] for dt in steps]
         blocks = [error_block(run[1], run[2], run[3], tol) for run in runs]
         table: dict[str, Any] = {}
         for key in blocks[0]:
             values = [b[key].value for b in blocks]
-            table[key] = Holds(lambda g, values=values, tol=tol: len(g) == len(values) and all(
-                abs(a - b) <= tol["abs"] + tol["rel"] * abs(b) for a, b in zip(g, values)),
-                f"the reference {key} column")  # fmt: skip
+            table[key] = Holds(
+                lambda g, values=values, tol=tol: (
+                    len(g) == len(values)
+                    and all(abs(a - b) <= tol["abs"] + tol["rel"] * abs(b) for a, b in zip(g, values))
+                ),
+                f"the reference {key} column",
+            )
         for col in ("x", "v", "int_F_d"):
-            slope = references.order(steps, [b[f"max_{col}" if col != "int_F_d" else col].value
-                                             for b in blocks])  # fmt: skip
+            slope = references.order(steps, [b[f"max_{col}" if col != "int_F_d" else col].value for b in blocks])
             low = 0.7 if col == "int_F_d" else 0.9  # int_F_d: the dt = 1e-3 run rests on the wrong side
-            table[f"order_{col}"] = Holds(lambda g, slope=slope, low=low: abs(g - slope) < 0.01 and low <= g <= 1.1,
-                                          f"the reference slope {slope:.3f}, first order")  # fmt: skip
+            table[f"order_{col}"] = Holds(
+                lambda g, slope=slope, low=low: abs(g - slope) < 0.01 and low <= g <= 1.1,
+                f"the reference slope {slope:.3f}, first order",
+            )
         out[name] = table
     return out
 
@@ -341,8 +402,10 @@ def expected_convergence_rest() -> dict[str, Any]:
         reversals = [references.sign_changes(run[1]["v"]) for run in runs]
         same = [bool(np.sign(x) == np.sign(rest)) for x in positions]
         out[name] = {
-            "rest_position": Holds(lambda g, p=positions: np.allclose(g, p, rtol=1e-9, atol=1e-11),
-                                   "the literal Algorithm 1's rest positions"),
+            "rest_position": Holds(
+                lambda g, p=positions: np.allclose(g, p, rtol=1e-9, atol=1e-11),
+                "the literal Algorithm 1's rest positions",
+            ),
             "reversals": exact(reversals),
             "same_side": exact(same),
             "fewer_reversals": exact([dt for dt, n in zip(steps, reversals) if n < n_exact]),
@@ -382,11 +445,12 @@ def notebook_02_settings() -> dict[str, Any]:
         "x0_band_fraction": 1 / float(find(r"x0 = osc\.static_band / (\d+)")),
         "euler_dts": eval(find(r"for h in (\([^)]*\)):\s*\n\s*r = euler\[h\]")),
         "t_end": float(find(r"integrate_fixed\(model, ([\d.]+), h, x0=x0, scheme=\"euler\"")),
-        "rk45_rtol": float(re.search(rk45, src).group(1)), "rk45_atol": float(re.search(rk45, src).group(2)),
+        "rk45_rtol": float(re.search(rk45, src).group(1)),
+        "rk45_atol": float(re.search(rk45, src).group(2)),
         "rk45_budget": int(re.search(rk45, src).group(3).replace("_", "")),
         "tanh_eps": eval(find(r"for eps in (\([^)]*\)):\s*\n\s*run = smooth\[eps\]")),
         "tanh_t_end": float(find(r"TextbookModel\(osc, eps=eps\), ([\d.]+), x0=x0")),
-    }  # fmt: skip
+    }
 
 
 def expected_textbook() -> dict[str, Any]:
@@ -408,31 +472,44 @@ def expected_textbook() -> dict[str, Any]:
         x_end = sol.y[0, -1]
         # the quasi-static law skips the start-up transient of duration ~ eps m/tau,
         # during which the mass lags by about that time times the creep velocity
-        lag = dict(abs=2 * eps * M / TAU * abs(creep_velocity(x0, eps)), rel=1e-6,
-                   why="quasi-static creep law, start-up lag")
+        lag = dict(
+            abs=2 * eps * M / TAU * abs(creep_velocity(x0, eps)), rel=1e-6, why="quasi-static creep law, start-up lag"
+        )
         # inertia changes the slow rate by about m k eps^2/tau^2 relative (notebook 02, step 5)
         inertia = 2 * M * K * eps**2 / TAU**2 + 1e-5
         linear = creep_rate_at_zero(eps)
         ratios.append(creep_velocity(x_end, eps) / x_end / linear)
-        tanh.append(Holds(lambda g, eps=eps, x_end=x_end, lag=lag, r=inertia, linear=linear: (
-            set(g) == {"eps", "x_end", "v_end", "rate", "linear_rate", "load_end"} and g["eps"] == eps
-            and abs(g["x_end"] - x_end) <= lag["abs"] + lag["rel"] * abs(x_end)
-            and abs(g["v_end"] - creep_velocity(g["x_end"], eps)) <= r * abs(g["v_end"])
-            and abs(g["rate"] - g["v_end"] / g["x_end"]) <= 1e-12 * abs(g["rate"])
-            and abs(g["linear_rate"] - linear) <= 1e-6 * abs(linear)
-            and abs(g["load_end"] - K * g["x_end"] / TAU) <= 1e-12),
-            f"eps = {eps}: x_end near the quasi-static {x_end:.4g} m (start-up lag), v_end the creep velocity"
-            " at that x_end (up to inertia, m k eps^2/tau^2), rate v/x, the creep law's slope at 0, load k x/tau"))
-        # fmt: skip
+        tanh.append(
+            Holds(
+                lambda g, eps=eps, x_end=x_end, lag=lag, r=inertia, linear=linear: (
+                    set(g) == {"eps", "x_end", "v_end", "rate", "linear_rate", "load_end"}
+                    and g["eps"] == eps
+                    and abs(g["x_end"] - x_end) <= lag["abs"] + lag["rel"] * abs(x_end)
+                    and abs(g["v_end"] - creep_velocity(g["x_end"], eps)) <= r * abs(g["v_end"])
+                    and abs(g["rate"] - g["v_end"] / g["x_end"]) <= 1e-12 * abs(g["rate"])
+                    and abs(g["linear_rate"] - linear) <= 1e-6 * abs(linear)
+                    and abs(g["load_end"] - K * g["x_end"] / TAU) <= 1e-12
+                ),
+                f"eps = {eps}: x_end near the quasi-static {x_end:.4g} m (start-up lag), v_end the creep velocity"
+                " at that x_end (up to inertia, m k eps^2/tau^2), rate v/x, the creep law's slope at 0, load k x/tau",
+            )
+        )
+
     spread = max(2 * M * K * e**2 / TAU**2 for e in nb["tanh_eps"]) + 1e-3
     return {
-        "x0": Near(x0, rel=1e-15), "load_0": Near(nb["x0_band_fraction"], rel=1e-15),
-        "t_end": exact(t_end), "euler_dt": Holds(lambda g: g in nb["euler_dts"], "one of notebook 02's steps"),
+        "x0": Near(x0, rel=1e-15),
+        "load_0": Near(nb["x0_band_fraction"], rel=1e-15),
+        "t_end": exact(t_end),
+        "euler_dt": Holds(lambda g: g in nb["euler_dts"], "one of notebook 02's steps"),
         "euler_steps": exact(n),
-        "euler_sign_changes": Holds(lambda g: g == references.sign_changes(vs) and 0.4 * n <= g <= 0.6 * n,
-                                    f"{references.sign_changes(vs)} (the written-out loop; about one per two steps)"),
-        "euler_max_v": Near(np.max(np.abs(vs)), rel=1e-9), "euler_x_end": Near(xs[-1], rel=1e-9),
-        "rk45_rtol": exact(nb["rk45_rtol"]), "rk45_atol": exact(nb["rk45_atol"]),
+        "euler_sign_changes": Holds(
+            lambda g: g == references.sign_changes(vs) and 0.4 * n <= g <= 0.6 * n,
+            f"{references.sign_changes(vs)} (the written-out loop; about one per two steps)",
+        ),
+        "euler_max_v": Near(np.max(np.abs(vs)), rel=1e-9),
+        "euler_x_end": Near(xs[-1], rel=1e-9),
+        "rk45_rtol": exact(nb["rk45_rtol"]),
+        "rk45_atol": exact(nb["rk45_atol"]),
         "rk45_budget": exact(nb["rk45_budget"]),
         "rk45_finished": exact(False),
         "rk45_nfev": Holds(lambda g: nb["rk45_budget"] <= g <= nb["rk45_budget"] + 40, "the budget spent"),
@@ -440,8 +517,9 @@ def expected_textbook() -> dict[str, Any]:
         "rk45_median_step": Holds(lambda g: 0 < g < 1e-6, "a collapsed step (< 1e-6 s)"),
         "tanh_t_end": exact(nb["tanh_t_end"]),
         "tanh": tanh,
-        "linear_ratio_min": Near(min(ratios), abs=spread), "linear_ratio_max": Near(max(ratios), abs=spread),
-    }  # fmt: skip
+        "linear_ratio_min": Near(min(ratios), abs=spread),
+        "linear_ratio_max": Near(max(ratios), abs=spread),
+    }
 
 
 def expected_parameters() -> dict[str, Any]:
@@ -449,25 +527,37 @@ def expected_parameters() -> dict[str, Any]:
     paper = {key: exact(value) for key, value in references.PAPER.items()}
     return paper | {
         "band": Near(references.PAPER["tau"] / references.PAPER["k"], rel=1e-15),
-        "t_end_forced": exact(CFG["t_end_forced"]), "t_end_small": exact(CFG["t_end_small"]),
+        "t_end_forced": exact(CFG["t_end_forced"]),
+        "t_end_small": exact(CFG["t_end_small"]),
         "t_end_large": exact(CFG["t_end_large"]),
-    }  # fmt: skip
+    }
 
 
 #: references.PAPER's names for the configuration's keys.
-CONFIG_NAMES = {"mass": "m", "stiffness": "k", "threshold": "tau", "gamma": "gamma", "dt": "dt",
-                "force_amplitude_small": "P_small", "force_amplitude_large": "P_large",
-                "force_omega_over_pi": "omega_over_pi", "force_until": "force_until",
-                "x0_small": "x0_small", "x0_large": "x0_large"}  # fmt: skip
+CONFIG_NAMES = {
+    "mass": "m",
+    "stiffness": "k",
+    "threshold": "tau",
+    "gamma": "gamma",
+    "dt": "dt",
+    "force_amplitude_small": "P_small",
+    "force_amplitude_large": "P_large",
+    "force_omega_over_pi": "omega_over_pi",
+    "force_until": "force_until",
+    "x0_small": "x0_small",
+    "x0_large": "x0_large",
+}
 
 
 def expected_original() -> dict[str, Any]:
     """The original's values, typed from the paper in tests/references.py; nothing changed by default."""
     return {
         "values": {key: exact(references.PAPER[name]) for key, name in CONFIG_NAMES.items()},
-        "dt": exact(references.PAPER["dt"]), "changed": exact([]), "dt_differs": exact(False),
+        "dt": exact(references.PAPER["dt"]),
+        "changed": exact([]),
+        "dt_differs": exact(False),
         "ours": {key: exact(CFG[key]) for key in ("t_end_forced", "t_end_small", "t_end_large")},
-    }  # fmt: skip
+    }
 
 
 def _curve_word(diff: float, scale: float, same_end: bool) -> str:
@@ -483,7 +573,10 @@ def expected_verdict_words() -> dict[str, str]:
         same_end = references.sign_changes(be["v"]) == n_exact and np.sign(rest_of(be)[1]) == np.sign(rest[1])
         for n, q in zip(figures, ("x", "v", "F_s", "F_d")):
             if q == "F_d":
-                diff, scale = np.sum(np.abs(be["F_d"] - sampled["F_d"])[1:]) * DT, np.sum(np.abs(sampled["F_d"])[1:]) * DT
+                diff, scale = (
+                    np.sum(np.abs(be["F_d"] - sampled["F_d"])[1:]) * DT,
+                    np.sum(np.abs(sampled["F_d"])[1:]) * DT,
+                )
             else:
                 diff, scale = np.max(np.abs(be[q] - sampled[q])), np.max(np.abs(sampled[q]))
             words[f"figure_{n}"] = _curve_word(diff, scale, same_end)
@@ -496,27 +589,46 @@ def expected_verdict_words() -> dict[str, str]:
 
 def expected_verdicts() -> dict[str, Any]:
     words = expected_verdict_words()
-    label = lambda key: "rest with the spring stretched" if key == "rest_stretched" else (  # noqa: E731
-        "Remark 3.1" if key == "remark_3_1" else "Figure " + key.split("_")[1])
-    block = {key: {"label": exact(label(key)), "verdict": exact(words[key]), "reason": Holds(is_text, "a sentence"),
-                   "tolerance": Holds(lambda g: g is None or is_text(g), "a sentence or None")}
-             for key in R.VERDICT_KEYS}  # fmt: skip
-    groups = {w.replace(" ", "_"): [label(k) for k in R.VERDICT_KEYS if words[k] == w]
-              for w in ("reproduced", "deviates", "not checked")}  # fmt: skip
+    label = lambda key: (
+        "rest with the spring stretched"
+        if key == "rest_stretched"
+        # noqa: E731
+        else ("Remark 3.1" if key == "remark_3_1" else "Figure " + key.split("_")[1])
+    )
+    block = {
+        key: {
+            "label": exact(label(key)),
+            "verdict": exact(words[key]),
+            "reason": Holds(is_text, "a sentence"),
+            "tolerance": Holds(lambda g: g is None or is_text(g), "a sentence or None"),
+        }
+        for key in R.VERDICT_KEYS
+    }
+    groups = {
+        w.replace(" ", "_"): [label(k) for k in R.VERDICT_KEYS if words[k] == w]
+        for w in ("reproduced", "deviates", "not checked")
+    }
     summary = {key: exact(value) for key, value in groups.items()}
-    return {"configured": block, "original": block, "summary": {"configured": summary, "original": summary},
-            "curve_tol": exact(R.CURVE_TOL), "stretch_tol": exact(R.STRETCH_TOL)}  # fmt: skip
+    return {
+        "configured": block,
+        "original": block,
+        "summary": {"configured": summary, "original": summary},
+        "curve_tol": exact(R.CURVE_TOL),
+        "stretch_tol": exact(R.STRETCH_TOL),
+    }
 
 
 def expected_provenance() -> dict[str, Any]:
     return {
-        "python": exact(platform.python_version()), "implementation": exact(platform.python_implementation()),
+        "python": exact(platform.python_version()),
+        "implementation": exact(platform.python_implementation()),
         "packages": {name: exact(importlib.metadata.version(name)) for name in R.PACKAGES},
-        "machine": exact(platform.machine()), "system": exact(platform.system()),
+        "machine": exact(platform.machine()),
+        "system": exact(platform.system()),
         "cpus": Holds(lambda g: isinstance(g, int) and g >= 1, "a CPU count"),
         "kernel": Holds(lambda g: g in ("compiled", "python"), "the time-stepping kernel"),
         "command": exact("snakemake --cores all"),
-    }  # fmt: skip
+    }
 
 
 def with_original(make: Callable[[], dict[str, Any]]) -> Callable[[], dict[str, Any]]:
@@ -598,7 +710,8 @@ def test_json_is_deterministic(tmp_path: Path) -> None:
     env = {k: v for k, v in os.environ.items() if k != "LUMPED_CONFIG"}
     paths = [tmp_path / "a.json", tmp_path / "b.json"]
     for path in paths:
-        subprocess.run([sys.executable, str(ROOT / "scripts" / "paper_numbers.py"), str(path)],
-                       cwd=ROOT, env=env, check=True)  # fmt: skip
+        subprocess.run(
+            [sys.executable, str(ROOT / "scripts" / "paper_numbers.py"), str(path)], cwd=ROOT, env=env, check=True
+        )
     assert paths[0].read_bytes() == paths[1].read_bytes()
     assert json.loads(paths[0].read_text())["provenance"]["command"] == "snakemake --cores all"

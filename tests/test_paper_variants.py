@@ -36,8 +36,7 @@ from conftest import copy_tracked_files
 pypdf = pytest.importorskip("pypdf")
 
 SNAKEMAKE = shutil.which("snakemake") or str(Path(sys.executable).with_name("snakemake"))
-pytestmark = [pytest.mark.slow,
-              pytest.mark.skipif(not Path(SNAKEMAKE).exists(), reason="snakemake not installed")]  # fmt: skip
+pytestmark = [pytest.mark.slow, pytest.mark.skipif(not Path(SNAKEMAKE).exists(), reason="snakemake not installed")]
 
 #: --config overrides of each build (``.inf`` is how --config spells infinity).
 VARIANTS = {
@@ -47,19 +46,32 @@ VARIANTS = {
 }
 #: Words the first page prints for each configuration key (paper.typ's ``names``).
 NAMES = {
-    "mass": "𝑚 (kg)", "stiffness": "𝑘 (N/m)", "threshold": "𝜇𝑠𝑁𝑓 (N)", "gamma": "𝛾 (m/(N s))",
-    "dt": "Δ𝑡 (s)", "force_amplitude_small": "of (17a) (N)", "force_amplitude_large": "of (17b) (N)",
-    "force_omega_over_pi": "of (17) (1/s)", "force_until": "end of the forcing (17) (s)",
-    "x0_small": "of Figure 10 (m)", "x0_large": "of Figures 11-14 (m)",
-}  # fmt: skip
+    "mass": "𝑚 (kg)",
+    "stiffness": "𝑘 (N/m)",
+    "threshold": "𝜇𝑠𝑁𝑓 (N)",
+    "gamma": "𝛾 (m/(N s))",
+    "dt": "Δ𝑡 (s)",
+    "force_amplitude_small": "of (17a) (N)",
+    "force_amplitude_large": "of (17b) (N)",
+    "force_omega_over_pi": "of (17) (1/s)",
+    "force_until": "end of the forcing (17) (s)",
+    "x0_small": "of Figure 10 (m)",
+    "x0_large": "of Figures 11-14 (m)",
+}
 VERDICT = re.compile(r"Verdict(?P<which>[^:]*):\s*(?P<word>reproduced|deviates|not checked)")
 HEADING = re.compile(r"^3\.\d+ Figure (\d+):", flags=re.M)
 
 
 def _build(repo: Path, overrides: list[str]) -> tuple[dict, list[str]]:
     env = {k: v for k, v in os.environ.items() if k != "LUMPED_CONFIG"}
-    done = subprocess.run([SNAKEMAKE, "--cores", "2", "paper/paper.pdf", "--config", *overrides],
-                          cwd=repo, capture_output=True, text=True, timeout=900, env=env)  # fmt: skip
+    done = subprocess.run(
+        [SNAKEMAKE, "--cores", "2", "paper/paper.pdf", "--config", *overrides],
+        cwd=repo,
+        capture_output=True,
+        text=True,
+        timeout=900,
+        env=env,
+    )
     assert done.returncode == 0, done.stdout + done.stderr
     numbers = json.loads((repo / "paper" / "build" / "numbers.json").read_text(encoding="utf-8"))
     pages = [page.extract_text() for page in pypdf.PdfReader(repo / "paper" / "paper.pdf").pages]

@@ -25,9 +25,7 @@ pytestmark = pytest.mark.skipif(not Path(SNAKEMAKE).exists(), reason="snakemake 
 
 
 def _snakemake(*args: str, check: bool = True, cwd: Path = ROOT) -> str:
-    done = subprocess.run(
-        [SNAKEMAKE, "--nolock", *args], cwd=cwd, capture_output=True, text=True, timeout=120
-    )
+    done = subprocess.run([SNAKEMAKE, "--nolock", *args], cwd=cwd, capture_output=True, text=True, timeout=120)
     assert done.returncode == 0 or not check, done.stdout + done.stderr
     return done.stdout + done.stderr
 
@@ -44,8 +42,12 @@ def _jobs(text: str) -> list[tuple[str, dict[str, str]]]:
 
 def _outputs_by_rule(text: str) -> dict[str, str]:
     """Map each planned output file to the rule of its job."""
-    return {path.strip(): rule for rule, fields in _jobs(text)
-            for path in fields.get("output", "").split(", ") if path.strip()}  # fmt: skip
+    return {
+        path.strip(): rule
+        for rule, fields in _jobs(text)
+        for path in fields.get("output", "").split(", ")
+        if path.strip()
+    }
 
 
 def _reasons_by_rule(text: str) -> dict[str, str]:
@@ -96,8 +98,7 @@ def up_to_date(tmp_path_factory, dry_run) -> Path:
 
 #: Overrides that change the configuration: (--config arguments, line before, line after)
 #: in the effective configuration.  gamma=.inf is YAML's infinity (Coulomb friction).
-CHANGES = [(("dt=0.001",), "dt: 0.0001", "dt: 0.001"),
-           (("gamma=.inf", "mass=1"), "gamma: 1.0", "gamma: .inf")]  # fmt: skip
+CHANGES = [(("dt=0.001",), "dt: 0.0001", "dt: 0.001"), (("gamma=.inf", "mass=1"), "gamma: 1.0", "gamma: .inf")]
 #: --config overrides whose plans are checked: none, one equal to the default, the changes.
 OVERRIDES = [(), ("dt=1e-4",), *(overrides for overrides, _, _ in CHANGES)]
 
@@ -111,9 +112,13 @@ def plans(up_to_date) -> dict[tuple[str, ...], str]:
     started = {}
     for overrides in OVERRIDES:
         args = ["--config", *overrides, "--"] if overrides else []
-        started[overrides] = subprocess.Popen([SNAKEMAKE, "--nolock", "--dry-run", *args],
-                                              cwd=up_to_date, stdout=subprocess.PIPE,
-                                              stderr=subprocess.PIPE, text=True)  # fmt: skip
+        started[overrides] = subprocess.Popen(
+            [SNAKEMAKE, "--nolock", "--dry-run", *args],
+            cwd=up_to_date,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        )
     texts = {}
     for overrides, run in started.items():
         out, err = run.communicate(timeout=120)
@@ -129,8 +134,7 @@ def test_nothing_is_planned_when_up_to_date_or_overridden_with_the_default(plans
     assert "Nothing to be done" in text and _reasons_by_rule(text) == {}, text[-2000:]
 
 
-@pytest.mark.parametrize(("overrides", "before", "after"), CHANGES,
-                         ids=[" ".join(c[0]) for c in CHANGES])  # fmt: skip
+@pytest.mark.parametrize(("overrides", "before", "after"), CHANGES, ids=[" ".join(c[0]) for c in CHANGES])
 def test_config_override_reruns_the_config_and_every_notebook(plans, overrides, before, after):
     """From an up-to-date tree, an override that changes a value plans effective_config
     (its params changed) and every job downstream of results/config.yaml: each notebook

@@ -16,9 +16,7 @@ from lumped.plotting import textbook as textbook_plots  # noqa: E402
 from lumped.textbook import TextbookModel, integrate_adaptive, integrate_fixed  # noqa: E402
 
 #: The style file's own setting (read from the file, not from the package's code).
-STYLE_FRAMEON = matplotlib.rc_params_from_file(plotting.STYLE, use_default_template=False)[
-    "legend.frameon"
-]
+STYLE_FRAMEON = matplotlib.rc_params_from_file(plotting.STYLE, use_default_template=False)["legend.frameon"]
 
 
 def _runs():
@@ -63,8 +61,9 @@ def test_legend_drawn_into_an_unstyled_axes_follows_the_style_file(helper):
 @pytest.mark.parametrize("helper", LEGENDS)
 def test_helpers_leave_global_rcparams_alone(helper):
     before = dict(matplotlib.rcParams)
-    fig = LEGENDS[helper](None) if helper not in ("time_history_panels",) else (
-        plotting.time_history_panels(TRAJ, EXACT))  # fmt: skip
+    fig = (
+        LEGENDS[helper](None) if helper not in ("time_history_panels",) else (plotting.time_history_panels(TRAJ, EXACT))
+    )
     assert isinstance(fig, Figure)
     after = dict(matplotlib.rcParams)
     assert {k for k in before if before[k] != after[k]} <= {"interactive"}

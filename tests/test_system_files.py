@@ -70,8 +70,20 @@ v_lock = 0.5
 def run(tmp_path, text: str, output: str = "out.npz", *extra: str) -> tuple[int, str]:
     path = tmp_path / "sys.toml"
     path.write_text(text)
-    status = main(["simulate", "--system", str(path), "--t-end", "0.2", "--dt", "1e-3",
-                   "--output", str(tmp_path / output), *extra])  # fmt: skip
+    status = main(
+        [
+            "simulate",
+            "--system",
+            str(path),
+            "--t-end",
+            "0.2",
+            "--dt",
+            "1e-3",
+            "--output",
+            str(tmp_path / output),
+            *extra,
+        ]
+    )
     return status, str(path)
 
 
@@ -97,8 +109,9 @@ def test_paper_file_is_algorithm1(tmp_path) -> None:
 
     assert run(tmp_path, GOOD, "out.npz")[0] == 0
     data = np.load(tmp_path / "out.npz")
-    tr = L.backward_euler(L.Oscillator.bingham(), 0.2, 1e-3, x0=0.5,
-                          force=L.SwitchedSine(10.0, 15.707963267948966, 0.0, 1.0))  # fmt: skip
+    tr = L.backward_euler(
+        L.Oscillator.bingham(), 0.2, 1e-3, x0=0.5, force=L.SwitchedSine(10.0, 15.707963267948966, 0.0, 1.0)
+    )
     assert np.array_equal(data["x"][:, 0], tr.x) and np.array_equal(data["force"][:, 1], tr.F_d)
 
 
@@ -111,20 +124,28 @@ BAD = {
     "not-toml": ("[[mass]\nname=1", "not valid TOML"),
     "unknown-kind": (GOOD.replace('kind = "bingham"', 'kind = "bingam"'), "unknown kind 'bingam'"),
     "missing-parameter": (GOOD.replace("stiffness = 100.0\n", ""), "missing parameter 'stiffness'"),
-    "unknown-parameter": (GOOD.replace("stiffness = 100.0", "stiffness = 100.0\nstiff = 1"),
-                          "unknown parameter 'stiff'"),
+    "unknown-parameter": (
+        GOOD.replace("stiffness = 100.0", "stiffness = 100.0\nstiff = 1"),
+        "unknown parameter 'stiff'",
+    ),
     "negative-mass": (GOOD.replace("mass = 1.0", "mass = -1.0"), "mass must be > 0"),
     "zero-stiffness": (GOOD.replace("stiffness = 100.0", "stiffness = 0.0"), "stiffness must be > 0"),
     "negative-threshold": (GOOD.replace("threshold = 1.0", "threshold = -1.0"), "threshold must be >= 0"),
     "zero-length": (CHAIN.replace("length = 0.2", "length = 0.0"), "length must be > 0"),
-    "self-loop": (GOOD.replace('between = ["ground", "m1"]\nstiffness', 'between = ["m1", "m1"]\nstiffness'),
-                  "joins 'm1' to itself"),
-    "no-such-mass": (GOOD.replace('between = ["ground", "m1"]\nthreshold', 'between = ["ground", "m2"]\nthreshold'),
-                     "'m2', which is neither a mass"),
+    "self-loop": (
+        GOOD.replace('between = ["ground", "m1"]\nstiffness', 'between = ["m1", "m1"]\nstiffness'),
+        "joins 'm1' to itself",
+    ),
+    "no-such-mass": (
+        GOOD.replace('between = ["ground", "m1"]\nthreshold', 'between = ["ground", "m2"]\nthreshold'),
+        "'m2', which is neither a mass",
+    ),
     "duplicate-name": (GOOD.replace('name = "dashpot"', 'name = "spring"'), "element 'spring': the name is used twice"),
     "string-beyond-length": (CHAIN.replace("x0 = 0.1", "x0 = 0.3"), "beyond the string's length"),
-    "ill-posed": (GOOD + '[[element]]\nname = "c2"\nkind = "bingham"\nbetween = ["m1", "ground"]\n'
-                  'threshold = 1.0\ngamma = inf\n', "'dashpot', 'c2' close a loop"),
+    "ill-posed": (
+        GOOD + '[[element]]\nname = "c2"\nkind = "bingham"\nbetween = ["m1", "ground"]\nthreshold = 1.0\ngamma = inf\n',
+        "'dashpot', 'c2' close a loop",
+    ),
     "string-value": (GOOD.replace("stiffness = 100.0", 'stiffness = "100"'), "stiffness must be a real number"),
     "force-on-nobody": (GOOD.replace('on = "m1"', 'on = "m9"'), "no mass of that name"),
 }

@@ -25,7 +25,7 @@ def test_forward_euler_chatters_where_the_dae_rests(paper_oscillator):
     assert r.sign_changes == references.sign_changes(r.v) >= n // 4
     # the chatter amplitude is one step's worth of acceleration (tau + k x)/m dt
     assert np.abs(r.v).max() <= 2 * (1.0 + 100.0 * 0.01) * dt
-    tail = r.F_d[n // 2:][r.v[n // 2:] != 0]
+    tail = r.F_d[n // 2 :][r.v[n // 2 :] != 0]
     # F_d = sgn(v) tau + v/gamma: +-tau up to c |v| <= 1 * 2e-4 -- never the
     # static value -k x0 = -0.5 that the DAE gives.
     assert np.all(np.abs(np.abs(tail) - 1.0) <= np.abs(r.v).max())
@@ -49,8 +49,7 @@ def test_rk4_drifts_where_the_dae_rests(paper_oscillator):
 def test_adaptive_rk45_runs_out_of_budget(paper_oscillator):
     # The step-size control keeps meeting the jump of sgn at v = 0 and shrinks
     # the step towards zero; 20000 evaluations do not reach t = 1 s.
-    out = integrate_adaptive(TextbookModel(paper_oscillator), 1.0, x0=X0, max_nfev=20_000,
-                             max_seconds=60.0)  # fmt: skip
+    out = integrate_adaptive(TextbookModel(paper_oscillator), 1.0, x0=X0, max_nfev=20_000, max_seconds=60.0)
     assert not out.finished
     assert "budget" in out.message
     assert out.nfev >= 20_000
@@ -61,8 +60,7 @@ def test_adaptive_rk45_runs_out_of_budget(paper_oscillator):
 def test_adaptive_finishes_outside_the_band(paper_oscillator):
     # Control: the same integrator, released far outside the band with a
     # regularised law, does finish; so the stall above is the model's fault.
-    out = integrate_adaptive(TextbookModel(paper_oscillator, eps=1e-2), 0.5, x0=0.5,
-                             max_nfev=200_000)  # fmt: skip
+    out = integrate_adaptive(TextbookModel(paper_oscillator, eps=1e-2), 0.5, x0=0.5, max_nfev=200_000)
     assert out.finished and "reached" in out.message and out.t_reached == 0.5
 
 

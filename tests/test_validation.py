@@ -14,10 +14,10 @@ from lumped.textbook import TextbookModel, integrate_adaptive, integrate_fixed
 
 SETTINGS = settings(max_examples=40, deadline=None)
 
-non_positive = st.one_of(st.floats(max_value=0.0, allow_nan=False), st.just(-math.inf),
-                         st.just(math.nan), st.just(math.inf))  # fmt: skip
-negative_or_bad = st.one_of(st.floats(max_value=-1e-300, allow_nan=False), st.just(math.nan),
-                            st.just(math.inf))  # fmt: skip
+non_positive = st.one_of(
+    st.floats(max_value=0.0, allow_nan=False), st.just(-math.inf), st.just(math.nan), st.just(math.inf)
+)
+negative_or_bad = st.one_of(st.floats(max_value=-1e-300, allow_nan=False), st.just(math.nan), st.just(math.inf))
 gamma_bad = st.one_of(st.floats(max_value=0.0, allow_nan=False), st.just(math.nan))
 not_finite = st.sampled_from([math.nan, math.inf, -math.inf])
 

@@ -42,6 +42,7 @@ __all__ = [
     "solve_exact",
 ]
 
+
 def _version() -> str:
     """The installed distribution's version (pyproject.toml is its one source).
 

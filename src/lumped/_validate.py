@@ -108,9 +108,7 @@ def parse_float(name: str, text: str) -> float:
     except ValueError:
         raise ValueError(f"{name} must be a number, got {text!r}") from None
     if math.isinf(out):
-        raise ValueError(
-            f"{name}: {text} is beyond double precision (about 1.8e308); write inf for infinity"
-        )
+        raise ValueError(f"{name}: {text} is beyond double precision (about 1.8e308); write inf for infinity")
     return out
 
 

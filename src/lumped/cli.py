@@ -74,8 +74,7 @@ def _flag(name: str) -> str:
 _API_TO_OPTION = {name: _flag(name) for name in _CHECKS} | {"t_end/dt": "--t-end/--dt"}
 _LEADING_NAME = re.compile(r"^([a-z][a-z0-9_/]*)(?=:| must)")
 #: Options that take a value (the rest of the command line is names and values).
-_TAKES_VALUE = frozenset(_API_TO_OPTION.values()) - {"--t-end/--dt"} | {"--method", "--output",
-                                                                           "--system"}
+_TAKES_VALUE = frozenset(_API_TO_OPTION.values()) - {"--t-end/--dt"} | {"--method", "--output", "--system"}
 #: Options that describe the single mass, refused with ``--system``.
 _SINGLE_MASS = frozenset(_flag(name) for name, _, _ in _OPTIONS) - {"--t-end", "--dt", "--save-every"}
 #: Signals that unwind through the cleanup while a run is under way (SIGINT
@@ -112,8 +111,7 @@ Run "python -m lumped simulate --help" for the options."""
 
 def _method_help() -> str:
     """One line per registered method: its name and the first line of its docstring."""
-    lines = (f"{name}: {(run.__doc__ or '').strip().splitlines()[0].rstrip('.')}"
-             for name, run in METHODS.items())  # fmt: skip
+    lines = (f"{name}: {(run.__doc__ or '').strip().splitlines()[0].rstrip('.')}" for name, run in METHODS.items())
     return "; ".join(lines) + " [default: backward-euler]"
 
 
@@ -125,21 +123,31 @@ def build_parser() -> argparse.ArgumentParser:
     ``--method`` lists the names of :data:`lumped.driver.METHODS`; a bad one is
     refused by :func:`_clean` with the API's message.
     """
-    parser = _Parser(prog="lumped", description=_DESCRIPTION, epilog=_EXAMPLE, allow_abbrev=False,
-                     formatter_class=argparse.RawDescriptionHelpFormatter)  # fmt: skip
+    parser = _Parser(
+        prog="lumped",
+        description=_DESCRIPTION,
+        epilog=_EXAMPLE,
+        allow_abbrev=False,
+        formatter_class=argparse.RawDescriptionHelpFormatter,
+    )
     parser.add_argument("--version", action="version", version=f"lumped {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True,
-                                parser_class=_Parser)  # fmt: skip
-    sim = sub.add_parser("simulate", help="integrate one motion and write it to a file",
-                         description="Integrate one motion and write it to a .csv or .npz file.",
-                         allow_abbrev=False)  # fmt: skip
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True, parser_class=_Parser)
+    sim = sub.add_parser(
+        "simulate",
+        help="integrate one motion and write it to a file",
+        description="Integrate one motion and write it to a .csv or .npz file.",
+        allow_abbrev=False,
+    )
     for name, default, text in _OPTIONS:
         sim.add_argument(_flag(name), default=default, help=f"{text} [default: {default}]")
-    sim.add_argument("--system", default=None, metavar="FILE.toml",
-                     help="a network of masses and elements described in a TOML file (see the "
-                          "README, Networks); only --t-end, --dt, --save-every, --output go with it")
-    sim.add_argument("--method", default="backward-euler", metavar="{" + ",".join(METHODS) + "}",
-                     help=_method_help())  # fmt: skip
+    sim.add_argument(
+        "--system",
+        default=None,
+        metavar="FILE.toml",
+        help="a network of masses and elements described in a TOML file (see the "
+        "README, Networks); only --t-end, --dt, --save-every, --output go with it",
+    )
+    sim.add_argument("--method", default="backward-euler", metavar="{" + ",".join(METHODS) + "}", help=_method_help())
     required = sim.add_argument_group("required arguments")
     required.add_argument("--output", required=True, help="output file, .csv or .npz")
     return parser
@@ -166,7 +174,7 @@ def option_message(message: str) -> str:
     lead = _LEADING_NAME.match(message)
     if lead is None or lead.group(1) not in _API_TO_OPTION:
         return message
-    return _API_TO_OPTION[lead.group(1)] + message[lead.end():]
+    return _API_TO_OPTION[lead.group(1)] + message[lead.end() :]
 
 
 def _is_option(item: str) -> bool:
@@ -214,8 +222,10 @@ def _parse(argv: Sequence[str]) -> argparse.Namespace:
     if getattr(args, "system", None) is not None:
         single = [i.split("=", 1)[0] for i in items[1:] if i.split("=", 1)[0] in _SINGLE_MASS]
         if single:
-            raise ValueError(f"{single[0]} describes the single mass; it cannot be given "
-                             "with --system, whose file describes the whole system")
+            raise ValueError(
+                f"{single[0]} describes the single mass; it cannot be given "
+                "with --system, whose file describes the whole system"
+            )
     return args
 
 
@@ -291,8 +301,7 @@ class _Output:
         """Create the temporary file with the final file's mode."""
         folder = os.path.dirname(os.path.abspath(self.path))
         try:
-            fd, self.tmp = tempfile.mkstemp(dir=folder, prefix=os.path.basename(self.path) + ".",
-                                            suffix=".part")  # fmt: skip
+            fd, self.tmp = tempfile.mkstemp(dir=folder, prefix=os.path.basename(self.path) + ".", suffix=".part")
             try:
                 os.fchmod(fd, _new_file_mode(self.path))  # mkstemp's 0o600 ignores the umask
             finally:
@@ -338,11 +347,17 @@ def _compute(values: dict[str, object], method: str) -> Trajectory:
 
     v = values
     osc = Oscillator.bingham(v["mass"], v["stiffness"], v["threshold"], v["gamma"])  # type: ignore[arg-type]
-    force = SwitchedSine(v["force_amplitude"], v["force_omega"], v["force_phase"],
-                         v["force_until"])  # type: ignore[arg-type]  # fmt: skip
-    return simulate(osc, v["t_end"], v["dt"], x0=v["x0"], v0=v["v0"],  # type: ignore[arg-type]
-                    force=None if force.is_zero else force, method=method,
-                    save_every=v["save_every"])  # type: ignore[arg-type]  # fmt: skip
+    force = SwitchedSine(v["force_amplitude"], v["force_omega"], v["force_phase"], v["force_until"])  # type: ignore[arg-type]
+    return simulate(
+        osc,
+        v["t_end"],
+        v["dt"],
+        x0=v["x0"],
+        v0=v["v0"],  # type: ignore[arg-type]
+        force=None if force.is_zero else force,
+        method=method,
+        save_every=v["save_every"],
+    )  # type: ignore[arg-type]
 
 
 def _summary(traj: Trajectory) -> str:
@@ -381,17 +396,20 @@ def _simulate_system(args: argparse.Namespace, output: _Output) -> str:
     from lumped.network.files import load_system
     from lumped.network.integrate import simulate_network
 
-    values = {name: _CHECKS[name](name, parse(name, getattr(args, name))) for name, parse in
-              (("t_end", _validate.parse_float), ("dt", _validate.parse_float),
-               ("save_every", _validate.parse_int))}  # fmt: skip
+    values = {
+        name: _CHECKS[name](name, parse(name, getattr(args, name)))
+        for name, parse in (
+            ("t_end", _validate.parse_float),
+            ("dt", _validate.parse_float),
+            ("save_every", _validate.parse_int),
+        )
+    }
     if args.method != "backward-euler":
-        raise ValueError(f"--method: a --system network is solved by backward-euler only, "
-                         f"got {args.method!r}")  # fmt: skip
+        raise ValueError(f"--method: a --system network is solved by backward-euler only, got {args.method!r}")
     _check_output(args.output)
     network = load_system(args.system)
     output.create()
-    traj = simulate_network(network, values["t_end"], values["dt"],
-                            save_every=values["save_every"])  # fmt: skip
+    traj = simulate_network(network, values["t_end"], values["dt"], save_every=values["save_every"])
     output.commit(traj.columns(os.path.splitext(args.output)[1].lower()))
     return traj.summary()
 

@@ -24,14 +24,14 @@ __all__ = ["METHODS", "simulate"]
 Force = SwitchedSine | Callable[[np.ndarray], np.ndarray] | None
 
 
-def _backward_euler(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float,
-                    force: Force, save_every: int) -> Trajectory:  # fmt: skip
+def _backward_euler(
+    osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, force: Force, save_every: int
+) -> Trajectory:
     """Algorithm 1 (backward Euler)."""
     return backward_euler(osc, t_end, dt, x0=x0, v0=v0, force=force, save_every=save_every)
 
 
-def _exact(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float,
-           force: Force, save_every: int) -> Trajectory:  # fmt: skip
+def _exact(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, force: Force, save_every: int) -> Trajectory:
     """Exact event-driven solution, sampled on the grid."""
     sol = solve_exact(osc, t_end, x0=x0, v0=v0, force=force)  # type: ignore[arg-type]
     return sol.sample(dt, save_every)

@@ -450,8 +450,7 @@ class ExactSolution:
         outside = ~((t >= 0) & (t <= self.t_end))
         if outside.any():
             raise ValueError(
-                f"t: times must lie in [0, t_end] = [0, {self.t_end!r}] s, "
-                f"got {float(t[outside].flat[0])!r}"
+                f"t: times must lie in [0, t_end] = [0, {self.t_end!r}] s, got {float(t[outside].flat[0])!r}"
             )
         which, x, v = self._phase_states(t)
         k, law = self.oscillator.stiffness, self.oscillator.dashpot
@@ -484,8 +483,7 @@ class ExactSolution:
         """The same motion solved to a later ``t_end`` (``self`` if not later)."""
         if t_end <= self.t_end:
             return self
-        return solve_exact(self.oscillator, t_end, x0=self.x0, v0=self.v0, force=self.force,
-                           max_events=self.max_events)  # fmt: skip
+        return solve_exact(self.oscillator, t_end, x0=self.x0, v0=self.v0, force=self.force, max_events=self.max_events)
 
     def sample(self, dt: float, save_every: int = 1) -> Trajectory:
         """The exact solution on the grid ``t_n = n*dt`` used by backward Euler.
@@ -504,9 +502,14 @@ class ExactSolution:
             index = np.append(index, n)
         times = index * dt
         sol = self.extended(float(times[-1]))
-        return Trajectory(**sol.evaluate(times), oscillator=self.oscillator, method="exact",
-                          dt=dt, save_every=save_every,
-                          final_rest=sol.rest_through(float(times[-1])))  # fmt: skip
+        return Trajectory(
+            **sol.evaluate(times),
+            oscillator=self.oscillator,
+            method="exact",
+            dt=dt,
+            save_every=save_every,
+            final_rest=sol.rest_through(float(times[-1])),
+        )
 
 
 class _Builder:
@@ -593,9 +596,7 @@ class _Builder:
             self.event(t_b, "forcing-off", x)
         return t_b, direction
 
-    def breakaway(
-        self, t0: float, t_lim: float, x: float, P: float, w: float, ph: float
-    ) -> tuple[float, int]:
+    def breakaway(self, t0: float, t_lim: float, x: float, P: float, w: float, ph: float) -> tuple[float, int]:
         """First time in ``[t0, t_lim]`` at which ``|P sin(w t + ph) - k x|`` exceeds tau."""
         best, direction = t_lim, 0
         if P == 0 or w == 0:
@@ -613,9 +614,15 @@ class _Builder:
         return best, direction
 
     def slip(
-        self, t: float, t_lim: float, x: float, v: float, direction: int,
-        forcing: tuple[float, float, float], seg_end: float,
-    ) -> tuple[float, float, float, str | int | None]:  # fmt: skip
+        self,
+        t: float,
+        t_lim: float,
+        x: float,
+        v: float,
+        direction: int,
+        forcing: tuple[float, float, float],
+        seg_end: float,
+    ) -> tuple[float, float, float, str | int | None]:
         """Record a slip phase from ``(t, x, v)``; return where it ends and what follows."""
         P, w, ph = forcing
         motion = SlipMotion(self.m, self.c, self.k, direction * self.tau, P, w, ph, t, x, v)
@@ -664,9 +671,7 @@ def _half_cycles_to_rest(amplitude: float, band: float, modes: _Modes) -> float:
     return math.log1p((amplitude - band) / (band + beta)) / decrement
 
 
-def _event_estimate(
-    osc: Oscillator, force: SwitchedSine, t_end: float, x0: float, v0: float
-) -> float:
+def _event_estimate(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float, v0: float) -> float:
     """About how many events the solution has before ``t_end`` (an upper estimate).
 
     While the force acts (for ``t_on``) a slipping mass reverses at most about
@@ -689,8 +694,7 @@ def _event_estimate(
     return forced + cycles + 2
 
 
-def _check_inputs(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float, v0: float,
-                  max_events: int) -> None:  # fmt: skip
+def _check_inputs(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float, v0: float, max_events: int) -> None:
     """Refuse, before any work, runs that would overflow, lose the phase or take too long.
 
     Notes
@@ -714,9 +718,7 @@ def _check_inputs(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float,
     dt = max(t_on, math.sqrt(m) / math.sqrt(k))
     check_magnitudes(dataclasses.replace(osc, dashpot=coulomb(osc.threshold)), t_on, dt, x0, v0, P)
     if not osc.dashpot.viscosity * abs(v0) <= MAGNITUDE_LIMIT:
-        raise ValueError(
-            f"v0: the initial viscous force |v0|/gamma exceeds {MAGNITUDE_LIMIT:.0e} N; lower v0"
-        )
+        raise ValueError(f"v0: the initial viscous force |v0|/gamma exceeds {MAGNITUDE_LIMIT:.0e} N; lower v0")
     estimate = _event_estimate(osc, force, t_end, x0, v0)
     if estimate > max_events:
         shown = f"{estimate:.2g}" if estimate < 1e300 else "more than 1e300"
@@ -778,7 +780,7 @@ def solve_exact(
     build.run(x0, v0)
     events = tuple(sorted(build.events, key=lambda e: e.time))  # "rest" is dated back
     _finite("event time", np.array([e.time for e in events]), np.array([e.time for e in events]))
-    _finite("displacement", np.array([p.x_start for p in build.phases]),
-            np.array([p.start for p in build.phases]))  # fmt: skip
-    return ExactSolution(oscillator, force, t_end, tuple(build.phases), events, *build.rest,
-                         x0=x0, v0=v0, max_events=max_events)  # fmt: skip
+    _finite("displacement", np.array([p.x_start for p in build.phases]), np.array([p.start for p in build.phases]))
+    return ExactSolution(
+        oscillator, force, t_end, tuple(build.phases), events, *build.rest, x0=x0, v0=v0, max_events=max_events
+    )

@@ -72,8 +72,9 @@ class Example:
 
     def algorithm1(self, dt: float | None = None) -> Trajectory:
         """Algorithm 1 (backward Euler) at step ``dt`` (s), by default the configured one."""
-        return backward_euler(self.oscillator, self.t_end, self.dt if dt is None else dt,
-                              x0=self.x0, v0=self.v0, force=self.force)  # fmt: skip
+        return backward_euler(
+            self.oscillator, self.t_end, self.dt if dt is None else dt, x0=self.x0, v0=self.v0, force=self.force
+        )
 
     def exact(self) -> ExactSolution:
         """The exact solution over ``[0, t_end]`` (:func:`lumped.solve_exact`)."""

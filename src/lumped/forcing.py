@@ -70,9 +70,7 @@ def validate_force(force: object) -> SwitchedSine | Callable[[np.ndarray], np.nd
     """Return ``force`` if it is ``None``, a :class:`SwitchedSine` or a callable."""
     if force is None or isinstance(force, SwitchedSine) or callable(force):
         return force  # type: ignore[return-value]
-    raise ValueError(
-        f"force must be a SwitchedSine, a callable of time or None, got {type(force).__name__}"
-    )
+    raise ValueError(f"force must be a SwitchedSine, a callable of time or None, got {type(force).__name__}")
 
 
 def _numbers(raw: object, shape: tuple[int, ...]) -> np.ndarray | None:
@@ -102,8 +100,7 @@ def _at(force: Callable[[float], object], t: float) -> float:
         raise ValueError(f"force must return a real number, got {_short(raw)} at t = {t:.6g} s")
     values = np.asarray(raw)
     if values.size != 1 or values.dtype.kind not in "iuf":
-        raise ValueError(f"force must return one real number per time, got {_short(raw)} "
-                         f"at t = {t:.6g} s")  # fmt: skip
+        raise ValueError(f"force must return one real number per time, got {_short(raw)} at t = {t:.6g} s")
     return float(values.reshape(()))
 
 

@@ -51,9 +51,7 @@ class LinearSpring:
     stiffness: float
 
     def __post_init__(self) -> None:
-        object.__setattr__(
-            self, "stiffness", _validate.positive("stiffness", self.stiffness)
-        )
+        object.__setattr__(self, "stiffness", _validate.positive("stiffness", self.stiffness))
 
     def force(self, x: np.ndarray | float) -> np.ndarray | float:
         """Spring force ``F_s = k x`` (N) for displacement ``x`` (m)."""
@@ -154,9 +152,7 @@ class BinghamDashpot(Dashpot):
     gamma: float = 1.0
 
     def __post_init__(self) -> None:
-        object.__setattr__(
-            self, "threshold", _validate.non_negative("threshold", self.threshold)
-        )
+        object.__setattr__(self, "threshold", _validate.non_negative("threshold", self.threshold))
         object.__setattr__(self, "gamma", _validate.positive_or_inf("gamma", self.gamma))
 
     @property
@@ -184,9 +180,7 @@ class BinghamDashpot(Dashpot):
         return DashpotState(*bingham_corrector(predictor, eta, self.threshold, self.viscosity))
 
 
-def bingham_corrector(
-    predictor: float, eta: float, threshold: float, viscosity: float
-) -> tuple[float, float]:
+def bingham_corrector(predictor: float, eta: float, threshold: float, viscosity: float) -> tuple[float, float]:
     """Corrector of Algorithm 1 (lines 5 to 10), returning ``(F_d, v)``.
 
     Notes
@@ -252,13 +246,9 @@ class MonotoneDashpot(Dashpot):
         try:
             raw = self.phi(force)
         except Exception as err:  # a user's callable: report its failure, named
-            raise ValueError(
-                f"velocity_of_force raised {type(err).__name__} at F = {force:.6g} N: {err}"
-            ) from None
+            raise ValueError(f"velocity_of_force raised {type(err).__name__} at F = {force:.6g} N: {err}") from None
         if isinstance(raw, bool) or not isinstance(raw, (int, float, np.integer, np.floating)):
-            raise ValueError(
-                f"velocity_of_force must return a real number, got {raw!r:.40} at F = {force:.6g} N"
-            )
+            raise ValueError(f"velocity_of_force must return a real number, got {raw!r:.40} at F = {force:.6g} N")
         if not math.isfinite(raw):
             raise ValueError(f"velocity_of_force must be finite, got {raw} at F = {force:.6g} N")
         return float(raw)
@@ -280,8 +270,9 @@ class MonotoneDashpot(Dashpot):
             hi *= 2.0
         else:
             raise ValueError(f"velocity {velocity} is outside the range of the law")
-        f = brentq(lambda F: self._phi(F) - velocity, 0.0, hi, xtol=1e-300,
-                   rtol=4 * np.finfo(float).eps)  # the least brentq accepts
+        f = brentq(
+            lambda F: self._phi(F) - velocity, 0.0, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps
+        )  # the least brentq accepts
         return (f, f)
 
     def _resolvent_impl(self, predictor: float, eta: float) -> DashpotState:

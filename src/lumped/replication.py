@@ -57,17 +57,33 @@ from lumped.results import Trajectory, sign_changes
 from lumped.system import Oscillator
 
 __all__ = [
-    "ORIGINAL", "ORIGINAL_DT", "CONVERGENCE_STEPS", "CURVE_TOL", "STRETCH_TOL", "TEXTBOOK", "VERDICT_KEYS",
-    "Verdict", "compute", "clean",
-]  # fmt: skip
+    "ORIGINAL",
+    "ORIGINAL_DT",
+    "CONVERGENCE_STEPS",
+    "CURVE_TOL",
+    "STRETCH_TOL",
+    "TEXTBOOK",
+    "VERDICT_KEYS",
+    "Verdict",
+    "compute",
+    "clean",
+]
 
 ORIGINAL_DT = examples.ORIGINAL_DT
 #: The original's values (its section 3 and eqs. 17), under the configuration's keys.
 ORIGINAL: dict[str, float] = {
-    "mass": 1.0, "stiffness": 100.0, "threshold": 1.0, "gamma": 1.0, "dt": ORIGINAL_DT,
-    "force_amplitude_small": 0.5, "force_amplitude_large": 10.0, "force_omega_over_pi": 5.0,
-    "force_until": 1.0, "x0_small": 0.005, "x0_large": 0.5,
-}  # fmt: skip
+    "mass": 1.0,
+    "stiffness": 100.0,
+    "threshold": 1.0,
+    "gamma": 1.0,
+    "dt": ORIGINAL_DT,
+    "force_amplitude_small": 0.5,
+    "force_amplitude_large": 10.0,
+    "force_omega_over_pi": 5.0,
+    "force_until": 1.0,
+    "x0_small": 0.005,
+    "x0_large": 0.5,
+}
 #: Configuration keys the original does not state (ours whatever their value).
 OURS = ("t_end_forced", "t_end_small", "t_end_large")
 #: Steps of the convergence study (s); the original's is 1e-4.
@@ -87,10 +103,17 @@ STRETCH_TOL = 0.01
 #: (fraction of the static band), forward-Euler step and duration, RK45
 #: tolerances and budget, tanh scales, their duration and LSODA tolerances.
 TEXTBOOK: dict[str, Any] = {
-    "x0_band_fraction": 0.5, "t_end": 1.0, "euler_dt": 1e-4,
-    "rk45_rtol": 1e-8, "rk45_atol": 1e-10, "rk45_budget": 100_000,
-    "tanh_eps": (1e-2, 1e-3, 1e-4, 1e-5), "tanh_t_end": 5.0, "tanh_rtol": 1e-8, "tanh_atol": 1e-12,
-}  # fmt: skip
+    "x0_band_fraction": 0.5,
+    "t_end": 1.0,
+    "euler_dt": 1e-4,
+    "rk45_rtol": 1e-8,
+    "rk45_atol": 1e-10,
+    "rk45_budget": 100_000,
+    "tanh_eps": (1e-2, 1e-3, 1e-4, 1e-5),
+    "tanh_t_end": 5.0,
+    "tanh_rtol": 1e-8,
+    "tanh_atol": 1e-12,
+}
 #: Rest time and rest position of a run still moving at its end time.
 STILL_MOVING = "still moving"
 #: Packages whose versions the article reports.
@@ -275,8 +298,12 @@ _CURVE_TEXT = (
     f"difference at most {_pct(CURVE_TOL)} of the exact curve's largest magnitude (for $F_d$, of the time"
     " integral of $|F_d|$), equal numbers of reversals, rest on the same side of zero"
 )
-_EQ19 = {"eq19_max_x": "$max|x|$", "eq19_max_v": "$max|v|$", "eq19_max_F_s": "$max|F_s|$",
-         "eq19_max_F_d": "$max|F_d - F_1|$"}  # fmt: skip
+_EQ19 = {
+    "eq19_max_x": "$max|x|$",
+    "eq19_max_v": "$max|v|$",
+    "eq19_max_F_s": "$max|F_s|$",
+    "eq19_max_F_d": "$max|F_d - F_1|$",
+}
 
 
 def _curve_scale(q: str, ex: dict[str, Any], osc: Oscillator) -> float:
@@ -308,8 +335,9 @@ def _end_problems(ex: dict[str, Any], be: dict[str, Any]) -> list[str]:
     if isinstance(x_be, str) != isinstance(x_ex, str):
         problems.append("one solution comes to rest by the end of the run and the other does not")
     elif not isinstance(x_be, str) and _same_side(x_be, x_ex) is False:
-        problems.append(f"Algorithm 1 comes to rest on the other side of zero ($x$ = {_num(x_be)} m,"
-                        f" exact {_num(x_ex)} m)")  # fmt: skip
+        problems.append(
+            f"Algorithm 1 comes to rest on the other side of zero ($x$ = {_num(x_be)} m, exact {_num(x_ex)} m)"
+        )
     return problems
 
 
@@ -321,7 +349,9 @@ def _curve_verdict(n: int, q: str, block: dict[str, Any], suffix: str, osc: Osci
     unit = _UNITS[q]
     share = f"{what} = {_num(diff, 2)} {unit}, {_pct(diff / scale)} of the exact curve's {_num(scale)} {unit}"
     problems = [share] * (diff > CURVE_TOL * scale) + _end_problems(ex, be)
-    ending = "still moving at the end in both" if isinstance(ex["rest_position"], str) else "rest on the same side of zero"
+    ending = (
+        "still moving at the end in both" if isinstance(ex["rest_position"], str) else "rest on the same side of zero"
+    )
     fine = f"{share}; {ex['reversals']} reversals in both; {ending}"
     return _verdict(f"Figure {n}", problems, fine, _CURVE_TEXT)
 
@@ -330,8 +360,15 @@ def _figure1(osc: Oscillator) -> dict[str, Any]:
     """The velocity is a function of the force: true of eq. (6) for gamma < inf only."""
     rule = "eq. (6) with the configured $gamma$: $v$ is single-valued in $F_d$ if and only if $gamma < infinity$"
     if math.isinf(osc.dashpot.gamma):
-        return _verdict("Figure 1", ["with $gamma = infinity$ the configured law is Coulomb friction, whose"
-                                     " velocity is not a function of the force either"], "", rule)  # fmt: skip
+        return _verdict(
+            "Figure 1",
+            [
+                "with $gamma = infinity$ the configured law is Coulomb friction, whose"
+                " velocity is not a function of the force either"
+            ],
+            "",
+            rule,
+        )
     return _verdict("Figure 1", [], "$gamma < infinity$: $v$ is a single-valued function of $F_d$", rule)
 
 
@@ -347,38 +384,60 @@ def _remark_3_1(cfg: dict[str, Any]) -> dict[str, Any]:
 def _figure5(cfg: dict[str, Any], eq19: dict[str, float], osc: Oscillator) -> dict[str, Any]:
     """Eq. (19) holds for Algorithm 1 (premise: eq. 18 for F_1)."""
     if cfg["force_amplitude_small"] >= osc.threshold:
-        return _not_checked("Figure 5", f"eq. (18) fails, $max F_1$ = {_num(cfg['force_amplitude_small'])} N"
-                            " $>= mu_s N_f$, so eq. (19) is not the solution of this run")  # fmt: skip
+        return _not_checked(
+            "Figure 5",
+            f"eq. (18) fails, $max F_1$ = {_num(cfg['force_amplitude_small'])} N"
+            " $>= mu_s N_f$, so eq. (19) is not the solution of this run",
+        )
     band, tau = osc.static_band, osc.threshold
-    limits = {"eq19_max_x": band, "eq19_max_v": band * math.sqrt(osc.stiffness / osc.mass),
-              "eq19_max_F_s": tau, "eq19_max_F_d": tau}  # fmt: skip
-    problems = [f"{_EQ19[key]} = {_num(eq19[key])} exceeds {_num(CURVE_TOL * s)}"
-                for key, s in limits.items() if eq19[key] > CURVE_TOL * s]  # fmt: skip
-    return _verdict("Figure 5", problems, "$x$, $v$, $F_s$ and $F_d - F_1$ stay within the tolerance of eq. (19)",
-                    f"$|x|$, $|v|$, $|F_s|$ and $|F_d - F_1|$ at most {_pct(CURVE_TOL)} of $mu_s N_f slash k$,"
-                    " $mu_s N_f slash sqrt(k m)$ and $mu_s N_f$")  # fmt: skip
+    limits = {
+        "eq19_max_x": band,
+        "eq19_max_v": band * math.sqrt(osc.stiffness / osc.mass),
+        "eq19_max_F_s": tau,
+        "eq19_max_F_d": tau,
+    }
+    problems = [
+        f"{_EQ19[key]} = {_num(eq19[key])} exceeds {_num(CURVE_TOL * s)}"
+        for key, s in limits.items()
+        if eq19[key] > CURVE_TOL * s
+    ]
+    return _verdict(
+        "Figure 5",
+        problems,
+        "$x$, $v$, $F_s$ and $F_d - F_1$ stay within the tolerance of eq. (19)",
+        f"$|x|$, $|v|$, $|F_s|$ and $|F_d - F_1|$ at most {_pct(CURVE_TOL)} of $mu_s N_f slash k$,"
+        " $mu_s N_f slash sqrt(k m)$ and $mu_s N_f$",
+    )
 
 
 def _figure10(cfg: dict[str, Any], block: dict[str, Any], suffix: str, osc: Oscillator) -> dict[str, Any]:
     """Released at rest inside the band, the mass does not move (section 2.2)."""
     x0, band = cfg["x0_small"], osc.static_band
     if abs(x0) >= band:
-        return _not_checked("Figure 10", f"$x_0$ = {_num(x0)} m is not inside the static band"
-                            f" $|x| <$ {_num(band)} m, the case of section 2.2")  # fmt: skip
+        return _not_checked(
+            "Figure 10",
+            f"$x_0$ = {_num(x0)} m is not inside the static band $|x| <$ {_num(band)} m, the case of section 2.2",
+        )
     ex, be = block["exact"], block["be" + suffix]
     drift = block["error" + suffix]["max_x"]
     problems = ["the exact solution moves"] * (ex["peak_v"] > 0)
     problems += [f"Algorithm 1 moves by {_num(drift)} m"] * (drift > CURVE_TOL * band or be["peak_v"] > 0)
-    return _verdict("Figure 10", problems, "the mass stays at $x_0$ in both solutions",
-                    f"$v = 0$ throughout and $|x - x_0|$ at most {_pct(CURVE_TOL)} of $mu_s N_f slash k$")
+    return _verdict(
+        "Figure 10",
+        problems,
+        "the mass stays at $x_0$ in both solutions",
+        f"$v = 0$ throughout and $|x - x_0|$ at most {_pct(CURVE_TOL)} of $mu_s N_f slash k$",
+    )
 
 
 def _rest_stretched(block: dict[str, Any], suffix: str, osc: Oscillator) -> dict[str, Any]:
     """The introduction's claim: a free vibration may stop with the spring stretched."""
     ex, be = block["exact"]["rest_position"], block["be" + suffix]["rest_position"]
     label, limit = "rest with the spring stretched", STRETCH_TOL * osc.static_band
-    tolerance = (f"$|x_\"rest\"|$ at least {_pct(STRETCH_TOL)} of $mu_s N_f slash k$ in both solutions,"
-                 " Algorithm 1 on the same side of zero as the exact solution")  # fmt: skip
+    tolerance = (
+        f'$|x_"rest"|$ at least {_pct(STRETCH_TOL)} of $mu_s N_f slash k$ in both solutions,'
+        " Algorithm 1 on the same side of zero as the exact solution"
+    )
     if isinstance(ex, str):
         return _not_checked(label, "the exact solution is still moving at the end of the run")
     problems = [f"the exact solution rests at $x$ = {_num(ex)} m, within {_num(limit)} m of zero"] * (abs(ex) < limit)
@@ -392,9 +451,14 @@ def _rest_stretched(block: dict[str, Any], suffix: str, osc: Oscillator) -> dict
 
 #: The verdicts' keys, in the article's order.
 VERDICT_KEYS = (
-    "figure_1", "figure_2", "figure_3", "figure_4", "remark_3_1",
-    *(f"figure_{n}" for n in range(5, 15)), "rest_stretched",
-)  # fmt: skip
+    "figure_1",
+    "figure_2",
+    "figure_3",
+    "figure_4",
+    "remark_3_1",
+    *(f"figure_{n}" for n in range(5, 15)),
+    "rest_stretched",
+)
 
 
 def _verdicts(cfg: dict[str, Any], out: dict[str, Any], suffix: str, osc: Oscillator) -> dict[str, Any]:
@@ -433,9 +497,14 @@ def _creep(osc: Oscillator, x0: float, eps: float) -> dict[str, float]:
     """
     s = TEXTBOOK
     run = textbook.integrate_adaptive(
-        textbook.TextbookModel(osc, eps=eps), s["tanh_t_end"], x0=x0, method="LSODA",
-        rtol=s["tanh_rtol"], atol=s["tanh_atol"], max_seconds=600.0,
-    )  # fmt: skip
+        textbook.TextbookModel(osc, eps=eps),
+        s["tanh_t_end"],
+        x0=x0,
+        method="LSODA",
+        rtol=s["tanh_rtol"],
+        atol=s["tanh_atol"],
+        max_seconds=600.0,
+    )
     if not run.finished:
         raise RuntimeError(run.message)
     x, v, c = float(run.x[-1]), float(run.v[-1]), osc.dashpot.viscosity
@@ -456,9 +525,15 @@ def _textbook(osc: Oscillator) -> dict[str, Any]:
     model = textbook.TextbookModel(osc)
     euler = textbook.integrate_fixed(model, s["t_end"], s["euler_dt"], x0=x0, scheme="euler")
     rk45 = textbook.integrate_adaptive(
-        model, s["t_end"], x0=x0, method="RK45", rtol=s["rk45_rtol"], atol=s["rk45_atol"],
-        max_nfev=s["rk45_budget"], max_seconds=600.0,
-    )  # fmt: skip
+        model,
+        s["t_end"],
+        x0=x0,
+        method="RK45",
+        rtol=s["rk45_rtol"],
+        atol=s["rk45_atol"],
+        max_nfev=s["rk45_budget"],
+        max_seconds=600.0,
+    )
     tanh = [_creep(osc, x0, eps) for eps in s["tanh_eps"]]
     ratios = [r["rate"] / r["linear_rate"] for r in tanh]
     return {key: s[key] for key in ("t_end", "euler_dt", "rk45_rtol", "rk45_atol", "rk45_budget", "tanh_t_end")} | {
@@ -481,13 +556,22 @@ def _textbook(osc: Oscillator) -> dict[str, Any]:
 # ------------------------------------------------------------------ parameters, provenance
 def _parameters(cfg: dict[str, Any], osc: Oscillator) -> dict[str, Any]:
     return {
-        "m": osc.mass, "k": osc.stiffness, "tau": osc.threshold, "gamma": float(cfg["gamma"]),
-        "dt": float(cfg["dt"]), "band": osc.static_band, "omega_over_pi": cfg["force_omega_over_pi"],
-        "force_until": cfg["force_until"], "P_small": cfg["force_amplitude_small"],
-        "P_large": cfg["force_amplitude_large"], "t_end_forced": cfg["t_end_forced"],
-        "t_end_small": cfg["t_end_small"], "t_end_large": cfg["t_end_large"],
-        "x0_small": cfg["x0_small"], "x0_large": cfg["x0_large"],
-    }  # fmt: skip
+        "m": osc.mass,
+        "k": osc.stiffness,
+        "tau": osc.threshold,
+        "gamma": float(cfg["gamma"]),
+        "dt": float(cfg["dt"]),
+        "band": osc.static_band,
+        "omega_over_pi": cfg["force_omega_over_pi"],
+        "force_until": cfg["force_until"],
+        "P_small": cfg["force_amplitude_small"],
+        "P_large": cfg["force_amplitude_large"],
+        "t_end_forced": cfg["t_end_forced"],
+        "t_end_small": cfg["t_end_small"],
+        "t_end_large": cfg["t_end_large"],
+        "x0_small": cfg["x0_small"],
+        "x0_large": cfg["x0_large"],
+    }
 
 
 def _original(cfg: dict[str, Any]) -> dict[str, Any]:
@@ -545,8 +629,11 @@ def compute(cfg: dict[str, Any] | None = None) -> dict[str, Any]:
     out["convergence"], out["convergence_rest"] = _convergence(runs)
     out["textbook"] = _textbook(osc)
     verdicts = {"configured": _verdicts(cfg, out, "", osc), "original": _verdicts(cfg, out, "_original", osc)}
-    out["verdicts"] = verdicts | {"summary": {key: _summary(v) for key, v in verdicts.items()},
-                                  "curve_tol": CURVE_TOL, "stretch_tol": STRETCH_TOL}  # fmt: skip
+    out["verdicts"] = verdicts | {
+        "summary": {key: _summary(v) for key, v in verdicts.items()},
+        "curve_tol": CURVE_TOL,
+        "stretch_tol": STRETCH_TOL,
+    }
     out["provenance"] = _provenance(cfg)
     return clean(out)
 

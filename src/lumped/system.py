@@ -85,9 +85,7 @@ def initial_dashpot_force(osc: Oscillator, force0: float, x0: float, v0: float) 
     return math.copysign(min(abs(net), law.threshold), net)
 
 
-def check_magnitudes(
-    osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, amplitude: float
-) -> None:
+def check_magnitudes(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, amplitude: float) -> None:
     """Refuse a run whose forces could overflow double precision.
 
     Notes
@@ -123,8 +121,13 @@ def check_magnitudes(
     quantities["viscous term |c F~|"] = c * sum(quantities.values())
     for quantity, value in quantities.items():
         if not value <= MAGNITUDE_LIMIT:
-            name = "dt" if quantity.startswith("momentum") and m / dt > 1e150 else max(
-                parts, key=parts.get  # type: ignore[arg-type]
+            name = (
+                "dt"
+                if quantity.startswith("momentum") and m / dt > 1e150
+                else max(
+                    parts,
+                    key=parts.get,  # type: ignore[arg-type]
+                )
             )
             shown = f"{value:.3g}" if math.isfinite(value) else "more than 1.8e308"
             raise ValueError(

@@ -27,8 +27,7 @@ from lumped.laws import BinghamDashpot
 from lumped.results import sign_changes
 from lumped.system import Oscillator
 
-__all__ = ["TextbookModel", "integrate_fixed", "integrate_adaptive", "AdaptiveOutcome",
-           "FixedStepResult"]  # fmt: skip
+__all__ = ["TextbookModel", "integrate_fixed", "integrate_adaptive", "AdaptiveOutcome", "FixedStepResult"]
 
 
 @dataclass(frozen=True)
@@ -93,9 +92,14 @@ SECONDS_PER_STEP = {"euler": 6e-6, "rk4": 2.4e-5}
 
 
 def integrate_fixed(
-    model: TextbookModel, t_end: float, dt: float, *, x0: float = 0.0, v0: float = 0.0,
+    model: TextbookModel,
+    t_end: float,
+    dt: float,
+    *,
+    x0: float = 0.0,
+    v0: float = 0.0,
     scheme: str = "euler",
-) -> FixedStepResult:  # fmt: skip
+) -> FixedStepResult:
     """Integrate the textbook ODE with a fixed-step explicit scheme.
 
     Parameters
@@ -166,10 +170,17 @@ RTOL_MIN = 100 * float(np.finfo(float).eps)
 
 
 def integrate_adaptive(
-    model: TextbookModel, t_end: float, *, x0: float = 0.0, v0: float = 0.0,
-    method: str = "RK45", rtol: float = 1e-8, atol: float = 1e-10,
-    max_nfev: int = 200_000, max_seconds: float = 10.0,
-) -> AdaptiveOutcome:  # fmt: skip
+    model: TextbookModel,
+    t_end: float,
+    *,
+    x0: float = 0.0,
+    v0: float = 0.0,
+    method: str = "RK45",
+    rtol: float = 1e-8,
+    atol: float = 1e-10,
+    max_nfev: int = 200_000,
+    max_seconds: float = 10.0,
+) -> AdaptiveOutcome:
     """Run one of ``scipy.integrate.solve_ivp``'s methods on the model under a budget.
 
     The loop is the one ``solve_ivp`` runs (``solver.step()`` until the solver
@@ -221,7 +232,7 @@ def integrate_adaptive(
     elif solver.status == "failed":
         message = f"{method}: failed at t = {ts[-1]:.6g} s: {failure}"
     else:
-        message = (f"{method}: budget exhausted ({solver.nfev} evaluations, {wall:.2f} s) "
-                   f"at t = {ts[-1]:.6g} of {t_end:g} s")  # fmt: skip
-    return AdaptiveOutcome(finished, float(ts[-1]), int(solver.nfev), wall, message,
-                           np.array(ts), z[:, 0], z[:, 1])  # fmt: skip
+        message = (
+            f"{method}: budget exhausted ({solver.nfev} evaluations, {wall:.2f} s) at t = {ts[-1]:.6g} of {t_end:g} s"
+        )
+    return AdaptiveOutcome(finished, float(ts[-1]), int(solver.nfev), wall, message, np.array(ts), z[:, 0], z[:, 1])

@@ -49,11 +49,24 @@ _QUANTITIES = ("", "velocity v", "dashpot force F_d", "spring force F_s")
 
 
 def _bingham_block(
-    m: float, k: float, dt: float, tau: float, c: float,
-    n_first: int, n_last: int, n_steps: int, save_every: int,
-    amp: float, omega: float, phase: float, until: float,
-    force_values: np.ndarray, state: np.ndarray, counters: np.ndarray, out: np.ndarray,
-) -> None:  # fmt: skip
+    m: float,
+    k: float,
+    dt: float,
+    tau: float,
+    c: float,
+    n_first: int,
+    n_last: int,
+    n_steps: int,
+    save_every: int,
+    amp: float,
+    omega: float,
+    phase: float,
+    until: float,
+    force_values: np.ndarray,
+    state: np.ndarray,
+    counters: np.ndarray,
+    out: np.ndarray,
+) -> None:
     """Algorithm 1 for the Bingham law over steps ``n_first..n_last``.
 
     ``state`` is ``(F_s, v, F_d)`` and ``counters`` is ``(row, rest_start,
@@ -112,9 +125,17 @@ _SECONDS_PER_STEP = {"compiled": 1.5e-8, "python": 1.2e-6}
 
 
 def _generic_block(
-    osc: Oscillator, dt: float, n_first: int, n_last: int, n_steps: int, save_every: int,
-    force_values: np.ndarray, state: np.ndarray, counters: np.ndarray, out: np.ndarray,
-) -> None:  # fmt: skip
+    osc: Oscillator,
+    dt: float,
+    n_first: int,
+    n_last: int,
+    n_steps: int,
+    save_every: int,
+    force_values: np.ndarray,
+    state: np.ndarray,
+    counters: np.ndarray,
+    out: np.ndarray,
+) -> None:
     """Backward Euler for any dashpot law, through its resolvent (same contract)."""
     m, k, law = osc.mass, osc.spring.stiffness, osc.dashpot
     f_s, v = float(state[0]), float(state[1])
@@ -167,8 +188,9 @@ def _stopped(counters: np.ndarray, dt: float, force: float) -> ValueError:
     )
 
 
-def _check_run(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float,
-               force: object, kernel: str, n_steps: int) -> None:  # fmt: skip
+def _check_run(
+    osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, force: object, kernel: str, n_steps: int
+) -> None:
     """Refuse up front what would overflow or run too long."""
     amplitude = force.amplitude if isinstance(force, SwitchedSine) else 0.0
     check_magnitudes(osc, t_end, dt, x0, v0, amplitude)
@@ -176,8 +198,17 @@ def _check_run(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float,
     _validate.run_time(n_steps, _seconds_per_step(osc, force, kernel, dt), what)
 
 
-def _march(osc: Oscillator, dt: float, n_steps: int, save_every: int, force: object,
-           kernel: str, state: np.ndarray, counters: np.ndarray, out: np.ndarray) -> None:  # fmt: skip
+def _march(
+    osc: Oscillator,
+    dt: float,
+    n_steps: int,
+    save_every: int,
+    force: object,
+    kernel: str,
+    state: np.ndarray,
+    counters: np.ndarray,
+    out: np.ndarray,
+) -> None:
     """Advance steps ``1..n_steps`` block by block; raise on a non-finite step."""
     law, m, k = osc.dashpot, osc.mass, osc.spring.stiffness
     bingham = isinstance(law, BinghamDashpot)
@@ -191,9 +222,25 @@ def _march(osc: Oscillator, dt: float, n_steps: int, save_every: int, force: obj
         if loop is None:
             _generic_block(osc, dt, first, last, n_steps, save_every, table, state, counters, out)
         else:
-            loop(m, k, dt, law.threshold, law.viscosity, first, last, n_steps, save_every,
-                 sine.amplitude, sine.omega, sine.phase, sine.until, table, state, counters,
-                 out)  # fmt: skip
+            loop(
+                m,
+                k,
+                dt,
+                law.threshold,
+                law.viscosity,
+                first,
+                last,
+                n_steps,
+                save_every,
+                sine.amplitude,
+                sine.omega,
+                sine.phase,
+                sine.until,
+                table,
+                state,
+                counters,
+                out,
+            )
         if counters[2]:
             n = int(counters[2])
             f = float(table[n - first]) if tabulate else float(sine(n * dt))
@@ -271,8 +318,9 @@ def backward_euler(
     _march(oscillator, dt, n_steps, stride, force, kernel, state, counters, out)
     rest = int(counters[1])
     final_rest = (rest * dt, float(out[-1, 1])) if state[1] == 0 else (math.nan, math.nan)
-    return Trajectory.from_array(out, oscillator, method="backward-euler", dt=dt,
-                                 save_every=save_every, final_rest=final_rest)  # fmt: skip
+    return Trajectory.from_array(
+        out, oscillator, method="backward-euler", dt=dt, save_every=save_every, final_rest=final_rest
+    )
 
 
 #: The paper's name for the method.

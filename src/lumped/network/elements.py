@@ -73,13 +73,15 @@ def _rigid(w: float, lo: float, hi: float) -> Piece:
 
 def _band(threshold: float, c: float, lo: float = -_INF, hi: float = _INF) -> tuple[Piece, ...]:
     """The Bingham step graph: slip- on ``[lo, 0]``, stick, slip+ on ``[0, hi]``."""
-    return (_free(-threshold, c, lo, 0.0), _rigid(0.0, -threshold, threshold),
-            _free(threshold, c, 0.0, hi))  # fmt: skip
+    return (_free(-threshold, c, lo, 0.0), _rigid(0.0, -threshold, threshold), _free(threshold, c, 0.0, hi))
 
 
 def _checked_pair(between: object) -> tuple[str, str]:
-    if (not isinstance(between, (tuple, list)) or len(between) != 2
-            or not all(isinstance(p, str) and p for p in between)):  # fmt: skip
+    if (
+        not isinstance(between, (tuple, list))
+        or len(between) != 2
+        or not all(isinstance(p, str) and p for p in between)
+    ):
         raise ValueError(f"between must be two point names, got {between!r:.60}")
     if between[0] == between[1]:
         raise ValueError(f"between joins {between[0]!r} to itself")
@@ -245,10 +247,7 @@ class SpringString(Element):
 
     def initial_state(self, e0: float, w0: float) -> float:
         if e0 > self.length:
-            raise ValueError(
-                f"x0: the initial elongation {e0:.6g} m is beyond the string's length "
-                f"{self.length:.6g} m"
-            )
+            raise ValueError(f"x0: the initial elongation {e0:.6g} m is beyond the string's length {self.length:.6g} m")
         return e0
 
     def step_graph(self, state: float, dt: float) -> tuple[Piece, ...]:
@@ -380,9 +379,11 @@ class MaxwellBingham(_ForceState, Element):
         c = BinghamDashpot(tau, self.gamma).viscosity
         lo, hi = (-tau - state) / kdt, (tau - state) / kdt  # |p| <= tau
         slope = c * kdt / (c + kdt)
-        return (_free((c * state - kdt * tau) / (c + kdt), slope, -_INF, lo),
-                _free(state, kdt, lo, hi),
-                _free((c * state + kdt * tau) / (c + kdt), slope, hi, _INF))  # fmt: skip
+        return (
+            _free((c * state - kdt * tau) / (c + kdt), slope, -_INF, lo),
+            _free(state, kdt, lo, hi),
+            _free((c * state + kdt * tau) / (c + kdt), slope, hi, _INF),
+        )
 
     def dashpot_rate(self, f: float) -> float:
         """The dashpot's elongation rate (m/s) under force ``f`` (N)."""
@@ -431,8 +432,7 @@ class LockingBingham(Element):
     def step_graph(self, state: float, dt: float) -> tuple[Piece, ...]:
         lock, edge = self.v_lock, self._edge()
         c = BinghamDashpot(self.threshold, self.gamma).viscosity
-        return (_rigid(-lock, -_INF, -edge), *_band(self.threshold, c, -lock, lock),
-                _rigid(lock, edge, _INF))  # fmt: skip
+        return (_rigid(-lock, -_INF, -edge), *_band(self.threshold, c, -lock, lock), _rigid(lock, edge, _INF))
 
     def rate_graph(self, state: float, w0: float) -> tuple[Piece, ...]:
         edge = self._edge()
@@ -487,6 +487,5 @@ class Monotone(Element):
 
 #: Element kinds by their name in system files.
 KINDS: dict[str, type[Element]] = {
-    cls.kind: cls
-    for cls in (Spring, SpringString, Bingham, MaxwellBingham, LinearDashpot, LockingBingham)
+    cls.kind: cls for cls in (Spring, SpringString, Bingham, MaxwellBingham, LinearDashpot, LockingBingham)
 }

@@ -45,8 +45,7 @@ def parse_system(text: str, source: str = "<string>") -> Network:
         raise ValueError(f"{source}: not valid TOML: {err}") from None
     unknown = sorted(set(data) - _TABLES)
     if unknown:
-        raise ValueError(f"{source}: unknown table {unknown[0]!r}; expected [[mass]], "
-                         "[[element]] and [[force]]")  # fmt: skip
+        raise ValueError(f"{source}: unknown table {unknown[0]!r}; expected [[mass]], [[element]] and [[force]]")
     tables = {}
     for key in sorted(_TABLES):
         value = data.get(key, [])
@@ -54,8 +53,7 @@ def parse_system(text: str, source: str = "<string>") -> Network:
             raise ValueError(f"{source}: {key} must be written as [[{key}]] tables")
         tables[key] = value
     masses = [_entry(source, "mass", i, t, _mass) for i, t in enumerate(tables["mass"], 1)]
-    elements = [_entry(source, "element", i, t, _element)
-                for i, t in enumerate(tables["element"], 1)]  # fmt: skip
+    elements = [_entry(source, "element", i, t, _element) for i, t in enumerate(tables["element"], 1)]
     loads = [_entry(source, "force", i, t, _force) for i, t in enumerate(tables["force"], 1)]
     try:
         net = Network(masses, elements, loads)

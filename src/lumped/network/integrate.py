@@ -78,9 +78,14 @@ class NetworkTrajectory:
         """The output arrays: ``.npz`` names or ``.csv`` columns (see the README)."""
         net = self.network
         if suffix == ".npz":
-            return {"t": self.t, "x": self.x, "v": self.v, "force": self.force,
-                    "mass_names": np.array(net.mass_names),
-                    "element_names": np.array(net.element_names)}  # fmt: skip
+            return {
+                "t": self.t,
+                "x": self.x,
+                "v": self.v,
+                "force": self.force,
+                "mass_names": np.array(net.mass_names),
+                "element_names": np.array(net.element_names),
+            }
         out = {"t": self.t}
         out |= {f"x_{n}": self.x[:, i] for i, n in enumerate(net.mass_names)}
         out |= {f"v_{n}": self.v[:, i] for i, n in enumerate(net.mass_names)}
@@ -92,11 +97,11 @@ class NetworkTrajectory:
         parts = []
         for i, name in enumerate(self.network.mass_names):
             if math.isnan(self.rest_time[i]):
-                parts.append(f"{name} still moving at t = {self.t[-1]:.6g} s "
-                             f"(x = {self.x[-1, i]:.9g} m)")  # fmt: skip
+                parts.append(f"{name} still moving at t = {self.t[-1]:.6g} s (x = {self.x[-1, i]:.9g} m)")
             else:
-                parts.append(f"{name} at rest from t = {self.rest_time[i]:.10g} s "
-                             f"at x = {self.rest_position[i]:.10g} m")  # fmt: skip
+                parts.append(
+                    f"{name} at rest from t = {self.rest_time[i]:.10g} s at x = {self.rest_position[i]:.10g} m"
+                )
         return "; ".join(parts)
 
 
@@ -116,8 +121,9 @@ def _orientation(el: Element) -> float:
     return 1.0 if el.between[0] == "ground" else -1.0
 
 
-def _via_algorithm1(net: Network, pair: tuple[Spring, Bingham], t_end: float, dt: float,
-                    save_every: int) -> NetworkTrajectory:  # fmt: skip
+def _via_algorithm1(
+    net: Network, pair: tuple[Spring, Bingham], t_end: float, dt: float, save_every: int
+) -> NetworkTrajectory:
     from lumped.system import Oscillator
     from lumped.timestepping import backward_euler
 
@@ -126,16 +132,26 @@ def _via_algorithm1(net: Network, pair: tuple[Spring, Bingham], t_end: float, dt
     osc = Oscillator.bingham(m.mass, spring.stiffness, dashpot.threshold, dashpot.gamma)
     force = net.loads[0].force if net.loads else None
     tr = backward_euler(osc, t_end, dt, x0=m.x0, v0=m.v0, force=force, save_every=save_every)
-    force_cols = {spring.name: _orientation(spring) * tr.F_s,
-                  dashpot.name: _orientation(dashpot) * tr.F_d}  # fmt: skip
+    force_cols = {spring.name: _orientation(spring) * tr.F_s, dashpot.name: _orientation(dashpot) * tr.F_d}
     forces = np.column_stack([force_cols[e.name] for e in net.elements])
-    states = np.column_stack([force_cols[spring.name] if e is spring else np.zeros_like(tr.t)
-                              for e in net.elements])  # fmt: skip
-    rigid = np.column_stack([(tr.v == 0) & (tr.t > 0) if e is dashpot else np.zeros(tr.t.size, bool)
-                             for e in net.elements])  # fmt: skip
-    return NetworkTrajectory(tr.t, tr.x[:, None], tr.v[:, None], forces, states, rigid,
-                             np.array([tr.rest_time]), np.array([tr.rest_position]), net, dt,
-                             "algorithm1", 0)  # fmt: skip
+    states = np.column_stack([force_cols[spring.name] if e is spring else np.zeros_like(tr.t) for e in net.elements])
+    rigid = np.column_stack(
+        [(tr.v == 0) & (tr.t > 0) if e is dashpot else np.zeros(tr.t.size, bool) for e in net.elements]
+    )
+    return NetworkTrajectory(
+        tr.t,
+        tr.x[:, None],
+        tr.v[:, None],
+        forces,
+        states,
+        rigid,
+        np.array([tr.rest_time]),
+        np.array([tr.rest_position]),
+        net,
+        dt,
+        "algorithm1",
+        0,
+    )
 
 
 def _sigma(net: Network, inertia: np.ndarray, dt: float) -> np.ndarray:
@@ -147,8 +163,9 @@ def _sigma(net: Network, inertia: np.ndarray, dt: float) -> np.ndarray:
         seen[first[e]] += dt * k
         seen[second[e]] += dt * k
     pairs = zip(seen[first], seen[second])
-    return np.array([b if math.isinf(a) else a if math.isinf(b) else a * b / (a + b)
-                     for a, b in pairs])  # the ground is infinitely stiff
+    return np.array(
+        [b if math.isinf(a) else a if math.isinf(b) else a * b / (a + b) for a, b in pairs]
+    )  # the ground is infinitely stiff
 
 
 def _graphs(net: Network, state: list[float], dt: float | None, w0: np.ndarray | None) -> list:
@@ -175,13 +192,13 @@ def _initial(net: Network, first: np.ndarray, second: np.ndarray):
             raise ValueError(f"element {el.name!r}: {err}") from None
     inertia = np.array([m.mass for m in net.masses])
     f0 = net.load_table(np.zeros(1))[0]
-    sol = solve_step(first, second, inertia, f0, _graphs(net, state, None, w0),
-                     _sigma(net, inertia, 1.0))  # fmt: skip
+    sol = solve_step(first, second, inertia, f0, _graphs(net, state, None, w0), _sigma(net, inertia, 1.0))
     return x[:-1], v[:-1], state, sol.f
 
 
-def simulate_network(network: Network, t_end: float, dt: float, *, save_every: int = 1,
-                     solver: str = "auto") -> NetworkTrajectory:  # fmt: skip
+def simulate_network(
+    network: Network, t_end: float, dt: float, *, save_every: int = 1, solver: str = "auto"
+) -> NetworkTrajectory:
     """Integrate a network with backward Euler on the grid ``t_n = n*dt``.
 
     Parameters
@@ -238,8 +255,7 @@ class _Record:
         self.row += 1
 
 
-def _march(net: Network, dt: float, n_steps: int, save_every: int,
-           rows: int) -> NetworkTrajectory:  # fmt: skip
+def _march(net: Network, dt: float, n_steps: int, save_every: int, rows: int) -> NetworkTrajectory:
     first, second = net.incidence()
     x, v, state, f = _initial(net, first, second)
     inertia = np.array([m.mass / dt for m in net.masses])
@@ -254,22 +270,25 @@ def _march(net: Network, dt: float, n_steps: int, save_every: int,
         for n in range(start, stop + 1):
             rhs = inertia * v + table[n - start]
             try:
-                sol = solve_step(first, second, inertia, rhs, _graphs(net, state, dt, None),
-                                 sigma, modes)  # fmt: skip
+                sol = solve_step(first, second, inertia, rhs, _graphs(net, state, dt, None), sigma, modes)
             except StepError as err:
                 raise ValueError(f"dt: the step to t = {n * dt:.6g} s failed: {err}") from None
             v, modes, most = sol.v, sol.modes, max(most, sol.iterations)
             x = x + dt * v
-            state = [el.next_state(s, dt, float(we), float(fe), r) for el, s, we, fe, r
-                     in zip(net.elements, state, sol.w, sol.f, sol.rigid)]  # fmt: skip
+            state = [
+                el.next_state(s, dt, float(we), float(fe), r)
+                for el, s, we, fe, r in zip(net.elements, state, sol.w, sol.f, sol.rigid)
+            ]
             if not (np.isfinite(v).all() and np.isfinite(sol.f).all()):
-                raise ValueError(f"the run overflowed at t = {n * dt:.6g} s (step {n}): "
-                                 "a velocity or force is not finite")  # fmt: skip
+                raise ValueError(
+                    f"the run overflowed at t = {n * dt:.6g} s (step {n}): a velocity or force is not finite"
+                )
             rest[v != 0] = n + 1
             if n % save_every == 0 or n == n_steps:
                 rec.save(n * dt, x, v, sol.f, state, sol.rigid)
     still = v != 0
     rest_time = np.where(still, np.nan, np.minimum(rest, n_steps) * dt)
     rest_position = np.where(still, np.nan, rec.x[rec.row - 1])
-    return NetworkTrajectory(rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid, rest_time,
-                             rest_position, net, dt, "active-set", most)  # fmt: skip
+    return NetworkTrajectory(
+        rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid, rest_time, rest_position, net, dt, "active-set", most
+    )

@@ -26,8 +26,10 @@ NAME_PATTERN = re.compile(r"[A-Za-z_][A-Za-z0-9_.\-]*\Z")
 
 def _name(what: str, value: object) -> str:
     if not isinstance(value, str) or not NAME_PATTERN.match(value):
-        raise ValueError(f"{what} must be a name of letters, digits, '_', '.', '-' "
-                         f"(not starting with a digit, '.' or '-'), got {value!r:.40}")  # fmt: skip
+        raise ValueError(
+            f"{what} must be a name of letters, digits, '_', '.', '-' "
+            f"(not starting with a digit, '.' or '-'), got {value!r:.40}"
+        )
     return value
 
 
@@ -126,8 +128,7 @@ class Network:
         for what, cls in (("masses", Mass), ("elements", Element), ("loads", Load)):
             for item in getattr(self, what):
                 if not isinstance(item, cls):
-                    raise ValueError(f"{what} must hold {cls.__name__} objects, "
-                                     f"got {type(item).__name__}")  # fmt: skip
+                    raise ValueError(f"{what} must hold {cls.__name__} objects, got {type(item).__name__}")
         if not self.masses:
             raise ValueError("masses: a network needs at least one mass")
 
@@ -142,22 +143,25 @@ class Network:
         for el in self.elements:
             for point in el.between:
                 if point not in known:
-                    raise ValueError(f"element {el.name!r}: between names {point!r}, "
-                                     "which is neither a mass nor 'ground'")  # fmt: skip
+                    raise ValueError(
+                        f"element {el.name!r}: between names {point!r}, which is neither a mass nor 'ground'"
+                    )
         for load in self.loads:
             if load.on not in known - {GROUND}:
                 raise ValueError(f"force on {load.on!r}: there is no mass of that name")
 
     def _check_loops(self) -> None:
         index = self.point_index()
-        loop = rigid_loop(index, [((index[el.between[0]], index[el.between[1]]), el)
-                                  for el in self.elements if el.rigid_capable])
+        loop = rigid_loop(
+            index, [((index[el.between[0]], index[el.between[1]]), el) for el in self.elements if el.rigid_capable]
+        )
         if loop:
             names = ", ".join(repr(el.name) for el in loop)
             raise ValueError(
                 f"elements {names} close a loop of elements that can all be rigid at once "
                 "(sticking, taut or locked), so their forces would not be unique; "
-                "merge them into one element or put a compliant element in the loop")
+                "merge them into one element or put a compliant element in the loop"
+            )
 
     # -- indices ------------------------------------------------------------
     def point_index(self) -> dict[str, int]:
@@ -182,8 +186,7 @@ class Network:
     def incidence(self) -> tuple[np.ndarray, np.ndarray]:
         """Arrays ``first``, ``second`` of point indices (the ground is ``len(masses)``)."""
         index = self.point_index()
-        pairs = np.array([(index[el.between[0]], index[el.between[1]]) for el in self.elements],
-                         dtype=np.intp)  # fmt: skip
+        pairs = np.array([(index[el.between[0]], index[el.between[1]]) for el in self.elements], dtype=np.intp)
         pairs = pairs.reshape(len(self.elements), 2)
         return pairs[:, 0].copy(), pairs[:, 1].copy()
 

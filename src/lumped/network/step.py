@@ -80,10 +80,16 @@ class _Topology(NamedTuple):
     n_mass: int
 
 
-def solve_step(first: Sequence[int], second: Sequence[int], inertia: np.ndarray,
-               rhs: np.ndarray, graphs: Sequence[Graph], sigma: np.ndarray,
-               modes: Sequence[int] | None = None, max_iterations: int | None = None,
-               ) -> StepSolution:  # fmt: skip
+def solve_step(
+    first: Sequence[int],
+    second: Sequence[int],
+    inertia: np.ndarray,
+    rhs: np.ndarray,
+    graphs: Sequence[Graph],
+    sigma: np.ndarray,
+    modes: Sequence[int] | None = None,
+    max_iterations: int | None = None,
+) -> StepSolution:
     """Solve the one-step problem (see the module docstring).
 
     Parameters
@@ -108,8 +114,7 @@ def solve_step(first: Sequence[int], second: Sequence[int], inertia: np.ndarray,
         If no scale settles within the bound.
     """
     topo = _Topology(list(first), list(second), inertia.size)
-    guess = [len(g) // 2 if not isinstance(g, Dashpot) else 0 for g in graphs] \
-        if modes is None else list(modes)  # fmt: skip
+    guess = [len(g) // 2 if not isinstance(g, Dashpot) else 0 for g in graphs] if modes is None else list(modes)
     bound = 20 + 2 * len(graphs) if max_iterations is None else max_iterations
     for scale in SIGMA_SCALES:
         out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound)
@@ -120,12 +125,20 @@ def solve_step(first: Sequence[int], second: Sequence[int], inertia: np.ndarray,
         out = _iterate(topo, inertia, rhs, graphs, sigma, guess, bound)
         if out is not None:
             return out
-    raise StepError(f"the active-set iteration did not settle (tried sigma scales "
-                    f"{SIGMA_SCALES}, {bound} iterations each)")  # fmt: skip
+    raise StepError(
+        f"the active-set iteration did not settle (tried sigma scales {SIGMA_SCALES}, {bound} iterations each)"
+    )
 
 
-def _iterate(topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, graphs: Sequence[Graph],
-             sigma: np.ndarray, modes: list, bound: int) -> StepSolution | None:  # fmt: skip
+def _iterate(
+    topo: _Topology,
+    inertia: np.ndarray,
+    rhs: np.ndarray,
+    graphs: Sequence[Graph],
+    sigma: np.ndarray,
+    modes: list,
+    bound: int,
+) -> StepSolution | None:
     """The active-set loop at one scale; ``None`` if it cycles or hits the bound."""
     seen: set[tuple] = set()
     points = [None] * len(graphs)  # a Monotone element's current (w, f)
@@ -144,8 +157,7 @@ def _iterate(topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, graphs: Sequ
     return None
 
 
-def _dual_sweeps(topo: _Topology, inertia: np.ndarray, rhs: np.ndarray,
-                 graphs: Sequence[Graph], sweeps: int) -> list:  # fmt: skip
+def _dual_sweeps(topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, graphs: Sequence[Graph], sweeps: int) -> list:
     """Modes from Gauss-Seidel on the dual problem, a fallback when the active set cycles.
 
     The dual of the step, minimise ``|r - B^T f|^2_{D^-1}/2 + sum_e psi_e*(f_e)``
@@ -233,8 +245,9 @@ def _clusters(topo: _Topology, pieces: list[Piece]) -> tuple[list[int], list[flo
     return root, offset
 
 
-def _linear(topo: _Topology, inertia: np.ndarray, rhs: np.ndarray,
-            pieces: list[Piece]) -> tuple[np.ndarray, np.ndarray, np.ndarray]:  # fmt: skip
+def _linear(
+    topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, pieces: list[Piece]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Solve with every mode fixed: velocities, rates and forces."""
     n, ground = topo.n_mass, topo.n_mass
     root, offset = _clusters(topo, pieces)
@@ -252,8 +265,15 @@ def _linear(topo: _Topology, inertia: np.ndarray, rhs: np.ndarray,
     return np.array(v_all[:n]), np.array(w), np.array(f)
 
 
-def _assemble(topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, pieces: list[Piece],
-              col: list[int], offset: list[float], size: int) -> tuple[dict, np.ndarray]:  # fmt: skip
+def _assemble(
+    topo: _Topology,
+    inertia: np.ndarray,
+    rhs: np.ndarray,
+    pieces: list[Piece],
+    col: list[int],
+    offset: list[float],
+    size: int,
+) -> tuple[dict, np.ndarray]:
     """The merged system as ``{(row, col): value}`` and its right-hand side."""
     entries: dict[tuple[int, int], float] = {}
     load = np.zeros(size)
@@ -304,8 +324,7 @@ def _solve(entries: dict, load: np.ndarray) -> np.ndarray:
     return solveh_banded(upper, load)
 
 
-def _rates_forces(topo: _Topology, pieces: list[Piece],
-                  v_all: list[float]) -> tuple[list[float], list[float]]:  # fmt: skip
+def _rates_forces(topo: _Topology, pieces: list[Piece], v_all: list[float]) -> tuple[list[float], list[float]]:
     """Each element's rate (the fixed rate on a rigid piece) and free force."""
     w, f = [], []
     for e, p in enumerate(pieces):
@@ -319,8 +338,9 @@ def _rates_forces(topo: _Topology, pieces: list[Piece],
     return w, f
 
 
-def _rigid_forces(topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, pieces: list[Piece],
-                  v_all: list[float], f: list[float]) -> None:  # fmt: skip
+def _rigid_forces(
+    topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, pieces: list[Piece], v_all: list[float], f: list[float]
+) -> None:
     """Forces of the rigid elements, leaf to root of the rigid forest (in place)."""
     rigid = [e for e, p in enumerate(pieces) if p.rigid]
     if not rigid:

@@ -74,8 +74,9 @@ def new_axes(ax: Axes | None = None, **subplot_kw: object) -> tuple[Figure, Axes
 
 
 @styled
-def save_figure(fig: Figure, stem: str, folder: str | os.PathLike[str] | None = None,
-                formats: tuple[str, ...] = ("pdf", "png")) -> list[Path]:  # fmt: skip
+def save_figure(
+    fig: Figure, stem: str, folder: str | os.PathLike[str] | None = None, formats: tuple[str, ...] = ("pdf", "png")
+) -> list[Path]:
     """Write ``stem.pdf`` and ``stem.png`` byte-reproducibly; return the paths.
 
     ``folder`` defaults to ``$LUMPED_FIGURES_DIR``; when neither is given the
@@ -121,5 +122,4 @@ def legend_above(ax: Axes, ncol: int = 4, **kw: object) -> Legend:
 
     Under constrained layout (the style's) the axes shrink to make room.
     """
-    return ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=ncol,
-                     borderaxespad=0.0, fontsize=8, **kw)  # type: ignore[arg-type]  # fmt: skip
+    return ax.legend(loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=ncol, borderaxespad=0.0, fontsize=8, **kw)  # type: ignore[arg-type]

@@ -29,8 +29,7 @@ ERRORS = {
 
 #: The examples drawn, one panel each: key of numbers.json -> panel title, in
 #: which ``{x0}`` is the ``parameters.x0_large`` of numbers.json.
-EXAMPLES = {"forced_large": "(a) forced vibration, eq. (17b)",
-            "free_large": "(b) free vibration from $x_0 = {x0}$ m"}  # fmt: skip
+EXAMPLES = {"forced_large": "(a) forced vibration, eq. (17b)", "free_large": "(b) free vibration from $x_0 = {x0}$ m"}
 
 
 def error_points(steps: Sequence[float], errors: Sequence[Any]) -> tuple[np.ndarray, np.ndarray]:
@@ -39,9 +38,11 @@ def error_points(steps: Sequence[float], errors: Sequence[Any]) -> tuple[np.ndar
     Entries that are not positive numbers are skipped: ``None`` or a string
     (a run still moving at its end, so no rest position) and zero (exact).
     """
-    pairs = [(float(h), float(e)) for h, e in zip(steps, errors)
-             if isinstance(e, (int, float)) and not isinstance(e, bool) and e > 0
-             and np.isfinite(e)]  # fmt: skip
+    pairs = [
+        (float(h), float(e))
+        for h, e in zip(steps, errors)
+        if isinstance(e, (int, float)) and not isinstance(e, bool) and e > 0 and np.isfinite(e)
+    ]
     if not pairs:
         return np.empty(0), np.empty(0)
     return tuple(np.array(c) for c in zip(*pairs))  # type: ignore[return-value]

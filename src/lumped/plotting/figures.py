@@ -41,8 +41,7 @@ __all__ = [
 _GRAPH = dict(color="C0", lw=2.0)
 
 
-def _axes_row(n: int, axes: Sequence[Axes] | None, width: float = 3.2,
-              height: float = 3.0) -> tuple[Figure, list]:  # fmt: skip
+def _axes_row(n: int, axes: Sequence[Axes] | None, width: float = 3.2, height: float = 3.0) -> tuple[Figure, list]:
     """``n`` axes side by side (new, styled, ``width`` inches each) or the given ones."""
     if axes is not None:
         return axes[0].figure, list(axes)
@@ -60,16 +59,14 @@ def _centre_spines(ax: Axes, xlabel: str, ylabel: str) -> None:
     ax.set_xticks([])
     ax.set_yticks([])
     ax.set_xlabel(xlabel, loc="right")
-    ax.annotate(ylabel, (0, 1), xycoords=("data", "axes fraction"), xytext=(6, 0),
-                textcoords="offset points", va="top")  # fmt: skip
+    ax.annotate(ylabel, (0, 1), xycoords=("data", "axes fraction"), xytext=(6, 0), textcoords="offset points", va="top")
 
 
 # --- Figure 1 and Figure 4: the Bingham dashpot, eq. (6) ---------------------
 
 
 @styled
-def bingham_force_of_velocity(law: BinghamDashpot, ax: Axes | None = None,
-                              v_max: float = 2.0) -> Figure:  # fmt: skip
+def bingham_force_of_velocity(law: BinghamDashpot, ax: Axes | None = None, v_max: float = 2.0) -> Figure:
     """Figure 1(a): the force as a *set* of values of the velocity.
 
     For ``v != 0`` the force is ``sgn(v) mu_s N_f + v/gamma`` (eq. 7); at
@@ -86,15 +83,13 @@ def bingham_force_of_velocity(law: BinghamDashpot, ax: Axes | None = None,
     ax.plot([0.0, 0.0], [lo, hi], "o", color="C0", ms=4)
     _centre_spines(ax, r"$v$", r"$F_d$")
     ax.annotate(r"$\mu_s N_f$", (0, hi), xytext=(8, 0), textcoords="offset points", va="center")
-    ax.annotate(r"$-\mu_s N_f$", (0, lo), xytext=(-8, 0), textcoords="offset points",
-                va="center", ha="right")  # fmt: skip
+    ax.annotate(r"$-\mu_s N_f$", (0, lo), xytext=(-8, 0), textcoords="offset points", va="center", ha="right")
     ax.set_title("(a) force against velocity")
     return fig
 
 
 @styled
-def bingham_velocity_of_force(law: BinghamDashpot, ax: Axes | None = None,
-                              f_max: float = 3.0) -> Figure:  # fmt: skip
+def bingham_velocity_of_force(law: BinghamDashpot, ax: Axes | None = None, f_max: float = 3.0) -> Figure:
     """Figure 1(b): the velocity as a *function* of the force, eq. (6)."""
     fig, ax = new_axes(ax)
     force = np.linspace(-f_max, f_max, 601)
@@ -126,12 +121,21 @@ def bingham_pictorial(law: BinghamDashpot, ax: Axes | None = None, f_max: float 
     ax.axvspan(-tau, tau, color="C1", alpha=0.15, lw=0)
     # The label sits right of the band (where the graph has no points, v < 0)
     # and points into it, so that the v-axis at F_d = 0 does not cross it.
-    ax.annotate("stick band:\n$v = 0$", (0.5 * tau, -0.3 * g * (f_max - tau)),
-                xytext=(tau + 0.25 * (f_max - tau), -0.6 * g * (f_max - tau)), va="center",
-                arrowprops=dict(arrowstyle="->", color="0.3", lw=0.8))  # fmt: skip
+    ax.annotate(
+        "stick band:\n$v = 0$",
+        (0.5 * tau, -0.3 * g * (f_max - tau)),
+        xytext=(tau + 0.25 * (f_max - tau), -0.6 * g * (f_max - tau)),
+        va="center",
+        arrowprops=dict(arrowstyle="->", color="0.3", lw=0.8),
+    )
     for s in (1, -1):
-        ax.annotate(f"${'-' if s < 0 else ''}\\mu_s N_f$", (s * tau, 0.0), xytext=(-4 * s, 6),
-                    textcoords="offset points", ha="right" if s > 0 else "left")  # fmt: skip
+        ax.annotate(
+            f"${'-' if s < 0 else ''}\\mu_s N_f$",
+            (s * tau, 0.0),
+            xytext=(-4 * s, 6),
+            textcoords="offset points",
+            ha="right" if s > 0 else "left",
+        )
     a, b = tau + 0.35 * (f_max - tau), tau + 0.75 * (f_max - tau)
     ax.plot([a, b, b], [g * (a - tau), g * (a - tau), g * (b - tau)], color="0.3", lw=0.8)
     ax.text(b + 0.05, g * (0.5 * (a + b) - tau), r"slope $\gamma$", va="center")
@@ -142,8 +146,7 @@ def bingham_pictorial(law: BinghamDashpot, ax: Axes | None = None, f_max: float 
 # --- Figure 2: a spring with an inextensible string in parallel --------------
 
 
-def _zigzag(ax: Axes, x0: float, x1: float, y: float, turns: int = 6, amp: float = 0.08,
-            **kw: object) -> None:  # fmt: skip
+def _zigzag(ax: Axes, x0: float, x1: float, y: float, turns: int = 6, amp: float = 0.08, **kw: object) -> None:
     """A spring drawn as a zigzag from ``(x0, y)`` to ``(x1, y)``."""
     lead = 0.12 * (x1 - x0)
     xs = np.linspace(x0 + lead, x1 - lead, 2 * turns + 1)
@@ -153,8 +156,7 @@ def _zigzag(ax: Axes, x0: float, x1: float, y: float, turns: int = 6, amp: float
 
 def _wall(ax: Axes, x: float, y0: float, y1: float) -> None:
     """A hatched wall whose face is the line ``x`` from ``y0`` to ``y1``."""
-    ax.add_patch(patches.Rectangle((x - 0.12, y0), 0.12, y1 - y0, hatch="///", fill=False,
-                                   lw=0, color="0.4"))  # fmt: skip
+    ax.add_patch(patches.Rectangle((x - 0.12, y0), 0.12, y1 - y0, hatch="///", fill=False, lw=0, color="0.4"))
     ax.plot([x, x], [y0, y1], color="k", lw=1.5)
 
 
@@ -184,8 +186,7 @@ def string_spring_schematic(ax: Axes | None = None) -> Figure:
 
 
 @styled
-def string_force_of_displacement(ax: Axes | None = None, stiffness: float = 1.0,
-                                 length: float = 1.0) -> Figure:  # fmt: skip
+def string_force_of_displacement(ax: Axes | None = None, stiffness: float = 1.0, length: float = 1.0) -> Figure:
     """Figure 2(b): force against displacement.
 
     The spring alone carries ``F = k x`` while the string is slack
@@ -200,8 +201,7 @@ def string_force_of_displacement(ax: Axes | None = None, stiffness: float = 1.0,
     ax.plot([length], [stiffness * length], "o", color="C0", ms=4)
     ax.axvline(length, color="0.5", lw=0.8, ls=":")
     ax.annotate("$L$", (length, 0), xytext=(4, -12), textcoords="offset points")
-    ax.annotate("$kL$", (0, stiffness * length), xytext=(-6, 0), textcoords="offset points",
-                ha="right", va="center")  # fmt: skip
+    ax.annotate("$kL$", (0, stiffness * length), xytext=(-6, 0), textcoords="offset points", ha="right", va="center")
     ax.plot([0, length], [stiffness * length] * 2, color="0.5", lw=0.8, ls=":")
     _centre_spines(ax, "$x$", "$F$")
     ax.set_xlim(-0.7 * length, 1.4 * length)
@@ -210,16 +210,13 @@ def string_force_of_displacement(ax: Axes | None = None, stiffness: float = 1.0,
 
 
 @styled
-def string_displacement_of_force(ax: Axes | None = None, stiffness: float = 1.0,
-                                 length: float = 1.0) -> Figure:  # fmt: skip
+def string_displacement_of_force(ax: Axes | None = None, stiffness: float = 1.0, length: float = 1.0) -> Figure:
     """Figure 2(c): the displacement as a *function* of the force, ``x = min(F/k, L)``."""
     fig, ax = new_axes(ax)
     force = np.linspace(-0.6 * stiffness * length, 2.2 * stiffness * length, 300)
     ax.plot(force, np.minimum(force / stiffness, length), **_GRAPH)
-    ax.annotate("$kL$", (stiffness * length, 0), xytext=(0, -12), textcoords="offset points",
-                ha="center")  # fmt: skip
-    ax.annotate("$L$", (0, length), xytext=(-6, 0), textcoords="offset points", ha="right",
-                va="center")  # fmt: skip
+    ax.annotate("$kL$", (stiffness * length, 0), xytext=(0, -12), textcoords="offset points", ha="center")
+    ax.annotate("$L$", (0, length), xytext=(-6, 0), textcoords="offset points", ha="right", va="center")
     ax.plot([stiffness * length] * 2, [0, length], color="0.5", lw=0.8, ls=":")
     _centre_spines(ax, "$F$", "$x$")
     ax.set_ylim(-0.7 * length, 1.4 * length)
@@ -228,8 +225,7 @@ def string_displacement_of_force(ax: Axes | None = None, stiffness: float = 1.0,
 
 
 @styled
-def string_spring_triptych(axes: Sequence[Axes] | None = None, stiffness: float = 1.0,
-                           length: float = 1.0) -> Figure:  # fmt: skip
+def string_spring_triptych(axes: Sequence[Axes] | None = None, stiffness: float = 1.0, length: float = 1.0) -> Figure:
     """Figure 2: panels (a), (b) and (c) side by side.
 
     A new figure is 6.3 in wide, the width of the article's text, so that it

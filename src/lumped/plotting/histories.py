@@ -43,8 +43,7 @@ LABELS = {
 }
 
 #: Symbol and unit of each column, for the difference panel.
-SYMBOLS = {"x": ("x", "m"), "v": ("v", "m/s"), "F_s": ("F_s", "N"), "F_d": ("F_d", "N"),
-           "F": ("F", "N")}  # fmt: skip
+SYMBOLS = {"x": ("x", "m"), "v": ("v", "m/s"), "F_s": ("F_s", "N"), "F_d": ("F_d", "N"), "F": ("F", "N")}
 
 #: Marker of each event kind of the exact solution.
 EVENT_MARKERS = {"stop": "o", "reversal": "D", "breakaway": "^", "forcing-off": "x", "rest": "s"}
@@ -80,8 +79,10 @@ def exact_on_grid(trajectory: Trajectory, solution: ExactSolution) -> Trajectory
     """
     sampled = solution.sample(trajectory.dt, trajectory.save_every)
     if not np.array_equal(sampled.t, trajectory.t):
-        raise ValueError(f"solution: sampled on {sampled.t.size} times, not on the "
-                         f"trajectory's {trajectory.t.size} (same t_end and dt needed)")  # fmt: skip
+        raise ValueError(
+            f"solution: sampled on {sampled.t.size} times, not on the "
+            f"trajectory's {trajectory.t.size} (same t_end and dt needed)"
+        )
     return sampled
 
 
@@ -115,16 +116,25 @@ def _mark_off_scale(ax: Axes, t: np.ndarray, gap: np.ndarray, limit: float, unit
     off = np.abs(gap) > limit
     for sign, marker, y in ((1, "^", 0.92), (-1, "v", 0.08)):
         where = off & (np.sign(gap) == sign)
-        ax.plot(t[where], np.full(where.sum(), y), ls="none", marker=marker, ms=4, color="C3",
-                transform=ax.get_xaxis_transform(), clip_on=False)  # fmt: skip
+        ax.plot(
+            t[where],
+            np.full(where.sum(), y),
+            ls="none",
+            marker=marker,
+            ms=4,
+            color="C3",
+            transform=ax.get_xaxis_transform(),
+            clip_on=False,
+        )
     largest = np.abs(gap[off]).max()
-    return (f"\n\u25b2\u25bc {off.sum()} points off scale (up to {largest:#.3g} {unit}),"
-            " each within a step of a reversal or stop")  # fmt: skip
+    return (
+        f"\n\u25b2\u25bc {off.sum()} points off scale (up to {largest:#.3g} {unit}),"
+        " each within a step of a reversal or stop"
+    )
 
 
 @styled
-def difference(trajectory: Trajectory, solution: ExactSolution, column: str,
-               ax: Axes | None = None) -> Figure:  # fmt: skip
+def difference(trajectory: Trajectory, solution: ExactSolution, column: str, ax: Axes | None = None) -> Figure:
     """Algorithm 1 minus the exact solution, at Algorithm 1's grid points.
 
     Parameters
@@ -180,8 +190,7 @@ def _mark_events(ax: Axes, solution: ExactSolution, column: str) -> None:
         if kind == "rest" or times.size == 0:
             continue
         values = solution.evaluate(times)[column]
-        ax.plot(times, values, ls="none", marker=marker, ms=5, mfc="none", mec="k",
-                label=kind)  # fmt: skip
+        ax.plot(times, values, ls="none", marker=marker, ms=5, mfc="none", mec="k", label=kind)
     rest = solution.rest_time
     if np.isfinite(rest) and 0.0 < rest <= solution.t_end:
         ax.axvline(rest, color="0.4", lw=0.8, ls=":", label="final rest")
@@ -192,15 +201,19 @@ def _history_axes(with_difference: bool) -> tuple[Figure, Axes, Axes | None]:
     if not with_difference:
         fig, ax = plt.subplots(figsize=SIZE_ALONE)
         return fig, ax, None
-    fig, (ax, below) = plt.subplots(2, 1, figsize=SIZE_WITH_DIFFERENCE, sharex=True,
-                                    height_ratios=(3.0, 1.3))  # fmt: skip
+    fig, (ax, below) = plt.subplots(2, 1, figsize=SIZE_WITH_DIFFERENCE, sharex=True, height_ratios=(3.0, 1.3))
     return fig, ax, below
 
 
 @styled
-def time_history(trajectory: Trajectory, solution: ExactSolution | None, column: str,
-                 ax: Axes | None = None, legend: bool = True,
-                 diff_ax: Axes | None = None) -> Figure:  # fmt: skip
+def time_history(
+    trajectory: Trajectory,
+    solution: ExactSolution | None,
+    column: str,
+    ax: Axes | None = None,
+    legend: bool = True,
+    diff_ax: Axes | None = None,
+) -> Figure:
     """One column of Algorithm 1 against time, with the exact solution and its events.
 
     Parameters
@@ -239,9 +252,12 @@ def time_history(trajectory: Trajectory, solution: ExactSolution | None, column:
 
 
 @styled
-def time_history_panels(trajectory: Trajectory, solution: ExactSolution | None,
-                        columns: Sequence[str] = ("x", "v", "F_s", "F_d"),
-                        axes: Sequence[Axes] | None = None) -> Figure:  # fmt: skip
+def time_history_panels(
+    trajectory: Trajectory,
+    solution: ExactSolution | None,
+    columns: Sequence[str] = ("x", "v", "F_s", "F_d"),
+    axes: Sequence[Axes] | None = None,
+) -> Figure:
     """Several columns in a grid of two columns (Figures 5 and 10), one legend above.
 
     No difference panels: these are the runs in which the mass never moves

@@ -24,9 +24,12 @@ __all__ = ["acceleration_graph", "chatter", "creep"]
 
 @styled
 def acceleration_graph(
-    oscillator: Oscillator, x: float, force: float = 0.0, v_max: float = 1e-2,
+    oscillator: Oscillator,
+    x: float,
+    force: float = 0.0,
+    v_max: float = 1e-2,
     ax: Axes | None = None,
-) -> Figure:  # fmt: skip
+) -> Figure:
     """Acceleration against velocity at displacement ``x`` (m), eqs. (11).
 
     For ``v != 0`` the acceleration is single-valued (eqs. 11a, 11b); at
@@ -53,9 +56,11 @@ def acceleration_graph(
 
 @styled
 def chatter(
-    runs: Mapping[str, FixedStepResult], reference: Trajectory | None = None,
-    t_max: float | None = None, ax: Axes | None = None,
-) -> Figure:  # fmt: skip
+    runs: Mapping[str, FixedStepResult],
+    reference: Trajectory | None = None,
+    t_max: float | None = None,
+    ax: Axes | None = None,
+) -> Figure:
     """Dashpot force (N) against time (ms) of fixed-step runs, with the DAE's.
 
     ``runs`` maps a label to a :class:`~lumped.textbook.FixedStepResult`;
@@ -69,14 +74,20 @@ def chatter(
     fig, ax = new_axes(ax)
     if reference is not None:
         keep = slice(None) if t_max is None else reference.t <= t_max
-        ax.plot(1e3 * reference.t[keep], reference.F_d[keep], color="k", lw=1.5, ls="--",
-                zorder=3, label="DAE")  # fmt: skip
+        ax.plot(1e3 * reference.t[keep], reference.F_d[keep], color="k", lw=1.5, ls="--", zorder=3, label="DAE")
     n = len(runs)
     for i, (label, run) in enumerate(runs.items()):
         keep = slice(None) if t_max is None else run.t <= t_max
-        ax.step(1e3 * run.t[keep], run.F_d[keep], where="post", lw=1.0 + 3.0 * (n - 1 - i),
-                alpha=0.45 if i < n - 1 else 1.0, color=f"C{i}", zorder=2 + i / n,
-                label=label)  # fmt: skip
+        ax.step(
+            1e3 * run.t[keep],
+            run.F_d[keep],
+            where="post",
+            lw=1.0 + 3.0 * (n - 1 - i),
+            alpha=0.45 if i < n - 1 else 1.0,
+            color=f"C{i}",
+            zorder=2 + i / n,
+            label=label,
+        )
     ax.set_xlabel(r"time $t$ (ms)")
     ax.set_ylabel(r"dashpot force $F_d$ (N)")
     ax.legend(loc="center right")
@@ -84,9 +95,7 @@ def chatter(
 
 
 @styled
-def creep(
-    runs: Mapping[float, AdaptiveOutcome], rest: float | None = None, ax: Axes | None = None
-) -> Figure:
+def creep(runs: Mapping[float, AdaptiveOutcome], rest: float | None = None, ax: Axes | None = None) -> Figure:
     """Displacement (m) against time (s) of regularised runs, one per ``eps``.
 
     ``runs`` maps ``eps`` (m/s) to an :class:`~lumped.textbook.AdaptiveOutcome`;
@@ -96,11 +105,18 @@ def creep(
     """
     fig, ax = new_axes(ax)
     if rest is not None:
-        ax.axhline(rest, color="k", lw=1.0, ls=(0, (4, 3)), zorder=1.5,
-                   label="DAE (Algorithm 1, exact)")  # fmt: skip
+        ax.axhline(rest, color="k", lw=1.0, ls=(0, (4, 3)), zorder=1.5, label="DAE (Algorithm 1, exact)")
     for i, (eps, run) in enumerate(runs.items()):
-        ax.plot(run.t, run.x, color=f"C{i}", lw=1.5, marker="o", markevery=[-1], zorder=2,
-                label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {sci_tex(eps, digits=1, show_one=False)}$ m/s")  # fmt: skip
+        ax.plot(
+            run.t,
+            run.x,
+            color=f"C{i}",
+            lw=1.5,
+            marker="o",
+            markevery=[-1],
+            zorder=2,
+            label=rf"$\tanh(v/\varepsilon)$, $\varepsilon = {sci_tex(eps, digits=1, show_one=False)}$ m/s",
+        )
     ax.set_xlabel(r"time $t$ (s)")
     ax.set_ylabel(r"displacement $x$ (m)")
     ax.legend(loc="best")
