@@ -136,6 +136,12 @@ def test_no_factor_ten_to_the_zero(build: tuple[dict, list[str]]) -> None:
     assert not re.search(r"× 100(?!\d)", text)
 
 
+def test_verdict_words_are_never_used_as_a_predicate(build: tuple[dict, list[str]]) -> None:
+    """A verdict is printed as a label ("...: deviates"), never as "is deviates"."""
+    text = " ".join(" ".join(build[1]).split())
+    assert not re.search(r"\b(is|are) (deviates|reproduced —)", text)
+
+
 def test_abstract_error_is_at_the_original_step(build: tuple[dict, list[str]]) -> None:
     numbers, pages = build
     fl = numbers["free_large"]
