@@ -20,7 +20,7 @@
 # $\gamma = 1$ m/(N s)); how Algorithm 1 at the paper's $\Delta t$ compares
 # with the exact solution; and for which $x_0$ it rests on the wrong side of
 # zero or stops a half-cycle early. The data are computed by the pipeline in
-# chunks (`rules/studies.smk`, `lumped.studies`) and read here from
+# chunks (`rules/studies.smk`, `lumped.studies.rest`) and read here from
 # `results/studies/rest.csv`. The study always takes the paper's values from
 # `config/config.yaml` as committed (`lumped.config.default()`): a `--config`
 # override changes the other notebooks, and here only the resolution
@@ -34,6 +34,7 @@ import numpy as np
 import lumped.config
 import lumped.plotting as P
 from lumped import studies
+from lumped.studies import rest
 from lumped.driver import simulate
 from lumped.system import Oscillator
 
@@ -104,9 +105,9 @@ print(f"Coulomb's would be 2 tau/k = {2 * band:g} m; rest at x = {run.rest_posit
 # %%
 path = Path("..", "results", "studies", "rest.csv")
 if path.is_file():
-    table = studies.read_csv(path)
+    table = studies.read_csv(path, rest.COLUMNS)
 else:  # the notebook opened without a pipeline build: the default grid, computed here (about 4 s)
-    table = studies.rest_rows(cfg, studies.REST_GRID["default"][0])
+    table = rest.rows(cfg, rest.GRID["default"][0])
 x0, exact, alg1 = table["x0"], table["exact_rest_position"], table["alg1_rest_position"]
 print(f"{x0.size} values of x0 from {x0[0]:g} to {x0[-1]:g} m")
 print(
@@ -196,8 +197,8 @@ def turning_points(traj) -> int:
 
 
 for a, _b in P.studies.intervals(x0, early)[:4]:
-    be = simulate(osc, studies.REST_T_END, cfg["dt"], x0=a, method="backward-euler")
-    ex = simulate(osc, studies.REST_T_END, cfg["dt"], x0=a, method="exact")
+    be = simulate(osc, rest.T_END, cfg["dt"], x0=a, method="backward-euler")
+    ex = simulate(osc, rest.T_END, cfg["dt"], x0=a, method="exact")
     print(
         f"x0 = {a:+.4f} m: half-cycles (turning points + 1) Algorithm 1 {turning_points(be) + 1}, "
         f"exact {turning_points(ex) + 1}; rest at {be.rest_position:+.6f} and {ex.rest_position:+.6f} m"
@@ -225,8 +226,8 @@ for name in ("exact", "alg1"):
 
 # %%
 edge = np.linspace(-1, 1, 401)[198]
-be = simulate(osc, studies.REST_T_END, cfg["dt"], x0=edge, method="backward-euler")
-ex = simulate(osc, studies.REST_T_END, cfg["dt"], x0=edge, method="exact")
+be = simulate(osc, rest.T_END, cfg["dt"], x0=edge, method="backward-euler")
+ex = simulate(osc, rest.T_END, cfg["dt"], x0=edge, method="exact")
 print(
     f"x0 = {edge!r} m: Algorithm 1 at t = {be.t[-1]:g} s: v = {be.v[-1]:.2e} m/s, x - x0 = {be.x[-1] - edge:.1e} m, "
     f"rest time {be.rest_time}; exact rests at t = {ex.rest_time:.4f} s"

@@ -8,12 +8,16 @@
 
 import lumped.studies
 
-#: x0 values and chunks of "where the mass comes to rest" (lumped.studies.REST_GRID).
-REST_POINTS, REST_CHUNKS = lumped.studies.REST_GRID[config["studies"]]
+
+def study_chunks(name):
+    """Chunk files of study `name` at the build's resolution (its module's CHUNKS)."""
+    count = lumped.studies.study(name).CHUNKS[config["studies"]]
+    return expand("results/studies/{name}/chunk-{chunk}.csv", name=name, chunk=range(count))
+
 
 
 rule study_rest_chunk:
-    """Rows {chunk} of REST_CHUNKS of the x0 grid: Algorithm 1 at the paper's dt and the exact solver.
+    """Rows {chunk} of REST_CHUNKS of the x0 grid (lumped.studies.rest): Algorithm 1 at the paper's dt and the exact solver.
 
     The physics comes from config/config.yaml as committed (the paper's
     values), whatever --config overrides: the study is about the paper's
@@ -21,7 +25,7 @@ rule study_rest_chunk:
     taken from the build's configuration (params: a change reruns the chunks).
     """
     input:
-        script="scripts/study_rest.py",
+        script="scripts/study.py",
         config="config/config.yaml",
         package=PACKAGE_SOURCES,
     output:
@@ -29,23 +33,23 @@ rule study_rest_chunk:
     wildcard_constraints:
         chunk=r"\d+",
     params:
-        points=REST_POINTS,
-        chunks=REST_CHUNKS,
+        resolution=config["studies"],
+        chunks=lambda wildcards: lumped.studies.study("rest").CHUNKS[config["studies"]],
     log:
         "logs/studies/rest-{chunk}.log",
     shell:
-        "python {input.script} chunk {input.config} {params.points} {wildcards.chunk} {params.chunks}"
+        "python {input.script} chunk rest {input.config} {params.resolution} {wildcards.chunk} {params.chunks}"
         " {output} > {log} 2>&1"
 
 
 rule study_rest:
     """Merge the chunks, in grid order, into results/studies/rest.csv."""
     input:
-        script="scripts/study_rest.py",
-        chunks=expand("results/studies/rest/chunk-{chunk}.csv", chunk=range(REST_CHUNKS)),
+        script="scripts/study.py",
+        chunks=study_chunks("rest"),
     output:
         "results/studies/rest.csv",
     log:
         "logs/studies/rest.log",
     shell:
-        "python {input.script} merge {output} {input.chunks} > {log} 2>&1"
+        "python {input.script} merge rest {output} {input.chunks} > {log} 2>&1"

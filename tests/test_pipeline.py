@@ -183,10 +183,10 @@ def test_every_rule_has_a_log():
 
 @pytest.mark.parametrize(("studies", "chunks"), [(None, 4), ("full", 16)])
 def test_the_rest_study_is_chunk_jobs_merged_by_one_rule(studies, chunks):
-    """One study_rest_chunk job per chunk of lumped.studies.REST_GRID, merged by study_rest, read by notebook 10."""
-    import lumped.studies
+    """One study_rest_chunk job per chunk of lumped.studies.rest.CHUNKS, merged by study_rest, read by notebook 10."""
+    from lumped.studies import rest
 
-    assert lumped.studies.REST_GRID[studies or "default"][1] == chunks
+    assert rest.CHUNKS[studies or "default"] == chunks
     args = ["--config", f"studies={studies}", "--"] if studies else []
     jobs = _jobs(_snakemake("--dry-run", "--forceall", *args, "results/notebooks/10_where_it_rests.ipynb"))
     outputs = sorted(f["output"] for rule, f in jobs if rule == "study_rest_chunk")

@@ -1,4 +1,4 @@
-"""The studies' data (lumped.studies, scripts/study_rest.py): chunks, files, bad inputs."""
+"""The studies' data (lumped.studies, scripts/study.py): chunks, files, bad inputs."""
 
 import importlib.util
 
@@ -8,30 +8,31 @@ import pytest
 import lumped.config
 from conftest import ROOT
 from lumped import studies
+from lumped.studies import rest
 from lumped.driver import simulate
 from lumped.plotting.studies import intervals
 from lumped.system import Oscillator
 
 CFG = lumped.config.default()
-SCRIPT = ROOT / "scripts" / "study_rest.py"
+SCRIPT = ROOT / "scripts" / "study.py"
 #: A small grid (even: off x0 = 0 and the band edges), cut into uneven chunks.
 POINTS, CHUNKS = 14, 3
 
 
 @pytest.fixture(scope="module")
 def whole():
-    return studies.rest_rows(CFG, POINTS)
+    return rest.rows(CFG, POINTS)
 
 
 def test_chunks_written_and_merged_equal_one_unchunked_sweep(whole, tmp_path):
     parts = []
     for i in range(CHUNKS):
         parts.append(tmp_path / f"chunk-{i}.csv")
-        studies.write_csv(studies.rest_rows(CFG, POINTS, (i, CHUNKS)), parts[-1])
-    studies.merge_csv(parts, tmp_path / "rest.csv")
-    merged = studies.read_csv(tmp_path / "rest.csv")
-    assert list(merged) == list(studies.COLUMNS)
-    for name in studies.COLUMNS:  # bit for bit: floats are written by repr
+        studies.write_csv(rest.rows(CFG, POINTS, (i, CHUNKS)), parts[-1], rest.COLUMNS)
+    studies.merge_csv(parts, tmp_path / "rest.csv", rest.COLUMNS)
+    merged = studies.read_csv(tmp_path / "rest.csv", rest.COLUMNS)
+    assert list(merged) == list(rest.COLUMNS)
+    for name in rest.COLUMNS:  # bit for bit: floats are written by repr
         assert merged[name].dtype == whole[name].dtype and np.array_equal(merged[name], whole[name]), name
 
 
@@ -41,7 +42,7 @@ def test_a_row_is_the_single_runs_of_both_methods(whole, row):
     osc = Oscillator.bingham(CFG["mass"], CFG["stiffness"], CFG["threshold"], CFG["gamma"])
     x0 = np.linspace(-1, 1, POINTS)[row]
     for prefix, method in (("alg1", "backward-euler"), ("exact", "exact")):
-        run = simulate(osc, studies.REST_T_END, CFG["dt"], x0=x0, method=method)
+        run = simulate(osc, rest.T_END, CFG["dt"], x0=x0, method=method)
         assert whole[f"{prefix}_rest_position"][row] == run.rest_position
         assert whole[f"{prefix}_rest_time"][row] == run.rest_time
     # every rest position lies in the static band |x| <= tau/k (eq. 6 with v = 0)
@@ -57,7 +58,7 @@ def test_intervals_are_the_runs_of_true_rows():
 
 def _script(capsys, *args):
     """The script's main, in this process (its imports are this test's)."""
-    spec = importlib.util.spec_from_file_location("study_rest", SCRIPT)
+    spec = importlib.util.spec_from_file_location("study", SCRIPT)
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     code = module.main([str(a) for a in args])
@@ -68,10 +69,18 @@ def _script(capsys, *args):
 @pytest.mark.parametrize(
     ("args", "start"),
     [
-        (("chunk", "config/config.yaml", 10, 4, 4, "out.csv"), "study_rest: index must be an integer in [0, 3]"),
-        (("chunk", "config/config.yaml", "ten", 0, 4, "out.csv"), "study_rest: invalid literal"),
-        (("merge", "out.csv", "missing.csv"), "study_rest: [Errno 2]"),
-        (("nonsense",), "python scripts/study_rest.py chunk CONFIG"),
+        (
+            ("chunk", "rest", "config/config.yaml", "default", 4, 4, "out.csv"),
+            "study: index must be an integer in [0, 3]",
+        ),
+        (("chunk", "rest", "config/config.yaml", "default", "ten", 4, "out.csv"), "study: invalid literal"),
+        (
+            ("chunk", "rest", "config/config.yaml", "coarse", 0, 4, "out.csv"),
+            "study: resolution must be one of default",
+        ),
+        (("chunk", "nowhere", "config/config.yaml", "default", 0, 4, "out.csv"), "study: study must be one of rest"),
+        (("merge", "rest", "out.csv", "missing.csv"), "study: [Errno 2]"),
+        (("nonsense",), "python scripts/study.py chunk STUDY CONFIG"),
     ],
 )
 def test_bad_arguments_exit_2_with_one_line_and_no_file(tmp_path, capsys, args, start):
@@ -86,4 +95,4 @@ def test_bad_arguments_exit_2_with_one_line_and_no_file(tmp_path, capsys, args, 
 def test_a_run_still_moving_is_refused_rather_than_written():
     # from the band edge up to round-off, Algorithm 1 creeps at ~1e-16 m/s and never stops (notebook 10)
     with pytest.raises(ValueError, match=r"^study rest: backward-euler from x0 = -0.010000000000000009 m is still"):
-        studies.rest_rows(CFG, 401, (0, 2))
+        rest.rows(CFG, 401, (0, 2))
