@@ -178,3 +178,73 @@ def test_studies_other_than_default_or_full_is_refused_with_one_line(value):
 @pytest.mark.parametrize("value", ["default", "full"])
 def test_studies_default_and_full_are_accepted(value):
     assert lumped.config.check(DEFAULTS | {"studies": value})["studies"] == value
+
+
+#: Values of every JSON kind around every bound of the schema (numbers at, just inside and just outside them).
+PROBES = [
+    0,
+    0.0,
+    -0.0,
+    5e-324,
+    -5e-324,
+    1,
+    -1,
+    1e308,
+    -1e308,
+    1.7976931348623157e308,
+    -1.7976931348623157e308,
+    math.inf,
+    -math.inf,
+    10**400,
+    -(10**400),
+    True,
+    False,
+    None,
+    "default",
+    "full",
+    "fast",
+    "1",
+    [],
+    {},
+]
+
+
+@pytest.mark.parametrize("key", list(lumped.config.schema()["properties"]))
+def test_the_schema_check_agrees_with_jsonschema(key):
+    """lumped.config checks the schema itself (import jsonschema costs a second); jsonschema is the reference."""
+    from jsonschema import Draft202012Validator
+
+    doc = lumped.config.schema()
+    reference = Draft202012Validator({**doc, "required": [], "additionalProperties": True})
+    for value in PROBES:
+        expected = any(e.path and e.path[0] == key for e in reference.iter_errors({key: value}))
+        assert lumped.config._violates(value, doc["properties"][key], doc["$defs"]) == expected, (key, value)
+
+
+def test_a_schema_keyword_the_check_does_not_implement_is_refused(monkeypatch):
+    import yaml
+
+    text = lumped.config.files("lumped").joinpath("config_schema.yaml").read_text("utf-8")
+    doc = yaml.safe_load(text)
+    doc["properties"]["mass"]["multipleOf"] = 2
+    monkeypatch.setattr(lumped.config, "files", lambda _: _Text(yaml.safe_dump(doc)))
+    lumped.config.schema.cache_clear()
+    try:
+        with pytest.raises(ValueError, match=r"^config_schema.yaml: mass uses \['multipleOf'\], which lumped"):
+            lumped.config.schema()
+    finally:
+        monkeypatch.undo()
+        lumped.config.schema.cache_clear()
+
+
+class _Text:
+    """A stand-in for the package's files: every path reads ``text``."""
+
+    def __init__(self, text):
+        self.text = text
+
+    def joinpath(self, _):
+        return self
+
+    def read_text(self, _):
+        return self.text

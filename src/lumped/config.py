@@ -16,7 +16,13 @@ the values or raises :class:`ValueError` with the first of those lines, e.g.::
     config: dt must be a finite number > 0 (s); got -1
 
 The accepted ranges are the JSON schema ``config_schema.yaml`` shipped with
-the package, plus two checks a schema cannot state (:func:`problems`).
+the package, plus two checks a schema cannot state (:func:`problems`).  The
+schema is checked by :func:`_violates`, which implements the few keywords it
+uses (:data:`SCHEMA_KEYWORDS`) rather than importing ``jsonschema``: with the
+notebook environment's format extras installed, ``import jsonschema`` compiles
+some forty grammars and takes a second or more, paid by every notebook, study
+job and pipeline start.  The tests check :func:`_violates` against
+``jsonschema`` on the schema and on values in and out of every range.
 """
 
 from __future__ import annotations
@@ -39,6 +45,10 @@ END_TIMES = ("t_end_forced", "t_end_small", "t_end_large")
 #: notebook holds several runs at once; the paper's runs take at most 4e4.
 MAX_STEPS = 10**7
 
+
+#: The JSON-schema keywords :func:`_violates` implements, each as the 2020-12 draft defines it for numbers
+#: and strings; a schema with another keyword is refused (:func:`schema`).
+SCHEMA_KEYWORDS = frozenset({"type", "enum", "minimum", "maximum", "exclusiveMinimum", "$ref", "description"})
 
 #: The copy of config/config.yaml that setup.py puts into the built package.
 PACKAGED_CONFIG = "paper_config.yaml"
@@ -101,10 +111,39 @@ def _source(chosen: str | os.PathLike[str] | None) -> Path | Traversable:
 
 @cache
 def schema() -> dict[str, Any]:
-    """The JSON schema (draft 2020-12) of the configuration, from the package data."""
+    """The JSON schema (draft 2020-12) of the configuration, from the package data.
+
+    Raises
+    ------
+    ValueError
+        If a property or definition uses a keyword outside :data:`SCHEMA_KEYWORDS`.
+    """
     import yaml
 
-    return yaml.safe_load(files("lumped").joinpath("config_schema.yaml").read_text("utf-8"))
+    doc = yaml.safe_load(files("lumped").joinpath("config_schema.yaml").read_text("utf-8"))
+    for name, rule in {**doc["$defs"], **doc["properties"]}.items():
+        extra = set(rule) - SCHEMA_KEYWORDS
+        if extra:
+            raise ValueError(f"config_schema.yaml: {name} uses {sorted(extra)}, which lumped.config does not check")
+    return doc
+
+
+def _violates(value: Any, rule: dict[str, Any], defs: dict[str, Any]) -> bool:
+    """Whether ``value`` breaks ``rule`` (keywords :data:`SCHEMA_KEYWORDS`; ``$ref`` into ``defs``)."""
+    if "$ref" in rule and _violates(value, defs[rule["$ref"].removeprefix("#/$defs/")], defs):
+        return True
+    if "enum" in rule and not any(value == e and isinstance(value, bool) == isinstance(e, bool) for e in rule["enum"]):
+        return True
+    number = isinstance(value, (int, float)) and not isinstance(value, bool)
+    if rule.get("type") == "number" and not number:
+        return True
+    if not number:
+        return False
+    return (
+        ("minimum" in rule and not value >= rule["minimum"])
+        or ("maximum" in rule and not value <= rule["maximum"])
+        or ("exclusiveMinimum" in rule and not value > rule["exclusiveMinimum"])
+    )
 
 
 def check(raw: Any) -> dict[str, Any]:
@@ -181,15 +220,14 @@ def _shown(value: Any) -> str:
 
 def _schema_problems(values: dict[str, Any], raw: dict[str, Any]) -> list[str]:
     """One line per key that breaks the schema (unknown, missing, out of range)."""
-    from jsonschema import Draft202012Validator
-
-    known = schema()["properties"]
+    doc = schema()
+    known = doc["properties"]
     found = []
     for key in sorted(set(values) - set(known), key=str):
         close = difflib.get_close_matches(str(key), known, n=1)
         hint = f"; did you mean {close[0]}?" if close else f" (keys: {', '.join(known)})"
         found.append(f"config: unknown key {key}{hint}")
-    bad = {e.path[0] for e in Draft202012Validator(schema()).iter_errors(values) if e.path}
+    bad = {k for k, v in values.items() if k in known and _violates(v, known[k], doc["$defs"])}
     bad |= {k for k, v in values.items() if isinstance(v, float) and math.isnan(v)}
     for key, rule in known.items():
         if key not in values:
