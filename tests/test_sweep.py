@@ -100,6 +100,16 @@ def test_a_too_long_sweep_states_the_estimate(tmp_path, capsys):
     assert "would take about" in capsys.readouterr().err
 
 
+@pytest.mark.parametrize(("forced", "kind"), [({}, "free"), ({"force_amplitude": 1.0, "force_omega": 10.0}, "forced")])
+def test_the_estimate_costs_forced_grids_as_forced(forced, kind):
+    """A forced grid's steps cost about ten times a free one's (a sin per step): the estimate says so."""
+    from lumped.batched import BATCH_KERNEL
+    from lumped.sweep import SECONDS_PER_TRAJECTORY_STEP
+
+    spec = SweepSpec.build([axis("x0", [0.0, 0.5])], t_end=1.0, periods=1, **forced)
+    assert spec.seconds_per_step() == SECONDS_PER_TRAJECTORY_STEP[BATCH_KERNEL][kind]
+
+
 def test_duplicate_names_through_the_api():
     with pytest.raises(ValueError, match="^vary: x0 is varied more than once"):
         SweepSpec.build([axis("x0", [0.0]), axis("x0", [1.0])])
@@ -225,7 +235,8 @@ def test_csv_and_npz_columns(tmp_path):
 
 def test_progress_goes_to_stderr_only(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr("lumped.batched.CALL_SIZE", 2)
-    monkeypatch.setattr("lumped.sweep.SECONDS_PER_TRAJECTORY_STEP", {"compiled": 1.0, "python": 1.0})
+    slow = {"free": 1.0, "forced": 1.0}  # an estimate long enough to show progress
+    monkeypatch.setattr("lumped.sweep.SECONDS_PER_TRAJECTORY_STEP", {"compiled": slow, "python": slow})
     out = tmp_path / "s.csv"
     monkeypatch.setattr("lumped.sweep.SweepSpec.check", lambda self: None)  # the inflated estimate is not refused
     assert main(["sweep", "--vary", "x0=0:1:5", "--t-end", "0.1", "--output", str(out)]) == 0
