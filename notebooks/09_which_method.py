@@ -20,18 +20,26 @@
 # original's choice), the θ-method at θ = 1/2, the event-capturing scheme,
 # the event-driven method at several tolerances, `exact` where it applies, and
 # SciPy's LSODA on the textbook model with `sgn` replaced by `tanh(v/ε)`. The
-# study lives in `lumped.accuracy`; this notebook runs it (about 10 s) and
-# reads it.
+# study lives in `lumped.accuracy`; the pipeline runs it once
+# (`rules/accuracy.smk`) into `results/accuracy/study.json`, which this
+# notebook and the article read (opened without a build, the notebook runs it
+# itself, in about 10 s).
 
 # %%
+import json
 import math
+from pathlib import Path
 
 import lumped.accuracy as A
 import lumped.config
 import lumped.plotting as P
 
 cfg = lumped.config.default()  # the paper's values, whatever --config overrides (see below)
-study = A.study(cfg=cfg)
+path = Path("..", "results", "accuracy", "study.json")
+if path.is_file():  # written by the pipeline's accuracy_study job
+    study = A.from_json(json.loads(path.read_text(encoding="utf-8")))
+else:  # the notebook opened without a pipeline build: computed here (about 10 s)
+    study = A.study(cfg=cfg)
 data = A.to_json(study)
 print(f"{len(study.results)} runs on {len(study.references)} cases; steps {A.STEPS} s, rtol {A.RTOLS}")
 

@@ -68,8 +68,11 @@ NOTEBOOK_FIGURES = {
     "10_where_it_rests": ["st01_rest_position", "st02_wrong_side"],
 }
 
-#: notebook stem -> the study files (rules/studies.smk) it reads.
-NOTEBOOK_DATA = {"10_where_it_rests": ["results/studies/rest.csv"]}
+#: notebook stem -> the data files it reads (rules/studies.smk, rules/accuracy.smk).
+NOTEBOOK_DATA = {
+    "09_which_method": ["results/accuracy/study.json"],
+    "10_where_it_rests": ["results/studies/rest.csv"],
+}
 
 #: Report section of each notebook.
 CATEGORY = {

@@ -38,6 +38,11 @@ import sys
 import tempfile
 from pathlib import Path
 
+# jupytext and nbclient read notebooks through nbformat, which imports jsonschema, whose optional "iri"
+# format checker (rfc3987-syntax, installed for JupyterLab) compiles some forty grammars on import: a second
+# or more in each of the pipeline's notebook jobs. Notebook files use no such format; the checker is left out.
+sys.modules.setdefault("rfc3987_syntax", None)  # an import of it now raises ImportError, which jsonschema skips
+
 import jupytext
 import nbclient
 from nbclient.exceptions import CellExecutionError

@@ -196,6 +196,22 @@ def test_to_json_is_strict_and_without_wall_time():
     assert json.loads(text)["references"]["forced-17b"]["method"] == "exact"
 
 
+def test_from_json_gives_back_the_study_that_to_json_wrote():
+    """Notebook 09 reads results/accuracy/study.json through from_json: the same study, NaN and inf included."""
+    study = A.study(["free-decay"], steps=(1.6e-3, 8e-4, 4e-4), rtols=(1e-6,), tanh=[(1e-2, 1e-6)])
+    data = json.loads(json.dumps(A.to_json(study), allow_nan=False))
+    back = A.from_json(data)
+    assert A.to_json(back) == data
+    assert [r.case for r in back.results] == [r.case for r in study.results]
+    for a, b in zip(back.results, study.results):  # field by field, NaN equal to NaN
+        for name in ("resolution", "eps", "position_error", "rest_time_error", "max_x_error", "reference_position"):
+            assert getattr(a, name) == getattr(b, name) or (
+                math.isnan(getattr(a, name)) and math.isnan(getattr(b, name))
+            ), name
+        assert a.work == b.work and a.event_errors.keys() == b.event_errors.keys()
+    assert any(math.isnan(r.eps) for r in back.results)  # the non-tanh rows: None in the file
+
+
 @pytest.mark.parametrize(
     "call, message",
     [

@@ -649,6 +649,33 @@ def to_json(result: Study, *, wall_time: bool = False) -> dict[str, Any]:
     return clean(out)
 
 
+def _float(value: Any) -> float:
+    """A float of :func:`to_json`'s output back: ``None`` is NaN, ``"inf"``/``"-inf"`` the infinities."""
+    return math.nan if value is None else float(value)
+
+
+def _floats(tree: Any) -> Any:
+    """:func:`_float` on every leaf of nested dictionaries of numbers."""
+    return {k: _floats(v) for k, v in tree.items()} if isinstance(tree, dict) else _float(tree)
+
+
+def from_json(data: Mapping[str, Any]) -> Study:
+    """The :class:`Study` that :func:`to_json` wrote (without wall times), e.g. ``results/accuracy/study.json``.
+
+    ``to_json(from_json(d)) == d`` for every ``d`` that :func:`to_json` returned without wall times.
+    """
+    results = []
+    for row in data["results"]:
+        floats = {f: _float(row[f]) for f in ("resolution", "eps", "position_error", "rest_time_error")}
+        floats |= {f: _float(row[f]) for f in ("max_x_error", "reference_position")}
+        errors = {k: _float(v) for k, v in row["event_errors"].items()}
+        results.append(Result(row["case"], row["method"], event_errors=errors, work=int(row["work"]), **floats))
+    refs = {}
+    for name, ref in data["references"].items():
+        refs[name] = dict(ref) | {"position": _float(ref["position"]), "rest_time": _float(ref["rest_time"])}
+    return Study(tuple(results), refs, _floats(data["orders"]))
+
+
 #: The original's step (s), at which the headline compares the schemes.
 ORIGINAL_DT = examples.ORIGINAL_DT
 #: Relative error the issue asks of the event-driven method on Herschel-Bulkley, and of the tanh model.
