@@ -39,7 +39,17 @@ from lumped import _validate
 from lumped.batched import BATCH_KERNEL, BatchParameters, batch_backward_euler
 from lumped.results import Trajectory
 
-__all__ = ["Axis", "SweepSpec", "parse_vary", "summarize", "sweep", "run_sweep", "chunk_rows", "SUMMARY_COLUMNS", "FORCED_COLUMNS"]
+__all__ = [
+    "Axis",
+    "SweepSpec",
+    "parse_vary",
+    "summarize",
+    "sweep",
+    "run_sweep",
+    "chunk_rows",
+    "SUMMARY_COLUMNS",
+    "FORCED_COLUMNS",
+]
 
 SUMMARY_COLUMNS = ("rest_time", "rest_position", "max_abs_x", "stops")
 FORCED_COLUMNS = ("steady_amplitude", "stops_per_period")
