@@ -10,13 +10,13 @@ import math
 
 import numpy as np
 import pytest
+from references import den_hartog_amplitude, den_hartog_boundary, shoot_steady_slip
 
 import lumped.config
 from lumped import studies
 from lumped.studies import den_hartog as dh
 from lumped.sweep import sweep
 from lumped.system import Oscillator
-from references import den_hartog_amplitude, den_hartog_boundary, shoot_steady_slip
 
 CFG = lumped.config.default()
 M, K, F = CFG["mass"], CFG["stiffness"], CFG["threshold"]

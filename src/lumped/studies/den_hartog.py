@@ -45,6 +45,8 @@ __all__ = [
     "SteadyMotion",
     "closed_form",
     "half_period_velocity",
+    "Curve",
+    "curve",
     "SteadyState",
     "steady_state",
     "rows",
@@ -54,7 +56,7 @@ __all__ = [
 #: The friction ratios F/P of the study.
 FRICTION_RATIOS = (0.2, 0.4, 0.6, 0.8)
 #: ``studies`` -> (frequency ratios per F/P and damping, chunks).
-GRID = {"default": (8, 2), "full": (120, 16)}
+GRID = {"default": (6, 2), "full": (120, 16)}
 CHUNKS = {resolution: chunks for resolution, (_, chunks) in GRID.items()}
 #: The interval of r = omega/omega_n; an even count keeps r = 1 off the grid.
 RATIO_RANGE = (0.2, 2.5)
@@ -96,6 +98,14 @@ def _flow(m: float, c: float, k: float, t: float) -> np.ndarray:
     q = math.sqrt(wn2 - h * h)
     e, s, co = math.exp(-h * t), math.sin(q * t), math.cos(q * t)
     return e * np.array([[co + h / q * s, s / q], [-wn2 / q * s, co - h / q * s]])
+
+
+def _free_velocity(m: float, c: float, k: float, e0: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """Velocity row of :func:`_flow` applied to ``e0``, at the times ``t`` (s) at once (m/s)."""
+    h, wn2 = c / (2 * m), k / m
+    q = math.sqrt(wn2 - h * h)
+    s, co = np.sin(q * t), np.cos(q * t)
+    return np.exp(-h * t) * (-wn2 / q * s * e0[0] + (co - h / q * s) * e0[1])
 
 
 def _homogeneous_start(m: float, c: float, k: float, friction: float, omega: float) -> np.ndarray:
@@ -166,8 +176,27 @@ def half_period_velocity(m: float, c: float, k: float, friction: float, p: float
     a = p / math.hypot(k - m * omega**2, c * omega)
     e0 = _homogeneous_start(m, c, k, friction, omega)
     t = np.linspace(0.0, math.pi / omega, SAMPLES + 1)
-    free = np.array([_flow(m, c, k, s)[1] @ e0 for s in t])
-    return a * omega * np.cos(omega * t + theta) + free
+    return a * omega * np.cos(omega * t + theta) + _free_velocity(m, c, k, e0, t)
+
+
+class Curve(NamedTuple):
+    """:func:`closed_form` along ``r``: ``X k/P`` (``nan`` where no real positive root) and admissibility."""
+
+    frequency_ratio: np.ndarray
+    amplitude_ratio: np.ndarray
+    nonstop: np.ndarray
+
+
+def curve(cfg: Mapping[str, float], damping: float, friction_ratio: float, ratios: np.ndarray) -> Curve:
+    """:func:`closed_form` with ``m``, ``k``, ``F = threshold`` of ``cfg``, ``c = 2 zeta sqrt(k m)``, ``P = F/(F/P)``.
+
+    ``damping`` is ``zeta``, ``ratios`` the values of ``r = omega/omega_n`` (``r = 1`` refused when ``zeta = 0``).
+    """
+    m, k, friction = cfg["mass"], cfg["stiffness"], cfg["threshold"]
+    c, p, wn = 2 * damping * math.sqrt(k * m), friction / friction_ratio, math.sqrt(k / m)
+    forms = [closed_form(m, c, k, friction, p, r * wn) for r in np.asarray(ratios, dtype=float)]
+    amplitude = np.array([f.amplitude * k / p for f in forms])
+    return Curve(np.asarray(ratios, dtype=float), amplitude, np.array([f.nonstop for f in forms]))
 
 
 class SteadyState(NamedTuple):
@@ -178,7 +207,7 @@ class SteadyState(NamedTuple):
     stops: int
 
 
-def _window_max(solution, events: list, start: float, end: float) -> float:  # noqa: ANN001 (an ExactSolution)
+def _window_max(solution, events: list, start: float, end: float) -> float:
     """Largest ``|x|`` over ``[start, end]``: at a zero of ``v`` (an event) or at an end of the window."""
     ends = solution.evaluate(np.array([start, end]))["x"]
     inside = [abs(e.x) for e in events if start <= e.time <= end and e.kind in ("stop", "reversal")]
