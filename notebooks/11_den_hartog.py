@@ -218,20 +218,16 @@ _ = P.save_figure(fig, "dh01_amplitude")
 predicted = table["nonstop"] == 1
 moving = table["stops_per_period"] == 0
 print(f"closed form admissible and no stop in the run: {np.sum(predicted & moving)} of {n} rows")
-print(
-    f"admissible but the run stops: {np.sum(predicted & ~moving)}; not admissible but no stop: {np.sum(~predicted & moving)}"
-)
+print(f"admissible but the run stops: {np.sum(predicted & ~moving)}", end="; ")
+print(f"not admissible but no stop: {np.sum(~predicted & moving)}")
 both = predicted & moving
 error = np.abs(table["amplitude_ratio"] - table["closed_form"]) / table["closed_form"]
 settled = both & (table["amplitude_change"] < 1e-8)
-print(
-    f"settled rows (amplitude change < 1e-8): {settled.sum()}, largest |simulated/closed form - 1| {error[settled].max():.1e}"
-)
+print(f"settled rows (amplitude change < 1e-8): {settled.sum()}", end=", ")
+print(f"largest |simulated/closed form - 1| {error[settled].max():.1e}")
 for j in np.flatnonzero(both & ~settled):
-    print(
-        f"  not settled: zeta {table['damping'][j]:g}, F/P {table['friction_ratio'][j]:g}, r {table['frequency_ratio'][j]:.4f}:"
-        f" error {error[j]:.1e}, amplitude change {table['amplitude_change'][j]:.1e}"
-    )
+    where = f"zeta {table['damping'][j]:g}, F/P {table['friction_ratio'][j]:g}, r {table['frequency_ratio'][j]:.4f}"
+    print(f"  not settled: {where}: error {error[j]:.1e}, amplitude change {table['amplitude_change'][j]:.1e}")
 
 # %% [markdown]
 # Where the run has settled, simulation and closed form agree to a few parts

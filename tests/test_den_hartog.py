@@ -167,3 +167,28 @@ def test_the_study_needs_a_finite_gamma_and_a_valid_chunk():
         dh.rows(CFG | {"gamma": math.inf}, 3)
     with pytest.raises(ValueError, match=r"^index must be an integer in \[0, 1\]"):
         dh.rows(CFG, 3, (2, 2))
+
+
+def test_the_figure_draws_stopped_rows_hollow_and_the_curve_dotted_where_it_stops():
+    """dh01's marking of the boundary: filled points are the rows without stops, hollow the others; the solid
+    curve is the closed form where admissible, the dotted one where not (nan elsewhere)."""
+    import matplotlib.pyplot as plt
+
+    from lumped.plotting import den_hartog_amplitudes
+
+    table = {
+        "damping": np.zeros(4),
+        "friction_ratio": np.full(4, 0.4),
+        "frequency_ratio": np.array([0.5, 1.5, 2.0, 2.5]),
+        "amplitude_ratio": np.array([1.0, 0.5, 0.3, 0.2]),
+        "stops_per_period": np.array([2.0, 0.0, 0.0, 2.0]),
+    }
+    r = np.array([0.5, 1.5, 2.0])
+    fig = den_hartog_amplitudes(table, {(0.0, 0.4): (r, np.array([1.0, 0.5, 0.3]), np.array([False, True, True]))})
+    solid, dotted, filled, hollow = fig.axes[0].lines
+    np.testing.assert_array_equal(solid.get_ydata(), [np.nan, 0.5, 0.3])
+    np.testing.assert_array_equal(dotted.get_ydata(), [1.0, np.nan, np.nan])
+    np.testing.assert_array_equal(filled.get_xdata(), [1.5, 2.0])
+    np.testing.assert_array_equal(hollow.get_xdata(), [0.5, 2.5])
+    assert hollow.get_markerfacecolor() == "none" and solid.get_linestyle() == "-" and dotted.get_linestyle() == ":"
+    plt.close(fig)

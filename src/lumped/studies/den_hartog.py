@@ -33,7 +33,7 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped import _validate
-from lumped.event_driven import solve_exact
+from lumped.event_driven import Event, ExactSolution, solve_exact
 from lumped.forcing import SwitchedSine
 from lumped.sweep import chunk_rows
 from lumped.system import Oscillator
@@ -92,6 +92,8 @@ class SteadyMotion(NamedTuple):
     nonstop: bool
 
 
+# The free oscillator is written out here rather than taken from lumped.event_driven: the closed form is
+# the reference the exact solver's runs are compared with, so the two share no code.
 def _flow(m: float, c: float, k: float, t: float) -> np.ndarray:
     """``exp(M t)`` of ``z' = M z``, ``z = (x, v)``, for the underdamped free oscillator (closed form)."""
     h, wn2 = c / (2 * m), k / m
@@ -114,6 +116,7 @@ def _homogeneous_start(m: float, c: float, k: float, friction: float, omega: flo
 
 
 def _check(m: float, c: float, k: float, friction: float, p: float, omega: float) -> None:
+    """Refuse, with one line naming the argument, what :func:`closed_form` does not cover."""
     for name, value in (("mass", m), ("stiffness", k), ("force_amplitude", p), ("force_omega", omega)):
         _validate.positive(name, value)
     _validate.non_negative("threshold", friction)
@@ -124,7 +127,7 @@ def _check(m: float, c: float, k: float, friction: float, p: float, omega: float
 
 
 def closed_form(m: float, c: float, k: float, friction: float, p: float, omega: float) -> SteadyMotion:
-    """Steady amplitude of ``m x'' + c x' + k x = P sin(omega t + psi) - F sgn(x')`` without stops (eq. 1 of notebook 11).
+    """Steady motion without stops of ``m x'' + c x' + k x = P sin(omega t + psi) - F sgn(x')`` (notebook 11, eq. 1).
 
     Parameters
     ----------
@@ -141,12 +144,13 @@ def closed_form(m: float, c: float, k: float, friction: float, p: float, omega: 
     ``x = a sin(omega t + theta) - F/k + e(t)`` with the harmonic response
     ``a = P/sqrt((k - m omega^2)^2 + (c omega)^2)``, ``theta = psi - phi``,
     ``phi = atan2(c omega, k - m omega^2)``, and ``e`` free, ``e(t) = Phi(t) e0``.
-    The symmetry ``z(t + T/2) = -z(t)`` gives ``(Phi(T/2) + I) e0 = (2F/k, 0)``,
+    The symmetry ``z(t + T/2) = -z(t)`` gives ``(Phi(T/2) + I) e0 = (2F/k, 0)`` (eq. 2),
     independent of ``psi``; then ``v(0) = 0`` gives
     ``cos theta = -e0_v/(a omega)`` and ``x(0) = -X`` gives
-    ``X = F/k - e0_x + sqrt(a^2 - (e0_v/omega)^2)``.  For ``c = 0`` this is
+    ``X = F/k - e0_x + sqrt(a^2 - (e0_v/omega)^2)`` (eq. 3).  For ``c = 0`` this is
     Den Hartog's (1931) ``X k/P = sqrt(1/(1 - r^2)^2 - (F/P)^2 (U/r)^2)``,
-    ``U = sin(pi/r)/(1 + cos(pi/r))``.  ``X`` is ``nan`` unless real and positive.  The motion is admissible (``nonstop``)
+    ``U = sin(pi/r)/(1 + cos(pi/r))`` (eq. 4).  ``X`` is ``nan`` unless real and
+    positive.  The motion is admissible (``nonstop``)
     when the mass leaves the turning point at once, ``P sin psi + k X > F``,
     and ``v > 0`` at :data:`SAMPLES` points inside the half-period.
     """
@@ -207,7 +211,7 @@ class SteadyState(NamedTuple):
     stops: int
 
 
-def _window_max(solution, events: list, start: float, end: float) -> float:
+def _window_max(solution: ExactSolution, events: list[Event], start: float, end: float) -> float:
     """Largest ``|x|`` over ``[start, end]``: at a zero of ``v`` (an event) or at an end of the window."""
     ends = solution.evaluate(np.array([start, end]))["x"]
     inside = [abs(e.x) for e in events if start <= e.time <= end and e.kind in ("stop", "reversal")]
