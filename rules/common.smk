@@ -66,12 +66,14 @@ NOTEBOOK_FIGURES = {
     ],
     "09_which_method": ["acc01_convergence", "acc02_work_precision"],
     "10_where_it_rests": ["st01_rest_position", "st02_wrong_side"],
+    "11_den_hartog": ["dh01_amplitude", "dh02_steady_state"],
 }
 
 #: notebook stem -> the data files it reads (rules/studies.smk, rules/accuracy.smk).
 NOTEBOOK_DATA = {
     "09_which_method": ["results/accuracy/study.json"],
     "10_where_it_rests": ["results/studies/rest.csv"],
+    "11_den_hartog": ["results/studies/den_hartog.csv"],
 }
 
 #: Report section of each notebook.
@@ -84,6 +86,7 @@ CATEGORY = {
     "08_chain_stick_slip": "Tutorial: stick-slip along a chain (ext05-ext06)",
     "09_which_method": "Tutorial: which method, when (acc01-acc02)",
     "10_where_it_rests": "Study: where the mass comes to rest (st01-st02)",
+    "11_den_hartog": "Study: Den Hartog's forced oscillator with friction (dh01-dh02)",
 }
 
 #: Every figure file the pipeline makes.

@@ -53,3 +53,41 @@ rule study_rest:
         "logs/studies/rest.log",
     shell:
         "python {input.script} merge rest {output} {input.chunks} > {log} 2>&1"
+
+
+rule study_den_hartog_chunk:
+    """Rows {chunk} of the (damping, F/P, r) grid of lumped.studies.den_hartog: long exact runs and the closed form.
+
+    Like the rest study, the physics is config/config.yaml as committed (m, k,
+    tau and the paper's gamma for the combined damping), whatever --config
+    overrides; only the resolution, `studies`, comes from the build.
+    """
+    input:
+        script="scripts/study.py",
+        config="config/config.yaml",
+        package=PACKAGE_SOURCES,
+    output:
+        "results/studies/den_hartog/chunk-{chunk}.csv",
+    wildcard_constraints:
+        chunk=r"\d+",
+    params:
+        resolution=config["studies"],
+        chunks=lambda wildcards: lumped.studies.study("den_hartog").CHUNKS[config["studies"]],
+    log:
+        "logs/studies/den_hartog-{chunk}.log",
+    shell:
+        "python {input.script} chunk den_hartog {input.config} {params.resolution} {wildcards.chunk} {params.chunks}"
+        " {output} > {log} 2>&1"
+
+
+rule study_den_hartog:
+    """Merge the chunks, in grid order, into results/studies/den_hartog.csv."""
+    input:
+        script="scripts/study.py",
+        chunks=study_chunks("den_hartog"),
+    output:
+        "results/studies/den_hartog.csv",
+    log:
+        "logs/studies/den_hartog.log",
+    shell:
+        "python {input.script} merge den_hartog {output} {input.chunks} > {log} 2>&1"

@@ -522,3 +522,56 @@ def _next_mode(
     zero = _zero_set(net, y[n:], mode, fired)
     y[n:] = net.project(y[n:], zero)
     return net.select(t, y, mode, zero, on), "stop"
+
+
+def den_hartog_amplitude(r: float, friction_ratio: float) -> float:
+    """Den Hartog's (1931) steady amplitude ``X k/P`` of the Coulomb oscillator without stops, as published.
+
+    ``X k/P = sqrt(1/(1 - r^2)^2 - (F/P)^2 (U/r)^2)``, ``U = sin(pi/r)/(1 + cos(pi/r))``,
+    ``r = omega/omega_n`` (Den Hartog, Trans. ASME 53, APM-53-9, 1931; his
+    textbook *Mechanical Vibrations*, section on Coulomb damping); ``nan``
+    where the root is imaginary.
+    """
+    u = math.sin(math.pi / r) / (1 + math.cos(math.pi / r))
+    square = 1 / (1 - r * r) ** 2 - (friction_ratio * u / r) ** 2
+    return math.sqrt(square) if square >= 0 else math.nan
+
+
+def den_hartog_boundary(r: float) -> float:
+    """The largest ``F/P`` of Coulomb motion without stops at ``r`` (valid for ``r`` above about 0.5).
+
+    The mass leaves a turning point at once when the net force there exceeds
+    ``F``; on Den Hartog's motion ``x(0) = -X``, ``P sin psi = -P X/a`` with
+    ``a = (P/k)/(1 - r^2)``, so the condition is ``m omega^2 X > F``, i.e.
+    ``r^2 X k/P > F/P``; with :func:`den_hartog_amplitude` squared it is
+    ``F/P < r^2 / (|1 - r^2| sqrt(1 + r^2 U^2))``.
+    """
+    u = math.sin(math.pi / r) / (1 + math.cos(math.pi / r))
+    return r * r / (abs(1 - r * r) * math.sqrt(1 + (r * u) ** 2))
+
+
+def shoot_steady_slip(
+    m: float, c: float, k: float, friction: float, p: float, omega: float
+) -> tuple[float, float, float]:
+    """``(X, psi, residual)`` of the symmetric steady motion by shooting over a half-period (numerical).
+
+    From ``x(0) = -X``, ``v(0) = 0``, integrate ``m x'' + c x' + k x = P sin(omega t + psi) - F``
+    over ``[0, pi/omega]`` (``solve_ivp``, DOP853, rtol 1e-12) and solve
+    ``x(T/2) = X``, ``v(T/2) = 0`` for ``(X, psi)`` with ``scipy.optimize.fsolve``, started from the
+    viscous response (``X = a``, ``psi = phi - pi/2``).  ``residual`` is the final ``max |x(T/2) - X|/X, |v(T/2)|/(omega X)``.
+    """
+    from scipy.optimize import fsolve
+
+    half = math.pi / omega
+
+    def end(unknowns: np.ndarray) -> np.ndarray:
+        x_amp, psi = unknowns
+        rhs = lambda t, z: [z[1], (p * math.sin(omega * t + psi) - friction - c * z[1] - k * z[0]) / m]  # noqa: E731
+        sol = solve_ivp(rhs, (0.0, half), [-x_amp, 0.0], method="DOP853", rtol=1e-12, atol=1e-14 * abs(x_amp))
+        return np.array([sol.y[0, -1] - x_amp, sol.y[1, -1] / omega])
+
+    a = p / math.hypot(k - m * omega**2, c * omega)
+    phi = math.atan2(c * omega, k - m * omega**2)
+    x_amp, psi = fsolve(end, [a, phi - math.pi / 2], xtol=1e-13)
+    residual = float(np.max(np.abs(end(np.array([x_amp, psi])))) / abs(x_amp))
+    return float(x_amp), float(psi), residual

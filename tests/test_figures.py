@@ -184,6 +184,19 @@ CHAIN = simulate_network(
 )
 #: A grid of x0 for the studies' helpers (st01, st02), with made-up rest positions.
 REST_X0 = np.linspace(-1.0, 1.0, 9)
+#: Made-up rows and curves for the Den Hartog helpers (dh01): two dampings, two F/P.
+DH_TABLE = {
+    "damping": np.repeat([0.0, 0.05], 4),
+    "friction_ratio": np.tile(np.repeat([0.2, 0.6], 2), 2),
+    "frequency_ratio": np.tile([0.5, 2.0], 4),
+    "amplitude_ratio": np.linspace(0.1, 2.0, 8),
+    "stops_per_period": np.tile([0.0, 2.0], 4),
+}
+DH_CURVES = {
+    (z, f): (np.linspace(0.2, 2.5, 5), np.linspace(2.0, 0.1, 5), np.array([0, 1, 1, 1, 0], bool))
+    for z in (0.0, 0.05)
+    for f in (0.2, 0.6)
+}
 FIGURES = {
     "fig01": lambda: plotting.bingham_pair(OSC.dashpot),
     "fig02": plotting.string_spring_triptych,
@@ -201,6 +214,8 @@ FIGURES = {
     "ext-positions": lambda: plotting.chain_positions(CHAIN),
     "st01": lambda: plotting.rest_positions(REST_X0, 0.01 * np.sin(REST_X0), 0.01 * np.cos(REST_X0), 0.01, 1e-4),
     "st02": lambda: plotting.rest_discrepancies(REST_X0, 1e-3 * REST_X0, REST_X0 > 0.5, REST_X0 < -0.5),
+    "dh01": lambda: plotting.den_hartog_amplitudes(DH_TABLE, DH_CURVES),
+    "dh02": lambda: plotting.den_hartog_history(REST_X0, 1e-3 * np.sin(REST_X0), 1e-3, (0.5, 1.0)),
 }
 
 

@@ -160,8 +160,8 @@ def test_config_override_reruns_the_config_and_every_notebook(plans, overrides, 
     """From an up-to-date tree, an override that changes a value plans effective_config
     (its params changed) and every job downstream of results/config.yaml: each notebook
     (hence every figure), the article's numbers, the convergence figure drawn from
-    them, and the article; not the work-precision study nor the rest study,
-    which run on the committed parameter file whatever the overrides."""
+    them, and the article; not the work-precision study nor the studies (rest,
+    Den Hartog), which run on the committed parameter file whatever the overrides."""
     reasons = _reasons_by_rule(plans[overrides])
     config = reasons.pop("effective_config", "")
     assert config.startswith("Params have changed"), reasons
@@ -196,6 +196,23 @@ def test_the_rest_study_is_chunk_jobs_merged_by_one_rule(studies, chunks):
     assert merge["input"].split(", ")[1:] == [f"results/studies/rest/chunk-{i}.csv" for i in range(chunks)]
     (notebook,) = [f for rule, f in jobs if rule == "notebook_10"]
     assert "results/studies/rest.csv" in notebook["input"].split(", ")
+
+
+@pytest.mark.parametrize(("studies", "chunks"), [(None, 2), ("full", 16)])
+def test_the_den_hartog_study_is_chunk_jobs_merged_by_one_rule(studies, chunks):
+    """One study_den_hartog_chunk job per chunk of lumped.studies.den_hartog.CHUNKS, merged, read by notebook 11."""
+    from lumped.studies import den_hartog
+
+    assert den_hartog.CHUNKS[studies or "default"] == chunks
+    args = ["--config", f"studies={studies}", "--"] if studies else []
+    jobs = _jobs(_snakemake("--dry-run", "--forceall", *args, "results/notebooks/11_den_hartog.ipynb"))
+    outputs = sorted(f["output"] for rule, f in jobs if rule == "study_den_hartog_chunk")
+    assert outputs == sorted(f"results/studies/den_hartog/chunk-{i}.csv" for i in range(chunks))
+    (merge,) = [f for rule, f in jobs if rule == "study_den_hartog"]
+    assert merge["output"] == "results/studies/den_hartog.csv"
+    assert merge["input"].split(", ")[1:] == [f"results/studies/den_hartog/chunk-{i}.csv" for i in range(chunks)]
+    (notebook,) = [f for rule, f in jobs if rule == "notebook_11"]
+    assert "results/studies/den_hartog.csv" in notebook["input"].split(", ")
 
 
 def test_a_studies_value_other_than_default_or_full_stops_with_one_line():

@@ -54,6 +54,7 @@ def test_a_caption_splits_at_its_first_sentence(path):
         "ext": f"Tutorial figure ext{number}",
         "acc": f"Tutorial figure acc{number}",
         "st": f"Study figure st{number}",
+        "dh": f"Study figure dh{number}",
     }[kind]
     assert caption.title.startswith(expected)
     flat = " ".join(caption.text.split())

@@ -39,7 +39,17 @@ from lumped import _validate
 from lumped.batched import BATCH_KERNEL, BatchParameters, batch_backward_euler
 from lumped.results import Trajectory
 
-__all__ = ["Axis", "SweepSpec", "parse_vary", "summarize", "sweep", "run_sweep", "SUMMARY_COLUMNS", "FORCED_COLUMNS"]
+__all__ = [
+    "Axis",
+    "SweepSpec",
+    "parse_vary",
+    "summarize",
+    "sweep",
+    "run_sweep",
+    "chunk_rows",
+    "SUMMARY_COLUMNS",
+    "FORCED_COLUMNS",
+]
 
 SUMMARY_COLUMNS = ("rest_time", "rest_position", "max_abs_x", "stops")
 FORCED_COLUMNS = ("steady_amplitude", "stops_per_period")
@@ -232,11 +242,7 @@ class SweepSpec:
 
     def chunk(self, index: int, count: int) -> slice:
         """Rows of chunk ``index`` (0-based) of ``count`` near-equal contiguous chunks."""
-        count = _validate.positive_int("count", count)
-        if not isinstance(index, int) or not 0 <= index < count:
-            raise ValueError(f"index must be an integer in [0, {count - 1}], got {index!r}")
-        bounds = np.linspace(0, self.rows, count + 1).round().astype(int)
-        return slice(int(bounds[index]), int(bounds[index + 1]))
+        return chunk_rows(self.rows, index, count)
 
     def check(self) -> None:
         """Refuse up front a sweep too large, too slow or with too few steps for ``periods``."""
@@ -275,6 +281,15 @@ class SweepSpec:
                 f"last {t_last - start[j]:.6g} s, longer than the run ({t_last:.6g} s); "
                 "lower periods or raise t_end"
             )
+
+
+def chunk_rows(rows: int, index: int, count: int) -> slice:
+    """Rows of chunk ``index`` (0-based) of ``count`` near-equal contiguous chunks of ``rows`` rows."""
+    count = _validate.positive_int("count", count)
+    if not isinstance(index, int) or not 0 <= index < count:
+        raise ValueError(f"index must be an integer in [0, {count - 1}], got {index!r}")
+    bounds = np.linspace(0, rows, count + 1).round().astype(int)
+    return slice(int(bounds[index]), int(bounds[index + 1]))
 
 
 def _oscillator(row: Mapping[str, float]):  # noqa: ANN202 (an Oscillator)

@@ -32,7 +32,7 @@ from lumped.plotting.histories import (
     time_history,
     time_history_panels,
 )
-from lumped.plotting.studies import rest_discrepancies, rest_positions
+from lumped.plotting.studies import den_hartog_amplitudes, den_hartog_history, rest_discrepancies, rest_positions
 from lumped.plotting.networks import chain_positions, locking_graph, network_history, network_panels, stick_map
 
 __all__ = [
@@ -53,6 +53,8 @@ __all__ = [
     "oscillator_schematic",
     "rest_discrepancies",
     "rest_positions",
+    "den_hartog_amplitudes",
+    "den_hartog_history",
     "save_figure",
     "sci_tex",
     "step_label",

@@ -1,4 +1,4 @@
-"""The studies' figures (issue 12, ``results/studies/``): where the mass comes to rest.
+"""The studies' figures (issue 12, ``results/studies/``): where the mass comes to rest; Den Hartog's amplitudes.
 
 The helpers take columns of ``results/studies/rest.csv`` (notebook 10
 documents them) as arrays, so they draw any grid of x0.
@@ -6,13 +6,16 @@ documents them) as arrays, so they draw any grid of x0.
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
+
+import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from lumped.plotting._base import legend_above, new_axes, styled
 
-__all__ = ["rest_positions", "rest_discrepancies", "intervals"]
+__all__ = ["rest_positions", "rest_discrepancies", "intervals", "den_hartog_amplitudes", "den_hartog_history"]
 
 MM = 1e3  # m -> mm
 
@@ -72,5 +75,85 @@ def rest_discrepancies(
     ax.axhline(0.0, color="k", lw=0.5)
     ax.set_xlabel(r"initial displacement $x_0$ (m)")
     ax.set_ylabel("rest-position error (mm)")
+    legend_above(ax, ncol=3)
+    return fig
+
+
+@styled
+def den_hartog_amplitudes(
+    table: Mapping[str, np.ndarray],
+    curves: Mapping[tuple[float, float], tuple[np.ndarray, np.ndarray, np.ndarray]],
+    axes: Sequence[Axes] | None = None,
+) -> Figure:
+    """Amplitude ratio ``X k/P`` against ``r = omega/omega_n``: one panel per damping ratio, one colour per ``F/P``.
+
+    Parameters
+    ----------
+    table : mapping of str to ndarray
+        Columns ``damping``, ``friction_ratio``, ``frequency_ratio``,
+        ``amplitude_ratio`` and ``stops_per_period`` of ``results/studies/den_hartog.csv``:
+        simulated points, filled without stops in the window, hollow with stops.
+    curves : mapping
+        ``(damping, F/P)`` -> ``(r, X k/P, nonstop)`` of the closed form:
+        solid where the motion without stops is admissible, dotted where the
+        formula has a root but the mass would stop.
+    axes : sequence of two Axes, optional
+    """
+    dampings = sorted({d for d, _ in curves})
+    if axes is None:
+        _, made = plt.subplots(1, len(dampings), figsize=(6.4, 3.4), sharey=True)
+        axes = list(np.atleast_1d(made))
+    ratios = sorted({f for _, f in curves})
+    for ax, zeta in zip(axes, dampings):
+        for i, fp in enumerate(ratios):
+            _den_hartog_panel(ax, table, curves[(zeta, fp)], zeta, fp, f"C{i}")
+        ax.set_title("Coulomb" if zeta == 0 else rf"Coulomb + viscous, $\zeta = {zeta:g}$", fontsize=9)
+        ax.set_xlabel(r"frequency ratio $\omega/\omega_n$")
+        ax.set_yscale("log")
+    axes[0].set_ylabel(r"amplitude ratio $Xk/P$")
+    axes[0].set_ylim(1e-2, 50.0)
+    fig = axes[0].figure
+    fig.legend(*axes[0].get_legend_handles_labels(), loc="outside upper center", ncol=len(ratios), fontsize=8)
+    return fig  # type: ignore[return-value]
+
+
+def _den_hartog_panel(
+    ax: Axes, table: Mapping[str, np.ndarray], line: tuple, zeta: float, fp: float, colour: str
+) -> None:
+    """One ``F/P`` on one panel: the closed form (solid/dotted) and the simulated points (filled/hollow)."""
+    r, ratio, nonstop = (np.asarray(a) for a in line)
+    ax.plot(r, np.where(nonstop, ratio, np.nan), "-", color=colour, lw=1.0, label=rf"$F/P = {fp:g}$")
+    ax.plot(r, np.where(nonstop, np.nan, ratio), ":", color=colour, lw=1.0)
+    rows = (table["damping"] == zeta) & (table["friction_ratio"] == fp)
+    still = rows & (table["stops_per_period"] == 0)
+    ax.plot(table["frequency_ratio"][still], table["amplitude_ratio"][still], "o", color=colour, ms=3.0)
+    stopped = rows & (table["stops_per_period"] > 0)
+    ax.plot(table["frequency_ratio"][stopped], table["amplitude_ratio"][stopped], "o", mfc="none", mec=colour, ms=3.5)
+
+
+@styled
+def den_hartog_history(
+    t: np.ndarray, x: np.ndarray, amplitude: float, window: tuple[float, float], ax: Axes | None = None
+) -> Figure:
+    """Displacement (mm) of one long run from rest against time (s), with the closed-form steady amplitude.
+
+    Parameters
+    ----------
+    t, x : ndarray, s and m
+        The run, sampled.
+    amplitude : float, m
+        The closed form's ``X``, drawn dashed at ``+-X``.
+    window : (float, float), s
+        The last window of the summary, shaded.
+    """
+    fig, ax = new_axes(ax, figsize=(6.4, 2.8))
+    ax.axvspan(*window, color="0.92", lw=0, label="last window")
+    ax.plot(t, x * MM, "-", color="C0", lw=0.6, label="exact solver, from rest")
+    for sign in (1, -1):
+        ax.axhline(
+            sign * amplitude * MM, color="k", ls="--", lw=0.8, label=r"closed form $\pm X$" if sign > 0 else None
+        )
+    ax.set_xlabel(r"time $t$ (s)")
+    ax.set_ylabel(r"displacement $x$ (mm)")
     legend_above(ax, ncol=3)
     return fig
