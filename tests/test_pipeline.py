@@ -95,7 +95,8 @@ def test_every_notebook_is_executed_and_figures_come_from_notebooks(dry_run):
     sources = sorted(Path(ROOT, "notebooks").glob("[0-9][0-9]_*.py"))
     assert executed == {f"results/notebooks/{p.stem}.ipynb" for p in sources}
     figure_jobs = {job for path, job in dry_run.items() if path.startswith("figures/")}
-    assert figure_jobs == {f"notebook_{n:02d}" for n in range(3, 11)}
+    # notebooks 01 and 02 derive and demonstrate; every later one draws figures
+    assert figure_jobs == {f"notebook_{p.stem[:2]}" for p in sources if p.stem[:2] >= "03"}
 
 
 @pytest.fixture(scope="module")
