@@ -39,7 +39,17 @@ from lumped import _validate
 from lumped.batched import BATCH_KERNEL, BatchParameters, batch_backward_euler
 from lumped.results import Trajectory
 
-__all__ = ["Axis", "SweepSpec", "parse_vary", "summarize", "sweep", "run_sweep", "SUMMARY_COLUMNS", "FORCED_COLUMNS"]
+__all__ = [
+    "Axis",
+    "SweepSpec",
+    "parse_vary",
+    "summarize",
+    "sweep",
+    "run_sweep",
+    "chunk_slice",
+    "SUMMARY_COLUMNS",
+    "FORCED_COLUMNS",
+]
 
 SUMMARY_COLUMNS = ("rest_time", "rest_position", "max_abs_x", "stops")
 FORCED_COLUMNS = ("steady_amplitude", "stops_per_period")
@@ -64,6 +74,15 @@ MAX_ROWS = 100_000_000
 SECONDS_PER_TRAJECTORY_STEP = {"compiled": 5e-9, "python": 5e-8}
 #: Estimated cost (s) per grid point of a sampled single run (exact, event-driven).
 SECONDS_PER_SAMPLE = 1e-6
+
+
+def chunk_slice(rows: int, index: int, count: int) -> slice:
+    """Rows of chunk ``index`` (0-based) of ``count`` near-equal contiguous chunks of ``rows`` rows."""
+    count = _validate.positive_int("count", count)
+    if not isinstance(index, int) or not 0 <= index < count:
+        raise ValueError(f"index must be an integer in [0, {count - 1}], got {index!r}")
+    bounds = np.linspace(0, rows, count + 1).round().astype(int)
+    return slice(int(bounds[index]), int(bounds[index + 1]))
 
 
 class Axis(NamedTuple):
@@ -225,12 +244,8 @@ class SweepSpec:
         return out
 
     def chunk(self, index: int, count: int) -> slice:
-        """Rows of chunk ``index`` (0-based) of ``count`` near-equal contiguous chunks."""
-        count = _validate.positive_int("count", count)
-        if not isinstance(index, int) or not 0 <= index < count:
-            raise ValueError(f"index must be an integer in [0, {count - 1}], got {index!r}")
-        bounds = np.linspace(0, self.rows, count + 1).round().astype(int)
-        return slice(int(bounds[index]), int(bounds[index + 1]))
+        """Rows of chunk ``index`` (0-based) of ``count`` near-equal contiguous chunks (:func:`chunk_slice`)."""
+        return chunk_slice(self.rows, index, count)
 
     def check(self) -> None:
         """Refuse up front a sweep too large, too slow or with too few steps for ``periods``."""
