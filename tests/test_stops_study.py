@@ -123,7 +123,7 @@ def test_chunks_concatenate_to_the_whole_grid(whole: dict[str, np.ndarray]) -> N
     np.testing.assert_array_equal(whole["stops_per_period"], whole["window_stops"] / stops.PERIODS)
 
 
-def test_the_file_reads_back_bit_for_bit(tmp_path, whole: dict[str, np.ndarray]) -> None:  # noqa: ANN001 (fixture)
+def test_the_file_reads_back_bit_for_bit(tmp_path, whole: dict[str, np.ndarray]) -> None:
     table = whole
     studies.write_csv(table, tmp_path / "stops.csv", stops.COLUMNS)
     back = studies.read_csv(tmp_path / "stops.csv", stops.COLUMNS)
@@ -149,6 +149,6 @@ def test_grid_axes() -> None:
         (lambda: stops.rows(CFG, 2, 2, (2, 2)), "index"),
     ],
 )
-def test_bad_inputs_name_the_argument(call, message: str) -> None:  # noqa: ANN001 (a callable)
+def test_bad_inputs_name_the_argument(call, message: str) -> None:
     with pytest.raises(ValueError, match=message):
         call()

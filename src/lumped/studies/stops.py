@@ -36,7 +36,7 @@ from lumped.forcing import SwitchedSine
 from lumped.sweep import chunk_slice
 from lumped.system import Oscillator
 
-__all__ = ["GRID", "CHUNKS", "PERIODS", "TRANSIENT", "COLUMNS", "Count", "grid", "count_stops", "run", "rows"]
+__all__ = ["CHUNKS", "COLUMNS", "GRID", "PERIODS", "TRANSIENT", "Count", "count_stops", "grid", "rows", "run"]
 
 #: ``studies`` (the configuration key) -> (values of r, values of F/P, chunks).
 GRID = {"default": (12, 8, 2), "full": (160, 120, 16)}
