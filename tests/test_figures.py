@@ -184,6 +184,9 @@ CHAIN = simulate_network(
 )
 #: A grid of x0 for the studies' helpers (st01, st02), with made-up rest positions.
 REST_X0 = np.linspace(-1.0, 1.0, 9)
+#: A 4 x 3 grid of (r, F/P) for the stops map (sp01), flattened as the study's columns.
+SPC_R = np.geomspace(0.1, 3.0, 4)
+SPC_GRID = tuple(a.ravel() for a in np.meshgrid(SPC_R, [0.2, 0.5, 0.8], indexing="ij"))
 FIGURES = {
     "fig01": lambda: plotting.bingham_pair(OSC.dashpot),
     "fig02": plotting.string_spring_triptych,
@@ -201,6 +204,8 @@ FIGURES = {
     "ext-positions": lambda: plotting.chain_positions(CHAIN),
     "st01": lambda: plotting.rest_positions(REST_X0, 0.01 * np.sin(REST_X0), 0.01 * np.cos(REST_X0), 0.01, 1e-4),
     "st02": lambda: plotting.rest_discrepancies(REST_X0, 1e-3 * REST_X0, REST_X0 > 0.5, REST_X0 < -0.5),
+    "sp01": lambda: plotting.stops_map(*SPC_GRID, 2.0 * (SPC_GRID[0] < 1), np.ones(12), boundary=(SPC_R, 0.5 / SPC_R)),
+    "sp02": lambda: plotting.stop_histories([("a", REST_X0, REST_X0, [(0.0, 0.5)]), ("b", REST_X0, -REST_X0, [])]),
 }
 
 

@@ -54,6 +54,7 @@ def test_a_caption_splits_at_its_first_sentence(path):
         "ext": f"Tutorial figure ext{number}",
         "acc": f"Tutorial figure acc{number}",
         "st": f"Study figure st{number}",
+        "sp": f"Study figure sp{number}",
     }[kind]
     assert caption.title.startswith(expected)
     flat = " ".join(caption.text.split())
