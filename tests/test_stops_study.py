@@ -19,6 +19,7 @@ from lumped import studies
 from lumped.event_driven import solve_exact
 from lumped.forcing import SwitchedSine
 from lumped.studies import stops
+from lumped.sweep import sweep
 from lumped.system import Oscillator
 
 CFG = {"mass": 1.0, "stiffness": 100.0, "threshold": 1.0}
@@ -152,3 +153,30 @@ def test_grid_axes() -> None:
 def test_bad_inputs_name_the_argument(call, message: str) -> None:
     with pytest.raises(ValueError, match=message):
         call()
+
+
+def test_event_count_equals_the_sweeps_sampled_definition_where_stops_are_long() -> None:
+    # At r = 0.4, F/P = 0.6 every stop lasts a good part of a period (stuck fraction printed in notebook 12), so
+    # sampling the same exact solution every dt = 1 ms misses none: lumped.sweep's sampled stops_per_period (steps
+    # entering v == 0, over the last K periods) must equal the count from events.  t_end is chosen so that the sweep's
+    # grid ends exactly at the study's t_end up to round-off; no stop lies within dt of a window edge (asserted).
+    r, ratio = 0.4, 0.6
+    omega, dt = r * OMEGA_N, 1e-3
+    period = 2 * math.pi / omega
+    sol = stops.run(CFG, r, ratio)
+    n = round(sol.t_end / dt)
+    ours = stops.count_stops(sol, period, stops.PERIODS)
+    swept = sweep(
+        {"force_omega": [omega]},
+        t_end=n * dt,
+        dt=dt,
+        method="exact",
+        periods=stops.PERIODS,
+        gamma=math.inf,
+        threshold=CFG["threshold"],
+        force_amplitude=CFG["threshold"] / ratio,
+    )
+    times = sol.event_times("stop")
+    assert np.abs(times - (sol.t_end - stops.PERIODS * period)).min() > 2 * dt
+    assert ours.window_stops > 0
+    assert swept["stops_per_period"][0] == ours.window_stops / stops.PERIODS
