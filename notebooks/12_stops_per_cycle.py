@@ -132,6 +132,10 @@ r, q, spp = table["frequency_ratio"], table["friction_ratio"], table["stops_per_
 settled = table["settled"] == 1
 print(f"{r.size} rows: {np.unique(r).size} values of r in [{r.min():g}, {r.max():g}], {np.unique(q).size} of F/P")
 print(f"K = {stops.PERIODS} periods per window after {stops.TRANSIENT}; not settled: {np.sum(~settled)} rows")
+print("not settled at (r, F/P, stops in the two windows):", [
+    (round(a, 3), b, int(c), int(d))
+    for a, b, c, d in zip(r[~settled], q[~settled], table["previous_stops"][~settled], table["window_stops"][~settled])
+])
 
 # %% [markdown]
 # ## Figure sp01: the map
@@ -150,7 +154,8 @@ print(f"odd counts (settled): {odd.sum()} rows, at (r, F/P) = {[(round(a, 3), b)
 # %% [markdown]
 # Along each column of the map, where does the motion stop? The smallest
 # $F/P$ with stops, per $r$ (the edge of the nonstop region, which Den
-# Hartog's analysis predicts):
+# Hartog's analysis predicts), and the frequencies below which every settled
+# row stops:
 
 # %%
 for rv in np.unique(r)[::2]:
@@ -158,21 +163,27 @@ for rv in np.unique(r)[::2]:
     stopping = q[col & (spp > 0)]
     edge = f"{stopping.min():.3f}" if stopping.size else "none on the grid"
     print(f"r = {rv:.3f}: first F/P with stops {edge}; counts {spp[col].astype(int).tolist()}")
+nonstop_r = r[settled & (spp == 0)]
+print(f"every settled row stops for r < {nonstop_r.min():.3f}; the nonstop rows span r in [{nonstop_r.min():.3f}, {nonstop_r.max():.3f}]")
+print(f"rows stuck for more than half the last window: {np.mean(table['stuck_fraction'] > 0.5):.1%}")
 
 # %%
 fig = P.stops_map(r, q, spp, table["settled"])
 _ = P.save_figure(fig, "sp01_stops_map")
 
 # %% [markdown]
-# What the map shows, in the numbers printed above: the nonstop region
-# occupies the small-$F/P$ side at and above resonance, and widens in $F/P$
-# as $r$ grows past 1; below $r \approx 0.4$ every point of the grid stops
-# at least twice per period (once at each end of its swing), and at the
-# lowest frequencies the count rises to four and six, as the mass, driven
-# slowly, makes several stick-slip steps per half-period. Crosses mark the
-# rows whose count had not settled after the run: near the edges between
-# regions the transient from rest dies slowly, since friction is the only
-# damping. Odd counts are asymmetric motions, which Hong and Liu list too.
+# What the map shows, in the numbers printed above: nonstop motion (zero
+# stops) fills the small-$F/P$ part of the map from about $r \approx 0.5$
+# upwards, and its edge in $F/P$ is highest a little above resonance and
+# lower on both sides. Below that frequency every settled row stops at least twice per
+# period, once near each end of its swing, and at the lowest frequencies the
+# count rises to four and six: the slowly driven mass makes several
+# stick-slip steps per half-period. Crosses mark the rows whose count had not
+# settled after the run (listed with their two window counts above): a stop
+# count still changing after the transient, with no viscous damping to end
+# it. The default grid
+# holds no odd count (printed above); Hong and Liu's list includes one stop
+# per cycle, an asymmetric motion.
 #
 # ## Figure sp02: three motions
 #
