@@ -38,14 +38,18 @@ from lumped.system import Oscillator
 
 __all__ = ["CHUNKS", "COLUMNS", "GRID", "PERIODS", "TRANSIENT", "Count", "count_stops", "grid", "rows", "run"]
 
-#: ``studies`` (the configuration key) -> (values of r, values of F/P, chunks).
+#: ``studies`` (the configuration key) -> (values of r, values of F/P, chunks).  An exact run costs about 10 to
+#: 80 ms (more at low r, where there are more events per period): default, about 3 CPU-s in all; full, about ten
+#: minutes of CPU.
 GRID = {"default": (12, 8, 2), "full": (160, 120, 16)}
 CHUNKS = {resolution: chunks for resolution, (_, _, chunks) in GRID.items()}
 #: The range of ``r = omega/omega_n``, log-spaced (stop counts grow as ``r`` falls).
 R_RANGE = (0.1, 3.0)
-#: ``K``: forcing periods per counting window.
+#: ``K``: forcing periods per counting window (4 also sees motions that repeat every 2 or 4 periods).
 PERIODS = 4
-#: Forcing periods run before the two windows (the transient from rest).
+#: Forcing periods run before the two windows (the transient from rest).  On the default grid, 24 (with K = 4)
+#: leaves 2 rows of 96 unsettled; runs of 10 to 16 periods (K = 2 or 3) called those two rows settled, with another
+#: count: a short run can mistake a slow transient for a steady state.
 TRANSIENT = 24
 COLUMNS = (
     "frequency_ratio",
@@ -122,8 +126,15 @@ def rows(
 ) -> dict[str, np.ndarray]:
     """The study's columns (:data:`COLUMNS`) for the rows of ``chunk`` of the grid (all without it).
 
-    The grid is :func:`grid`'s, ``r`` varying slowest; ``chunk = (index, count)`` takes the ``index``-th of ``count``
-    near-equal contiguous slices of its rows, as :meth:`lumped.sweep.SweepSpec.chunk`.
+    Parameters
+    ----------
+    cfg : mapping
+        ``mass`` (kg), ``stiffness`` (N/m) and ``threshold`` (N), as :func:`lumped.config.load` gives them.
+    r_points, ratio_points : int
+        Sizes of the axes of :func:`grid`; ``r`` varies slowest.
+    chunk : (int, int), optional
+        ``(index, count)``: the ``index``-th of ``count`` near-equal contiguous slices of the rows
+        (:func:`lumped.sweep.chunk_slice`); the chunks concatenate to the whole.
     """
     r, ratio = grid(r_points, ratio_points)
     rr, qq = (a.ravel() for a in np.meshgrid(r, ratio, indexing="ij"))
