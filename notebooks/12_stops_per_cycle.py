@@ -133,7 +133,7 @@ settled = table["settled"] == 1
 print(f"{r.size} rows: {np.unique(r).size} values of r in [{r.min():g}, {r.max():g}], {np.unique(q).size} of F/P")
 print(f"K = {stops.PERIODS} periods per window after {stops.TRANSIENT}; not settled: {np.sum(~settled)} rows")
 print("not settled at (r, F/P, stops in the two windows):", [
-    (round(a, 3), b, int(c), int(d))
+    (round(float(a), 3), float(b), int(c), int(d))
     for a, b, c, d in zip(r[~settled], q[~settled], table["previous_stops"][~settled], table["window_stops"][~settled])
 ])
 
@@ -149,7 +149,7 @@ print(f"nonstop (0 stops): {np.mean(spp == 0):.1%} of the map; largest count {sp
 low = r[spp == spp.max()]
 print(f"the largest count at r = {np.array2string(np.unique(low), precision=3)}")
 odd = settled & (spp % 2 == 1)
-print(f"odd counts (settled): {odd.sum()} rows, at (r, F/P) = {[(round(a, 3), b) for a, b in zip(r[odd], q[odd])]}")
+print(f"odd counts (settled): {odd.sum()} rows, at (r, F/P) = {[(round(float(a), 3), float(b)) for a, b in zip(r[odd], q[odd])]}")
 
 # %% [markdown]
 # Along each column of the map, where does the motion stop? The smallest
@@ -158,7 +158,7 @@ print(f"odd counts (settled): {odd.sum()} rows, at (r, F/P) = {[(round(a, 3), b)
 # row stops:
 
 # %%
-for rv in np.unique(r)[::2]:
+for rv in np.unique(r):
     col = (r == rv) & settled
     stopping = q[col & (spp > 0)]
     edge = f"{stopping.min():.3f}" if stopping.size else "none on the grid"
@@ -173,17 +173,17 @@ _ = P.save_figure(fig, "sp01_stops_map")
 
 # %% [markdown]
 # What the map shows, in the numbers printed above: nonstop motion (zero
-# stops) fills the small-$F/P$ part of the map from about $r \approx 0.5$
-# upwards, and its edge in $F/P$ is highest a little above resonance and
-# lower on both sides. Below that frequency every settled row stops at least twice per
-# period, once near each end of its swing, and at the lowest frequencies the
-# count rises to four and six: the slowly driven mass makes several
-# stick-slip steps per half-period. Crosses mark the rows whose count had not
-# settled after the run (listed with their two window counts above): a stop
-# count still changing after the transient, with no viscous damping to end
-# it. The default grid
-# holds no odd count (printed above); Hong and Liu's list includes one stop
-# per cycle, an asymmetric motion.
+# stops) fills the small-$F/P$ part of the map above $r \approx 0.5$, and its
+# edge in $F/P$ is highest near resonance ($r \approx 1$) and lower on both
+# sides. Below that frequency the settled rows of this grid all stop at least
+# twice per period, once near each end of a swing, and at the lowest
+# frequencies the count rises to four and six: the slowly driven mass makes
+# several stick-slip steps per half-period. Crosses mark the rows whose count
+# had not settled after the run (listed with their two window counts above):
+# a stop count still changing after the transient, with no viscous damping to
+# end it. This grid holds no odd count (printed above); Hong and Liu's list
+# includes one stop per cycle, an asymmetric motion. The default grid is
+# coarse and can step over narrow regions; `studies=full` resolves them.
 #
 # ## Figure sp02: three motions
 #
