@@ -91,3 +91,41 @@ rule study_den_hartog:
         "logs/studies/den_hartog.log",
     shell:
         "python {input.script} merge den_hartog {output} {input.chunks} > {log} 2>&1"
+
+
+rule study_stops_chunk:
+    """Rows {chunk} of the (r, F/P) grid of lumped.studies.stops: exact Coulomb runs, stops counted from events.
+
+    Like the rest study, the physics (m, k and the friction force F) comes from
+    config/config.yaml as committed, whatever --config overrides (notebook 12
+    says so); only the resolution, `studies`, is the build's.
+    """
+    input:
+        script="scripts/study.py",
+        config="config/config.yaml",
+        package=PACKAGE_SOURCES,
+    output:
+        "results/studies/stops/chunk-{chunk}.csv",
+    wildcard_constraints:
+        chunk=r"\d+",
+    params:
+        resolution=config["studies"],
+        chunks=lambda wildcards: lumped.studies.study("stops").CHUNKS[config["studies"]],
+    log:
+        "logs/studies/stops-{chunk}.log",
+    shell:
+        "python {input.script} chunk stops {input.config} {params.resolution} {wildcards.chunk} {params.chunks}"
+        " {output} > {log} 2>&1"
+
+
+rule study_stops:
+    """Merge the chunks, in grid order, into results/studies/stops.csv."""
+    input:
+        script="scripts/study.py",
+        chunks=study_chunks("stops"),
+    output:
+        "results/studies/stops.csv",
+    log:
+        "logs/studies/stops.log",
+    shell:
+        "python {input.script} merge stops {output} {input.chunks} > {log} 2>&1"

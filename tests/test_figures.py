@@ -197,6 +197,9 @@ DH_CURVES = {
     for z in (0.0, 0.05)
     for f in (0.2, 0.6)
 }
+#: A 4 x 3 grid of (r, F/P) for the stops map (sp01), flattened as the study's columns.
+SPC_R = np.geomspace(0.1, 3.0, 4)
+SPC_GRID = tuple(a.ravel() for a in np.meshgrid(SPC_R, [0.2, 0.5, 0.8], indexing="ij"))
 FIGURES = {
     "fig01": lambda: plotting.bingham_pair(OSC.dashpot),
     "fig02": plotting.string_spring_triptych,
@@ -216,6 +219,8 @@ FIGURES = {
     "st02": lambda: plotting.rest_discrepancies(REST_X0, 1e-3 * REST_X0, REST_X0 > 0.5, REST_X0 < -0.5),
     "dh01": lambda: plotting.den_hartog_amplitudes(DH_TABLE, DH_CURVES),
     "dh02": lambda: plotting.den_hartog_history(REST_X0, 1e-3 * np.sin(REST_X0), 1e-3, (0.5, 1.0)),
+    "sp01": lambda: plotting.stops_map(*SPC_GRID, 2.0 * (SPC_GRID[0] < 1), np.ones(12), boundary=(SPC_R, 0.5 / SPC_R)),
+    "sp02": lambda: plotting.stop_histories([("a", REST_X0, REST_X0, [(0.0, 0.5)]), ("b", REST_X0, -REST_X0, [])]),
 }
 
 

@@ -229,3 +229,20 @@ def test_a_studies_value_other_than_default_or_full_stops_with_one_line():
     assert lines == [
         "config: studies must be default or full (the resolution of the studies in results/studies/); got 'fast'"
     ]
+
+
+@pytest.mark.parametrize(("studies", "chunks"), [(None, 2), ("full", 16)])
+def test_the_stops_study_is_chunk_jobs_merged_by_one_rule(studies, chunks):
+    """One study_stops_chunk job per chunk of lumped.studies.stops.CHUNKS, merged by study_stops, read by notebook 12."""
+    from lumped.studies import stops
+
+    assert stops.CHUNKS[studies or "default"] == chunks
+    args = ["--config", f"studies={studies}", "--"] if studies else []
+    jobs = _jobs(_snakemake("--dry-run", "--forceall", *args, "results/notebooks/12_stops_per_cycle.ipynb"))
+    outputs = sorted(f["output"] for rule, f in jobs if rule == "study_stops_chunk")
+    assert outputs == sorted(f"results/studies/stops/chunk-{i}.csv" for i in range(chunks))
+    (merge,) = [f for rule, f in jobs if rule == "study_stops"]
+    assert merge["output"] == "results/studies/stops.csv"
+    assert merge["input"].split(", ")[1:] == [f"results/studies/stops/chunk-{i}.csv" for i in range(chunks)]
+    (notebook,) = [f for rule, f in jobs if rule == "notebook_12"]
+    assert "results/studies/stops.csv" in notebook["input"].split(", ")

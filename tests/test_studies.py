@@ -81,6 +81,10 @@ def _script(capsys, *args):
         (("chunk", "nowhere", "config/config.yaml", "default", 0, 4, "out.csv"), "study: study must be one of rest"),
         (("merge", "rest", "out.csv", "missing.csv"), "study: [Errno 2]"),
         (("nonsense",), "python scripts/study.py chunk STUDY CONFIG"),
+        (
+            ("chunk", "stops", "config/config.yaml", "default", 2, 2, "out.csv"),
+            "study: index must be an integer in [0, 1]",
+        ),
     ],
 )
 def test_bad_arguments_exit_2_with_one_line_and_no_file(tmp_path, capsys, args, start):

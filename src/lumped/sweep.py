@@ -46,7 +46,7 @@ __all__ = [
     "summarize",
     "sweep",
     "run_sweep",
-    "chunk_rows",
+    "chunk_slice",
     "SUMMARY_COLUMNS",
     "FORCED_COLUMNS",
 ]
@@ -80,6 +80,15 @@ SECONDS_PER_TRAJECTORY_STEP = {
 }
 #: Estimated cost (s) per grid point of a sampled single run (exact, event-driven).
 SECONDS_PER_SAMPLE = 1e-6
+
+
+def chunk_slice(rows: int, index: int, count: int) -> slice:
+    """Rows of chunk ``index`` (0-based) of ``count`` near-equal contiguous chunks of ``rows`` rows."""
+    count = _validate.positive_int("count", count)
+    if not isinstance(index, int) or not 0 <= index < count:
+        raise ValueError(f"index must be an integer in [0, {count - 1}], got {index!r}")
+    bounds = np.linspace(0, rows, count + 1).round().astype(int)
+    return slice(int(bounds[index]), int(bounds[index + 1]))
 
 
 class Axis(NamedTuple):
@@ -241,8 +250,8 @@ class SweepSpec:
         return out
 
     def chunk(self, index: int, count: int) -> slice:
-        """Rows of chunk ``index`` (0-based) of ``count`` near-equal contiguous chunks."""
-        return chunk_rows(self.rows, index, count)
+        """Rows of chunk ``index`` (0-based) of ``count`` near-equal contiguous chunks (:func:`chunk_slice`)."""
+        return chunk_slice(self.rows, index, count)
 
     def check(self) -> None:
         """Refuse up front a sweep too large, too slow or with too few steps for ``periods``."""
@@ -281,15 +290,6 @@ class SweepSpec:
                 f"last {t_last - start[j]:.6g} s, longer than the run ({t_last:.6g} s); "
                 "lower periods or raise t_end"
             )
-
-
-def chunk_rows(rows: int, index: int, count: int) -> slice:
-    """Rows of chunk ``index`` (0-based) of ``count`` near-equal contiguous chunks of ``rows`` rows."""
-    count = _validate.positive_int("count", count)
-    if not isinstance(index, int) or not 0 <= index < count:
-        raise ValueError(f"index must be an integer in [0, {count - 1}], got {index!r}")
-    bounds = np.linspace(0, rows, count + 1).round().astype(int)
-    return slice(int(bounds[index]), int(bounds[index + 1]))
 
 
 def _oscillator(row: Mapping[str, float]):  # noqa: ANN202 (an Oscillator)

@@ -32,7 +32,14 @@ from lumped.plotting.histories import (
     time_history,
     time_history_panels,
 )
-from lumped.plotting.studies import den_hartog_amplitudes, den_hartog_history, rest_discrepancies, rest_positions
+from lumped.plotting.studies import (
+    den_hartog_amplitudes,
+    den_hartog_history,
+    rest_discrepancies,
+    rest_positions,
+    stop_histories,
+    stops_map,
+)
 from lumped.plotting.networks import chain_positions, locking_graph, network_history, network_panels, stick_map
 
 __all__ = [
@@ -59,6 +66,8 @@ __all__ = [
     "sci_tex",
     "step_label",
     "stick_map",
+    "stop_histories",
+    "stops_map",
     "string_spring_triptych",
     "style",
     "styled",

@@ -1,7 +1,8 @@
-"""The studies' figures (issue 12, ``results/studies/``): where the mass comes to rest; Den Hartog's amplitudes.
+"""The studies' figures (issue 12, ``results/studies/``): where the mass comes to rest; Den Hartog's amplitudes; stops per cycle.
 
 The helpers take columns of ``results/studies/rest.csv`` (notebook 10
-documents them) as arrays, so they draw any grid of x0.
+documents them) and ``results/studies/stops.csv`` (notebook 12) as arrays, so
+they draw any grid.
 """
 
 from __future__ import annotations
@@ -11,11 +12,20 @@ from collections.abc import Mapping, Sequence
 import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
+from matplotlib.colors import BoundaryNorm, ListedColormap
 from matplotlib.figure import Figure
 
 from lumped.plotting._base import legend_above, new_axes, styled
 
-__all__ = ["rest_positions", "rest_discrepancies", "intervals", "den_hartog_amplitudes", "den_hartog_history"]
+__all__ = [
+    "intervals",
+    "rest_discrepancies",
+    "rest_positions",
+    "den_hartog_amplitudes",
+    "den_hartog_history",
+    "stop_histories",
+    "stops_map",
+]
 
 MM = 1e3  # m -> mm
 
@@ -157,3 +167,84 @@ def den_hartog_history(
     ax.set_ylabel(r"displacement $x$ (mm)")
     legend_above(ax, ncol=3)
     return fig
+
+
+def _cells(values: np.ndarray, log: bool) -> np.ndarray:
+    """Edges of the cells centred on the sorted grid ``values`` (geometric midpoints when ``log``)."""
+    v = np.log(values) if log else values
+    mid = 0.5 * (v[1:] + v[:-1])
+    first, last = (2 * v[0] - mid[0], 2 * v[-1] - mid[-1]) if v.size > 1 else (v[0] - 0.5, v[0] + 0.5)
+    edges = np.concatenate(([first], mid, [last]))
+    return np.exp(edges) if log else edges
+
+
+@styled
+def stops_map(
+    frequency_ratio: np.ndarray,
+    friction_ratio: np.ndarray,
+    stops_per_period: np.ndarray,
+    settled: np.ndarray,
+    boundary: tuple[np.ndarray, np.ndarray] | None = None,
+    boundary_label: str = "nonstop boundary",
+    ax: Axes | None = None,
+) -> Figure:
+    """Stops per forcing period over the plane (r = omega/omega_n, F/P): one colour per integer count.
+
+    Parameters
+    ----------
+    frequency_ratio, friction_ratio, stops_per_period, settled : ndarray
+        Columns of ``results/studies/stops.csv`` (one row per grid point, any order of a full grid).
+        Points whose count is not settled or not an integer are marked with a cross.
+    boundary : (ndarray, ndarray), optional
+        A curve ``(r, F/P)`` drawn over the map, e.g. the analytic boundary of nonstop motion
+        (the hook for :mod:`lumped.studies.den_hartog`); ``boundary_label`` names it in the legend.
+    """
+    fig, ax = new_axes(ax, figsize=(6.4, 4.0))
+    r, q = np.unique(frequency_ratio), np.unique(friction_ratio)
+    grid = np.full((q.size, r.size), np.nan)
+    grid[np.searchsorted(q, friction_ratio), np.searchsorted(r, frequency_ratio)] = stops_per_period
+    top = int(np.ceil(np.nanmax(grid))) if np.isfinite(grid).any() else 0
+    levels = np.arange(top + 2) - 0.5
+    cmap = ListedColormap(plt.get_cmap("viridis", top + 1)(np.arange(top + 1)))
+    mesh = ax.pcolormesh(_cells(r, True), _cells(q, False), grid, cmap=cmap, norm=BoundaryNorm(levels, top + 1))
+    bar = fig.colorbar(mesh, ax=ax, ticks=np.arange(top + 1), label="stops per forcing period")
+    bar.ax.minorticks_off()
+    odd = (np.asarray(settled) == 0) | (stops_per_period != np.round(stops_per_period))
+    if odd.any():
+        ax.plot(frequency_ratio[odd], friction_ratio[odd], "x", color="C3", ms=4, label="count not settled")
+    ax.axhspan(1.0, 1.1, color="0.85", lw=0, label=r"$F/P \geq 1$: never moves from rest")
+    if boundary is not None:
+        ax.plot(*boundary, "--", color="C1", lw=1.5, label=boundary_label)
+    ax.set_xscale("log")
+    ax.set_ylim(0.0, 1.1)
+    ax.set_xlabel(r"frequency ratio $r = \omega/\omega_n$")
+    ax.set_ylabel(r"friction ratio $F/P$")
+    legend_above(ax, ncol=2)
+    return fig
+
+
+@styled
+def stop_histories(
+    runs: Sequence[tuple[str, np.ndarray, np.ndarray, Sequence[tuple[float, float]]]],
+    axes: Sequence[Axes] | None = None,
+) -> Figure:
+    """Displacement against time, one panel per run, stick intervals shaded.
+
+    Parameters
+    ----------
+    runs : sequence of (str, ndarray, ndarray, sequence of (float, float))
+        ``(title, t, x, sticks)``: time in forcing periods, displacement scaled by ``k/P``, and the
+        stick intervals in forcing periods.
+    """
+    if axes is None:
+        fig, grid = plt.subplots(len(runs), 1, figsize=(6.4, 1.6 * len(runs) + 0.4), sharex=True)
+        axes = list(np.atleast_1d(grid))
+    fig = axes[0].figure
+    for (title, t, x, sticks), ax in zip(runs, axes):
+        for i, (a, b) in enumerate(sticks):
+            ax.axvspan(a, b, color="C1", alpha=0.35, lw=0, label="sticking" if i == 0 else None)
+        ax.plot(t, x, "-", color="k", lw=1.0)
+        ax.set_title(title, fontsize=9)
+        ax.set_ylabel(r"$k x / P$")
+    axes[-1].set_xlabel(r"time $t / T$ (forcing periods)")
+    return fig  # type: ignore[return-value]

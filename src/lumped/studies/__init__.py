@@ -26,7 +26,11 @@ import numpy as np
 __all__ = ["STUDIES", "study", "write_csv", "read_csv", "merge_csv"]
 
 #: Study name -> module of this package (also the name of its files in results/studies/).
-STUDIES = {"rest": "lumped.studies.rest", "den_hartog": "lumped.studies.den_hartog"}
+STUDIES = {
+    "rest": "lumped.studies.rest",
+    "den_hartog": "lumped.studies.den_hartog",
+    "stops": "lumped.studies.stops",
+}
 #: The values of the configuration key ``studies``.
 RESOLUTIONS = ("default", "full")
 

@@ -35,7 +35,7 @@ import numpy as np
 from lumped import _validate
 from lumped.event_driven import Event, ExactSolution, solve_exact
 from lumped.forcing import SwitchedSine
-from lumped.sweep import chunk_rows
+from lumped.sweep import chunk_slice
 from lumped.system import Oscillator
 
 __all__ = [
@@ -269,7 +269,7 @@ def rows(cfg: Mapping[str, float], points: int, chunk: tuple[int, int] | None = 
     _validate.positive_int("points", points)
     cells = grid(points)
     if chunk is not None:
-        cells = cells[chunk_rows(len(cells), *chunk)]
+        cells = cells[chunk_slice(len(cells), *chunk)]
     table = [_row(cfg, cfg["gamma"] if g is None else g, fp, r) for g, fp, r in cells]
     data = np.array(table, dtype=float).reshape(-1, len(COLUMNS))
     return {name: data[:, i] for i, name in enumerate(COLUMNS)}
