@@ -121,11 +121,13 @@ for r, fp in ((0.8, 0.2), (1.3, 0.5), (2.0, 0.6)):
 # grows without bound at $r = 1$, as Den Hartog found. At low frequency,
 # $r$ below about 0.5, (iii) and further solutions with several reversals per
 # half-period take over, and we do not claim eq. (5) there.
+# `dh.coulomb_boundary` is eq. (5); below, its verdict is set beside the
+# closed form's own test of (i) to (iii) just inside and just outside it.
+# Notebook 12 draws it over the map of stops per cycle.
 
 # %%
 for r in (0.6, 0.9, 0.99, 1.2, 2.0, 2.5):
-    u = math.sin(math.pi / r) / (1 + math.cos(math.pi / r))
-    edge = r * r / (abs(1 - r * r) * math.sqrt(1 + (r * u) ** 2))
+    edge = float(dh.coulomb_boundary(r))  # eq. (5)
     inside = dh.closed_form(m, 0.0, k, F, F / (0.98 * edge), r * wn).nonstop
     outside = dh.closed_form(m, 0.0, k, F, F / (1.02 * edge), r * wn).nonstop
     print(f"r = {r}: eq. (5) F/P < {edge:.4f}; closed_form admissible at 0.98x: {inside}, at 1.02x: {outside}")

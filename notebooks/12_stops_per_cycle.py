@@ -37,6 +37,7 @@ import numpy as np
 import lumped.config
 import lumped.plotting as P
 from lumped import studies
+from lumped.studies import den_hartog as dh
 from lumped.studies import stops
 
 cfg = lumped.config.default()  # the committed values, whatever --config overrides
@@ -167,23 +168,44 @@ nonstop_r = r[settled & (spp == 0)]
 print(f"every settled row stops for r < {nonstop_r.min():.3f}; the nonstop rows span r in [{nonstop_r.min():.3f}, {nonstop_r.max():.3f}]")
 print(f"rows stuck for more than half the last window: {np.mean(table['stuck_fraction'] > 0.5):.1%}")
 
+# %% [markdown]
+# Den Hartog's boundary of motion without stops, eq. (5) of notebook 11
+# (`lumped.studies.den_hartog.coulomb_boundary`, claimed for $r \ge 0.5$),
+# is an independent prediction of where the zero-stop region ends. Each
+# settled row at $r \ge 0.5$ is set against it: below the boundary it should
+# not stop, above it it should. Rows within 3 % of the boundary in $F/P$ are
+# left out, since the grid cannot place them:
+
 # %%
-fig = P.stops_map(r, q, spp, table["settled"])
+edge = dh.coulomb_boundary(np.maximum(r, dh.BOUNDARY_FROM))
+judged = settled & (r >= dh.BOUNDARY_FROM) & (np.abs(q / edge - 1) > 0.03)
+agree = (spp == 0) == (q < edge)
+print(f"rows judged: {judged.sum()}; the map agrees with eq. (5) on {np.sum(judged & agree)}")
+print("disagreements at (r, F/P, stops per period):", [
+    (round(float(a), 3), round(float(b), 3), float(c)) for a, b, c in zip(r[judged & ~agree], q[judged & ~agree], spp[judged & ~agree])
+])
+
+# %%
+curve_r = np.geomspace(dh.BOUNDARY_FROM, r.max(), 400)
+fig = P.stops_map(r, q, spp, table["settled"], boundary=(curve_r, dh.coulomb_boundary(curve_r)),
+                  boundary_label="Den Hartog's boundary, eq. (5)")
 _ = P.save_figure(fig, "sp01_stops_map")
 
 # %% [markdown]
-# What the map shows, in the numbers printed above: nonstop motion (zero
-# stops) fills the small-$F/P$ part of the map above $r \approx 0.5$, and its
-# edge in $F/P$ is highest near resonance ($r \approx 1$) and lower on both
-# sides. Below that frequency the settled rows of this grid all stop at least
-# twice per period, once near each end of a swing, and at the lowest
-# frequencies the count rises to four and six: the slowly driven mass makes
-# several stick-slip steps per half-period. Crosses mark the rows whose count
-# had not settled after the run (listed with their two window counts above):
-# a stop count still changing after the transient, with no viscous damping to
-# end it. This grid holds no odd count (printed above); Hong and Liu's list
-# includes one stop per cycle, an asymmetric motion. The default grid is
-# coarse and can step over narrow regions; `studies=full` resolves them.
+# How to read the map, with the numbers printed above: motion without stops
+# (zero) occupies the small-$F/P$ part of the map at the higher frequencies,
+# bounded by Den Hartog's curve, whose edge is highest near resonance
+# ($r \approx 1$, where it tends to $\pi/4$) and falls away on both sides; the
+# lines above list the smallest $F/P$ with stops in each column, the rows
+# checked against the curve and any that disagree. Towards low frequency the
+# slowly driven mass makes several stick-slip steps per half-period, and the
+# count rises to the largest value printed. Crosses mark rows whose count had
+# not settled after the run (listed with their two window counts above): a
+# stop count still changing after the transient, with no viscous damping to
+# end it. Hong and Liu's list includes odd counts (one stop per cycle, an
+# asymmetric motion); the line "odd counts" says whether this grid holds
+# any. The default grid is coarse and can step over narrow regions;
+# `studies=full` resolves them.
 #
 # ## Figure sp02: three motions
 #

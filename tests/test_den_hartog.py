@@ -193,3 +193,16 @@ def test_the_figure_draws_stopped_rows_hollow_and_the_curve_dotted_where_it_stop
     np.testing.assert_array_equal(hollow.get_xdata(), [0.5, 2.5])
     assert hollow.get_markerfacecolor() == "none" and solid.get_linestyle() == "-" and dotted.get_linestyle() == ":"
     plt.close(fig)
+
+
+def test_the_library_boundary_is_the_reference_boundary():
+    """dh.coulomb_boundary (drawn over notebook 12's map) against the test's own eq. (5), and its limit pi/4 at r = 1."""
+    r = np.geomspace(dh.BOUNDARY_FROM, 3.0, 41)
+    r = r[np.abs(r - 1) > 1e-3]
+    ours = dh.coulomb_boundary(r)
+    ref = np.array([den_hartog_boundary(float(x)) for x in r])
+    assert np.allclose(ours, ref, rtol=1e-12, atol=0)  # the same formula evaluated twice: round-off
+    assert dh.coulomb_boundary(1.0) == math.pi / 4
+    assert abs(dh.coulomb_boundary(1.0 + 1e-6) - math.pi / 4) < 1e-5  # continuous through r = 1
+    with pytest.raises(ValueError, match="^r must be finite and > 0$"):
+        dh.coulomb_boundary(np.array([1.0, 0.0]))

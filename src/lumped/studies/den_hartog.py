@@ -39,6 +39,7 @@ from lumped.sweep import chunk_slice
 from lumped.system import Oscillator
 
 __all__ = [
+    "coulomb_boundary",
     "GRID",
     "CHUNKS",
     "COLUMNS",
@@ -161,6 +162,28 @@ def closed_form(m: float, c: float, k: float, friction: float, p: float, omega: 
     psi = theta + phi
     leaves = p * math.sin(psi) + k * x > friction
     return SteadyMotion(x, psi, bool(leaves and np.all(half_period_velocity(m, c, k, friction, p, omega)[1:-1] > 0)))
+
+
+#: Below this frequency ratio the Coulomb boundary :func:`coulomb_boundary` is not claimed (notebook 11).
+BOUNDARY_FROM = 0.5
+
+
+def coulomb_boundary(r: np.ndarray | float) -> np.ndarray:
+    """Largest ``F/P`` of Coulomb motion without stops at frequency ratio ``r`` (notebook 11, eq. 5).
+
+    ``F/P < r^2 / (|1 - r^2| sqrt(1 + r^2 U^2))``, ``U = sin(pi/r)/(1 + cos(pi/r))``:
+    the mass leaves each turning point at once, ``m omega^2 X > F``, with ``X``
+    from eq. (4).  At ``r = 1`` its limit, ``pi/4``.  Claimed for
+    ``r >= BOUNDARY_FROM`` only: below, the velocity's sign over the
+    half-period binds too, and motions with several reversals appear.
+    """
+    r = np.asarray(r, dtype=float)
+    if np.any(~np.isfinite(r)) or np.any(r <= 0):
+        raise ValueError("r must be finite and > 0")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = np.sin(np.pi / r) / (1 + np.cos(np.pi / r))
+        edge = r * r / (np.abs(1 - r * r) * np.sqrt(1 + (r * u) ** 2))
+    return np.where(r == 1.0, np.pi / 4, edge)
 
 
 def _solve(m: float, c: float, k: float, friction: float, p: float, omega: float) -> tuple[float, float, float]:
