@@ -194,9 +194,14 @@ class SweepSpec:
         method: str = "backward-euler",
         periods: int = 10,
         options: Mapping[str, object] | None = None,
+        chunk: tuple[int, int] | None = None,
         **fixed: float,
     ) -> SweepSpec:
-        """Validate and build (``fixed`` parameters default to :data:`PARAMETERS`)."""
+        """Validate and build (``fixed`` parameters default to :data:`PARAMETERS`).
+
+        With ``chunk = (index, count)`` only that chunk's rows will run, and the
+        up-front estimates of memory and time (:meth:`check`) are for them.
+        """
         names = [a.name for a in axes]
         for name in names:
             if names.count(name) > 1:
@@ -216,7 +221,7 @@ class SweepSpec:
             _validate.positive_int("periods", periods),
             dict(options or {}),
         )
-        spec.check()
+        spec.check(None if chunk is None else spec.chunk(*chunk))
         return spec
 
     @property
@@ -253,17 +258,22 @@ class SweepSpec:
         """Rows of chunk ``index`` (0-based) of ``count`` near-equal contiguous chunks (:func:`chunk_slice`)."""
         return chunk_slice(self.rows, index, count)
 
-    def check(self) -> None:
-        """Refuse up front a sweep too large, too slow or with too few steps for ``periods``."""
+    def check(self, rows: slice | None = None) -> None:
+        """Refuse up front a sweep too large, too slow or with too few steps for ``periods``.
+
+        The memory and time estimates are for the rows that will run: all, or
+        the slice ``rows`` (a chunk, :meth:`chunk`).
+        """
         if self.rows > MAX_ROWS:
             raise ValueError(f"vary: the grid has {self.rows:.3g} rows, more than {MAX_ROWS:.0e}")
-        need = self.rows * (len(self.columns()) + len(PARAMETERS)) * 8
+        count = self.rows if rows is None else len(range(self.rows)[rows])
+        need = count * (len(self.columns()) + len(PARAMETERS)) * 8
         if need > _validate.MAX_OUTPUT_BYTES:
             raise ValueError(
                 f"vary: the sweep would need about {need / 1024**3:.1f} GiB, "
                 f"more than the {_validate.MAX_OUTPUT_BYTES / 1024**3:.0f} GiB allowed"
             )
-        _validate.run_time(self.rows * self.n_steps, self.seconds_per_step(), f"{self.method} rows", "vary")
+        _validate.run_time(count * self.n_steps, self.seconds_per_step(), f"{self.method} rows", "vary")
         self._check_rows()
 
     def seconds_per_step(self) -> float:
@@ -461,7 +471,7 @@ def sweep(
         One entry per column (:meth:`SweepSpec.columns`), one value per row.
     """
     axes = [axis(name, values) for name, values in vary.items()]
-    spec = SweepSpec.build(axes, t_end=t_end, dt=dt, method=method, periods=periods, **fixed)
+    spec = SweepSpec.build(axes, t_end=t_end, dt=dt, method=method, periods=periods, chunk=chunk, **fixed)
     return run_sweep(spec, None if chunk is None else spec.chunk(*chunk))
 
 
