@@ -89,7 +89,7 @@ install_packages() {
         DEBIAN_FRONTEND=noninteractive apt-get install -y -q --no-install-recommends "${missing[@]}" \
             >> "$WORK/log/apt.log" 2>&1 || die "apt-get install ${missing[*]} failed (see $WORK/log/apt.log)"
     fi
-    echo "== $(dpkg-query -W -f '${Package} ${Version}, ' "${PACKAGES[@]}")"
+    echo "== Debian packages: $(dpkg-query -W -f '${Package} ${Version}\n' "${PACKAGES[@]}" | paste -sd, | sed 's/,/, /g')"
 }
 
 # start NAME COMMAND...: run a daemon in the foreground of a background job, remember its pid.
