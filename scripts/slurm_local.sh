@@ -93,10 +93,13 @@ install_packages() {
 }
 
 # start NAME COMMAND...: run a daemon in the foreground of a background job, remember its pid.
+# It gets a session of its own, so that Ctrl-C reaches snakemake (which then
+# cancels its SLURM jobs) but not the daemons it needs for that; stop_all
+# stops them afterwards.
 start() {
     local name=$1
     shift
-    "$@" > "$WORK/log/$name.out" 2>&1 &
+    setsid "$@" > "$WORK/log/$name.out" 2>&1 &
     PIDS+=($!)
 }
 
@@ -104,7 +107,7 @@ stop_all() {
     local status=$?
     set +e
     if ((SLURM_UP)); then
-        scancel --quiet --user root 2> /dev/null
+        timeout 20 scancel --quiet --user root 2> /dev/null
     fi
     for ((i = ${#PIDS[@]} - 1; i >= 0; i--)); do # the reverse of the start order
         kill "${PIDS[i]}" 2> /dev/null
@@ -271,7 +274,7 @@ main() {
     WORK=$(mktemp -d /tmp/lumped-slurm.XXXXXX)
     mkdir -p "$WORK/log"
     trap stop_all EXIT
-    trap 'exit 130' INT TERM
+    trap 'echo "slurm_local: interrupted" >&2; exit 130' INT TERM
     install_packages
     write_munge
     start_munge
