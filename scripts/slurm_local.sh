@@ -7,7 +7,8 @@
 # 2. writes its own munge key, slurm.conf and slurmdbd.conf into a temporary
 #    directory (nothing under /etc or in the repository) and starts munged,
 #    mariadbd, slurmdbd, slurmctld and slurmd in the background, on ports of
-#    their own, with accounting (sacct, which the executor plugin polls);
+#    their own, with accounting (sacct, which the executor plugin polls), and
+#    an srun wrapper for the jobs (write_slurm_conf says why);
 # 3. waits until `sinfo` shows the node idle;
 # 4. copies the repository's files (tracked and untracked, not ignored) twice
 #    and builds the rest study in one copy through the profile on SLURM and in
@@ -18,8 +19,9 @@
 #    or Ctrl-C (set LUMPED_SLURM_KEEP=1 to keep the directory and its logs).
 #
 # Needs the repository's environment active (snakemake and the executor
-# plugin from environment-pip.txt).  Every wait is bounded; a failure prints
-# one line "slurm_local: ..." and exits with status 2.  CI does not run it.
+# plugin from environment-pip.txt).  Every wait is bounded; a failure ends
+# with one line "slurm_local: ..." (after the end of snakemake's log if a
+# build failed) and exit status 2.  CI does not run it.
 set -euo pipefail
 
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -40,7 +42,7 @@ die() {
 }
 
 usage() {
-    sed -n '2,22p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+    sed -n '2,24p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
 }
 
 # wait_for SECONDS WHAT COMMAND...: retry COMMAND every second until it succeeds.

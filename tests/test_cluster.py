@@ -95,3 +95,4 @@ def test_the_script_refuses_an_argument_with_one_line_before_touching_anything()
 def test_the_scripts_help_is_its_header():
     done = subprocess.run(["bash", str(SCRIPT), "--help"], capture_output=True, text=True, timeout=30)
     assert done.returncode == 0 and "profiles/cluster" in done.stdout and "LUMPED_SLURM_KEEP" in done.stdout
+    assert done.stdout.rstrip().endswith("CI does not run it."), "--help stops short of the header's last line"
