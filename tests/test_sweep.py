@@ -238,7 +238,8 @@ def test_progress_goes_to_stderr_only(tmp_path, capsys, monkeypatch):
     slow = {"free": 1.0, "forced": 1.0}  # an estimate long enough to show progress
     monkeypatch.setattr("lumped.sweep.SECONDS_PER_TRAJECTORY_STEP", {"compiled": slow, "python": slow})
     out = tmp_path / "s.csv"
-    monkeypatch.setattr("lumped.sweep.SweepSpec.check", lambda self, rows=None: None)  # the inflated estimate is not refused
+    # the inflated estimate is not refused
+    monkeypatch.setattr("lumped.sweep.SweepSpec.check", lambda self, rows=None: None)
     assert main(["sweep", "--vary", "x0=0:1:5", "--t-end", "0.1", "--output", str(out)]) == 0
     assert "sweep: 5/5 rows" in capsys.readouterr().err
     lines = out.read_text().splitlines()
