@@ -155,11 +155,12 @@ print(f"odd counts (settled): {odd.sum()} rows, at (r, F/P) = {[(round(float(a),
 # %% [markdown]
 # Along each column of the map, where does the motion stop? The smallest
 # $F/P$ with stops, per $r$ (the edge of the nonstop region, which Den
-# Hartog's analysis predicts), and the frequencies below which every settled
-# row stops:
+# Hartog's analysis predicts; at most twelve columns, evenly spread), and the
+# frequencies below which every settled row stops:
 
 # %%
-for rv in np.unique(r):
+columns = np.unique(r)
+for rv in columns[:: -(-columns.size // 12)]:
     col = (r == rv) & settled
     stopping = q[col & (spp > 0)]
     edge = f"{stopping.min():.3f}" if stopping.size else "none on the grid"
@@ -177,6 +178,9 @@ print(f"rows stuck for more than half the last window: {np.mean(table['stuck_fra
 # left out, since the grid cannot place them:
 
 # %%
+fine = np.geomspace(dh.BOUNDARY_FROM, 3.0, 2001)
+top = np.argmax(dh.coulomb_boundary(fine))
+print(f"eq. (5) is highest, F/P = {dh.coulomb_boundary(fine[top]):.3f}, at r = {fine[top]:.3f}; at r = 1 it is pi/4 = {math.pi / 4:.3f}")
 edge = dh.coulomb_boundary(np.maximum(r, dh.BOUNDARY_FROM))
 judged = settled & (r >= dh.BOUNDARY_FROM) & (np.abs(q / edge - 1) > 0.03)
 agree = (spp == 0) == (q < edge)
@@ -194,10 +198,12 @@ _ = P.save_figure(fig, "sp01_stops_map")
 # %% [markdown]
 # How to read the map, with the numbers printed above: motion without stops
 # (zero) occupies the small-$F/P$ part of the map at the higher frequencies,
-# bounded by Den Hartog's curve, whose edge is highest near resonance
-# ($r \approx 1$, where it tends to $\pi/4$) and falls away on both sides; the
+# bounded by Den Hartog's curve, which is highest just below resonance and
+# falls away on both sides (its top and its value $\pi/4$ at $r = 1$ are
+# printed above); the
 # lines above list the smallest $F/P$ with stops in each column, the rows
-# checked against the curve and any that disagree. Towards low frequency the
+# checked against the curve and any that disagree (near $r = 0.5$, where the
+# sign of the velocity over the half-period starts to bind, a few can). Towards low frequency the
 # slowly driven mass makes several stick-slip steps per half-period, and the
 # count rises to the largest value printed. Crosses mark rows whose count had
 # not settled after the run (listed with their two window counts above): a
