@@ -182,38 +182,33 @@ def test_every_rule_has_a_log():
     assert "log directive" not in lint.lower(), lint
 
 
-@pytest.mark.parametrize(("studies", "chunks"), [(None, 4), ("full", 16)])
-def test_the_rest_study_is_chunk_jobs_merged_by_one_rule(studies, chunks):
-    """One study_rest_chunk job per chunk of lumped.studies.rest.CHUNKS, merged by study_rest, read by notebook 10."""
-    from lumped.studies import rest
+#: Each study: its notebook, and its chunk counts (default, full) as the issue's pipeline should plan them.
+STUDY_JOBS = {
+    "rest": ("10_where_it_rests", 4, 16),
+    "den_hartog": ("11_den_hartog", 2, 16),
+    "stops": ("12_stops_per_cycle", 2, 16),
+}
 
-    assert rest.CHUNKS[studies or "default"] == chunks
+
+@pytest.mark.parametrize("studies", [None, "full"])
+def test_every_study_is_chunk_jobs_merged_by_one_rule_and_read_by_its_notebook(studies):
+    """One study_<name>_chunk job per chunk of the study module's CHUNKS, merged in order by study_<name>."""
+    from lumped import studies as registry
+
+    assert set(registry.STUDIES) == set(STUDY_JOBS)
     args = ["--config", f"studies={studies}", "--"] if studies else []
-    jobs = _jobs(_snakemake("--dry-run", "--forceall", *args, "results/notebooks/10_where_it_rests.ipynb"))
-    outputs = sorted(f["output"] for rule, f in jobs if rule == "study_rest_chunk")
-    assert outputs == sorted(f"results/studies/rest/chunk-{i}.csv" for i in range(chunks))
-    (merge,) = [f for rule, f in jobs if rule == "study_rest"]
-    assert merge["output"] == "results/studies/rest.csv"
-    assert merge["input"].split(", ")[1:] == [f"results/studies/rest/chunk-{i}.csv" for i in range(chunks)]
-    (notebook,) = [f for rule, f in jobs if rule == "notebook_10"]
-    assert "results/studies/rest.csv" in notebook["input"].split(", ")
-
-
-@pytest.mark.parametrize(("studies", "chunks"), [(None, 2), ("full", 16)])
-def test_the_den_hartog_study_is_chunk_jobs_merged_by_one_rule(studies, chunks):
-    """One study_den_hartog_chunk job per chunk of lumped.studies.den_hartog.CHUNKS, merged, read by notebook 11."""
-    from lumped.studies import den_hartog
-
-    assert den_hartog.CHUNKS[studies or "default"] == chunks
-    args = ["--config", f"studies={studies}", "--"] if studies else []
-    jobs = _jobs(_snakemake("--dry-run", "--forceall", *args, "results/notebooks/11_den_hartog.ipynb"))
-    outputs = sorted(f["output"] for rule, f in jobs if rule == "study_den_hartog_chunk")
-    assert outputs == sorted(f"results/studies/den_hartog/chunk-{i}.csv" for i in range(chunks))
-    (merge,) = [f for rule, f in jobs if rule == "study_den_hartog"]
-    assert merge["output"] == "results/studies/den_hartog.csv"
-    assert merge["input"].split(", ")[1:] == [f"results/studies/den_hartog/chunk-{i}.csv" for i in range(chunks)]
-    (notebook,) = [f for rule, f in jobs if rule == "notebook_11"]
-    assert "results/studies/den_hartog.csv" in notebook["input"].split(", ")
+    targets = [f"results/notebooks/{notebook}.ipynb" for notebook, *_ in STUDY_JOBS.values()]
+    jobs = _jobs(_snakemake("--dry-run", "--forceall", *args, *targets))
+    for name, (notebook, default, full) in STUDY_JOBS.items():
+        chunks = full if studies else default
+        assert registry.study(name).CHUNKS[studies or "default"] == chunks
+        parts = [f"results/studies/{name}/chunk-{i}.csv" for i in range(chunks)]
+        assert sorted(f["output"] for rule, f in jobs if rule == f"study_{name}_chunk") == sorted(parts)
+        (merge,) = [f for rule, f in jobs if rule == f"study_{name}"]
+        assert merge["output"] == f"results/studies/{name}.csv"
+        assert merge["input"].split(", ")[1:] == parts
+        (reader,) = [f for rule, f in jobs if rule == f"notebook_{notebook[:2]}"]
+        assert f"results/studies/{name}.csv" in reader["input"].split(", ")
 
 
 def test_a_studies_value_other_than_default_or_full_stops_with_one_line():
@@ -229,20 +224,3 @@ def test_a_studies_value_other_than_default_or_full_stops_with_one_line():
     assert lines == [
         "config: studies must be default or full (the resolution of the studies in results/studies/); got 'fast'"
     ]
-
-
-@pytest.mark.parametrize(("studies", "chunks"), [(None, 2), ("full", 16)])
-def test_the_stops_study_is_chunk_jobs_merged_by_one_rule(studies, chunks):
-    """One study_stops_chunk job per chunk of lumped.studies.stops.CHUNKS, merged by study_stops, read by notebook 12."""
-    from lumped.studies import stops
-
-    assert stops.CHUNKS[studies or "default"] == chunks
-    args = ["--config", f"studies={studies}", "--"] if studies else []
-    jobs = _jobs(_snakemake("--dry-run", "--forceall", *args, "results/notebooks/12_stops_per_cycle.ipynb"))
-    outputs = sorted(f["output"] for rule, f in jobs if rule == "study_stops_chunk")
-    assert outputs == sorted(f"results/studies/stops/chunk-{i}.csv" for i in range(chunks))
-    (merge,) = [f for rule, f in jobs if rule == "study_stops"]
-    assert merge["output"] == "results/studies/stops.csv"
-    assert merge["input"].split(", ")[1:] == [f"results/studies/stops/chunk-{i}.csv" for i in range(chunks)]
-    (notebook,) = [f for rule, f in jobs if rule == "notebook_12"]
-    assert "results/studies/stops.csv" in notebook["input"].split(", ")
