@@ -158,3 +158,16 @@ def test_existing_example_still_loads() -> None:
     net = parse_system(ONE.format(mass="m1", element="k"))
     assert net.mass_names == ["m1"] and net.element_names == ["k", "d"]
     assert isinstance(net.elements[1], Bingham) and np.isfinite(net.masses[0].x0)
+
+
+LONG = "y" * 100_000
+LONG_WORDS = {
+    "parameter": ONE.replace("stiffness = 100.0", f"stiffness = 100.0\n{LONG} = 1"),
+    "table": ONE + f"[{LONG}]\n",
+    "kind": ONE.replace('kind = "spring"', f'kind = "{LONG}"'),
+}
+
+
+@pytest.mark.parametrize("case", list(LONG_WORDS))
+def test_a_long_unknown_word_is_cut_in_the_message(tmp_path, capsys, case: str) -> None:
+    assert_refused(tmp_path, capsys, LONG_WORDS[case].format(mass="m1", element="k"), f"unknown {case} 'yyy")

@@ -86,7 +86,7 @@ def _parse(text: str, source: str) -> Network:
         raise ValueError(f"{source}: not read: its tables or arrays are nested too deeply") from None
     unknown = sorted(set(data) - _TABLES)
     if unknown:
-        raise ValueError(f"{source}: unknown table {unknown[0]!r}; expected [[mass]], [[element]] and [[force]]")
+        raise ValueError(f"{source}: unknown table {unknown[0]!r:.40}; expected [[mass]], [[element]] and [[force]]")
     tables = {}
     for key in sorted(_TABLES):
         value = data.get(key, [])
@@ -122,10 +122,10 @@ def _entry(source: str, table: str, number: int, raw: dict, build) -> object:  #
 def _fields(raw: dict, spec: dict) -> dict:
     extra = sorted(set(raw) - set(spec))
     if extra:
-        raise ValueError(f"unknown parameter {extra[0]!r}; expected {', '.join(spec)}")
+        raise ValueError(f"unknown parameter {extra[0]!r:.40}; expected {', '.join(spec)}")
     missing = [k for k, default in spec.items() if default is None and k not in raw]
     if missing:
-        raise ValueError(f"missing parameter {missing[0]!r}")
+        raise ValueError(f"missing parameter {missing[0]!r:.40}")
     return {k: raw.get(k, default) for k, default in spec.items()}
 
 
@@ -136,7 +136,7 @@ def _mass(raw: dict) -> Mass:
 def _element(raw: dict) -> Element:
     kind = raw.get("kind")
     if kind not in KINDS:
-        raise ValueError(f"unknown kind {kind!r}; expected one of {', '.join(KINDS)}")
+        raise ValueError(f"unknown kind {kind!r:.40}; expected one of {', '.join(KINDS)}")
     cls = KINDS[kind]
     spec = {"name": None, "kind": None, "between": None}
     for f in dataclasses.fields(cls):
