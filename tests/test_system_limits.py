@@ -6,6 +6,7 @@ no output file from the command line.
 
 from __future__ import annotations
 
+import math
 import time
 
 import numpy as np
@@ -13,7 +14,7 @@ import pytest
 
 import lumped as L
 from lumped.cli import main
-from lumped.network import Bingham, Mass, Network, Spring
+from lumped.network import Bingham, Mass, MaxwellBingham, Network, Spring
 from lumped.network.elements import MAX_NAME_LENGTH
 from lumped.network.files import MAX_FILE_BYTES, load_system, parse_system
 from lumped.network.model import MAX_ELEMENTS, MAX_MASSES
@@ -171,3 +172,24 @@ LONG_WORDS = {
 @pytest.mark.parametrize("case", list(LONG_WORDS))
 def test_a_long_unknown_word_is_cut_in_the_message(tmp_path, capsys, case: str) -> None:
     assert_refused(tmp_path, capsys, LONG_WORDS[case].format(mass="m1", element="k"), f"unknown {case} 'yyy")
+
+
+MAXWELL = ONE.format(mass="m1", element="k") + (
+    '[[element]]\nname = "mx"\nkind = "maxwell-bingham"\nbetween = ["ground", "m1"]\n'
+    "stiffness = 80.0\nthreshold = 0.5\ngamma = {gamma}\nforce0 = {force0}\n"
+)
+
+
+@pytest.mark.parametrize("force0", ["0.6", "-0.6", "1e300"])
+def test_coulomb_maxwell_force0_outside_its_band_is_refused(tmp_path, capsys, force0: str) -> None:
+    """With ``gamma = inf`` the dashpot carries at most its threshold: the step would drop the force at once."""
+    text = MAXWELL.format(gamma="inf", force0=force0)
+    assert_refused(tmp_path, capsys, text, "[[element]] 3 ('mx'): force0 = ")
+    with pytest.raises(ValueError, match="^force0 = .* outside the band"):
+        MaxwellBingham("mx", ("ground", "m"), 80.0, 0.5, math.inf, force0=float(force0))
+
+
+@pytest.mark.parametrize(("gamma", "force0"), [("inf", "0.5"), ("inf", "-0.5"), ("1.0", "5.0"), ("inf", "0.0")])
+def test_maxwell_force0_that_is_a_state_is_accepted(tmp_path, gamma: str, force0: str) -> None:
+    """On the band's edge, or beyond it with a finite gamma (the dashpot creeps: notebook 07)."""
+    assert simulate(tmp_path, MAXWELL.format(gamma=gamma, force0=force0)) == 0

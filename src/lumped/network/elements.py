@@ -369,8 +369,13 @@ class MaxwellBingham(_ForceState, Element):
 
     The state is the common force ``f`` (the spring's elongation is ``f/k``,
     the dashpot's the rest of ``e``).  Relaxed (``f = 0``) at ``t = 0``
-    unless ``force0`` is given, which must then lie in the dashpot's band if
-    the element starts at rest (else the dashpot would already move).
+    unless ``force0`` is given.  Inside the dashpot's band, ``|force0| <=
+    threshold``, the dashpot holds; beyond it a viscous dashpot (finite
+    ``gamma``) creeps from ``t = 0`` and the force relaxes towards the
+    threshold (notebook 07).  A Coulomb dashpot (``gamma = inf``) carries no
+    force beyond its threshold, so there ``|force0| > threshold`` is not an
+    admissible state (backward Euler would drop the force to the threshold in
+    the first step, whatever ``dt``) and is refused.
 
     Notes
     -----
@@ -395,6 +400,11 @@ class MaxwellBingham(_ForceState, Element):
         object.__setattr__(self, "threshold", law.threshold)
         object.__setattr__(self, "gamma", law.gamma)
         self._set("force0", _validate.finite)
+        if math.isinf(self.gamma) and abs(self.force0) > self.threshold:
+            raise ValueError(
+                f"force0 = {self.force0:.6g} N lies outside the band |f| <= threshold = {self.threshold:.6g} N, "
+                "which a Coulomb dashpot (gamma = inf) cannot leave; lower |force0| or give a finite gamma"
+            )
 
     def initial_state(self, e0: float, w0: float) -> float:
         return self.force0
