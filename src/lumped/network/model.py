@@ -16,15 +16,25 @@ from lumped import _validate
 from lumped.forcing import SwitchedSine, evaluate, validate_force
 from lumped.network.elements import GROUND, NAME_PATTERN, Element, check_name
 
-__all__ = ["Mass", "Load", "Network", "NAME_PATTERN", "MAX_MASSES", "MAX_ELEMENTS", "MAX_LOADS", "listed"]
+__all__ = [
+    "Mass",
+    "Load",
+    "Network",
+    "NAME_PATTERN",
+    "MAX_MASSES",
+    "MAX_ELEMENTS",
+    "MAX_LOADS",
+    "check_count",
+    "listed",
+]
 
 #: Largest network accepted (masses, elements, loads).  A backward-Euler step of
 #: :func:`~lumped.network.integrate.simulate_network` costs about 14 us per mass
 #: for a chain with a spring and a Bingham element on every mass (0.14 s a step
 #: at 10,000 masses, measured on one core), so 10,000 masses run a thousand
-#: steps in minutes; a million masses took 4 minutes and 4.1 GB just to be
-#: read, then about 14 s a step.  Elements: three per mass (a spring, a
-#: dashpot and one more, as in notebook 08's chain); forces: one per mass.
+#: steps in minutes; a million masses (issue 19) took 4 minutes and 4.1 GB
+#: before their first message, and would take about 14 s a step.  Elements: three per mass (notebook 08's
+#: chain has two, a spring and a friction element); forces: one per mass.
 MAX_MASSES = 10_000
 MAX_ELEMENTS = 3 * MAX_MASSES
 MAX_LOADS = MAX_MASSES
