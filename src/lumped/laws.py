@@ -33,6 +33,7 @@ __all__ = [
     "Dashpot",
     "BinghamDashpot",
     "MonotoneDashpot",
+    "MONOTONE_SAMPLE",
     "HerschelBulkleyDashpot",
     "DashpotState",
     "coulomb",
@@ -215,6 +216,11 @@ def bingham_corrector(predictor: float, eta: float, threshold: float, viscosity:
     return force, (predictor - signed) / (eta + viscosity)
 
 
+#: Forces, relative to the threshold (or to 1 N), at which :class:`MonotoneDashpot`
+#: checks that its law does not decrease: 16 a decade from 1e-6 to 1e6.
+MONOTONE_SAMPLE = 10.0 ** (np.arange(-96, 97) / 16)
+
+
 def coulomb(threshold: float = 1.0) -> BinghamDashpot:
     """Coulomb friction: the Bingham law with ``gamma = inf`` (Remark 2.1)."""
     return BinghamDashpot(threshold=threshold, gamma=math.inf)
@@ -234,9 +240,26 @@ class MonotoneDashpot(Dashpot):
     max_iterations : int
         Bound on the root finder's iterations per step.
 
+    Raises
+    ------
+    ValueError
+        If ``phi(0) != 0``, or if ``phi`` decreases on the sample of
+        :data:`MONOTONE_SAMPLE` (see Notes); the message names the two forces.
+
     Notes
     -----
-    The resolvent equation ``g(F) = F + eta*phi(F) - F~ = 0`` has ``g``
+    **The monotonicity check.**  A law that decreases somewhere makes the
+    resolvent's root non-unique and the event-driven march wander, so ``phi``
+    is evaluated at construction at ``F = 0`` and ``F = +-s 10^(j/16)``,
+    ``j = -96 ... 96``: 16 forces per decade (neighbours 15 % apart) from
+    ``1e-6 s`` to ``1e6 s`` on each side, with ``s`` the threshold if it is
+    positive, else 1 N.  A decrease between neighbouring samples is refused.
+    The sample stops on each side at the first force where ``phi`` raises or
+    is not finite (a law such as ``expm1(F)`` overflows long before ``1e6``;
+    the run refuses such values where it meets them).  A dip narrower than
+    the spacing, or beyond the sample, is not seen here.
+
+    **The resolvent.**  The resolvent equation ``g(F) = F + eta*phi(F) - F~ = 0`` has ``g``
     strictly increasing, ``g(0) = -F~`` and ``g(F~) = eta*phi(F~)``, whose sign
     is that of ``F~``; so the root lies between ``0`` and ``F~`` and Brent's
     method (bracketing, hence safeguarded) finds it to a few ulps.
@@ -255,6 +278,26 @@ class MonotoneDashpot(Dashpot):
             raise ValueError("velocity_of_force must vanish at zero force")
         self.threshold = _validate.non_negative("threshold", threshold)
         self.max_iterations = _validate.positive_int("max_iterations", max_iterations)
+        self._check_monotone()
+
+    def _check_monotone(self) -> None:
+        """Refuse a ``phi`` that decreases on the sample of the Notes (one line naming where)."""
+        scale = self.threshold if self.threshold > 0 else 1.0
+        for side in (1.0, -1.0):
+            previous = (0.0, 0.0)
+            for ratio in MONOTONE_SAMPLE:
+                force = side * scale * ratio
+                try:
+                    phi = self._phi(force)
+                except ValueError:
+                    break  # not finite here: refused where a run meets it
+                lo, hi = (previous, (force, phi)) if side > 0 else ((force, phi), previous)
+                if hi[1] < lo[1]:
+                    raise ValueError(
+                        f"velocity_of_force must be monotone non-decreasing, but phi({lo[0]:.4g} N) = "
+                        f"{lo[1]:.4g} > phi({hi[0]:.4g} N) = {hi[1]:.4g} (MonotoneDashpot's check, 16 forces a decade)"
+                    )
+                previous = (force, phi)
 
     def _phi(self, force: float) -> float:
         """``phi(force)`` checked: a finite real number, else a ``ValueError``."""
