@@ -46,6 +46,7 @@ setup(
         Extension(
             f"lumped.{name}",
             [f"src/lumped/{name}.c"],
+            depends=["src/lumped/_binding_checks.h"],  # the bindings' argument checks
             extra_compile_args=["-O2", "-ffp-contract=off", "-fno-fast-math"],
             optional=True,
         )

@@ -93,6 +93,19 @@ def positive_int(name: str, value: object) -> int:
     return out
 
 
+def stride(name: str, value: object) -> int:
+    """Return ``value`` as a stride of saved grid points: an int from 1 to ``MAX_STEPS``.
+
+    No run takes more than ``MAX_STEPS`` steps, so a larger stride could only
+    save ``t = 0`` and the last point, which ``MAX_STEPS`` already does: it is
+    refused (a typo, like a ``dt`` that would need more steps than that).
+    """
+    out = positive_int(name, value)
+    if out > MAX_STEPS:
+        raise ValueError(f"{name} must be an integer from 1 to {MAX_STEPS} (the most steps of a run), got {_show(out)}")
+    return out
+
+
 def parse_float(name: str, text: str) -> float:
     """A command-line number: decimal or ``inf``/``-inf``; ``1e400`` is refused.
 

@@ -47,7 +47,7 @@ _OPTIONS = (  # (API name, default, help); the option is "--" + name with "-" fo
     ("force_until", "inf", "time after which the force is zero (s)"),
     ("t_end", "2", "final time > 0 (s)"),
     ("dt", "1e-4", "time step > 0 (s)"),
-    ("save_every", "1", "keep every K-th grid point"),
+    ("save_every", "1", "keep every K-th grid point (1 to 2e9)"),
 )
 
 _CHECKS = {  # API name -> validator (the API's own, so the messages are the API's)
@@ -63,7 +63,7 @@ _CHECKS = {  # API name -> validator (the API's own, so the messages are the API
     "force_until": _validate.time_or_inf,
     "t_end": _validate.positive,
     "dt": _validate.positive,
-    "save_every": _validate.positive_int,
+    "save_every": _validate.stride,
 }
 
 
@@ -316,7 +316,7 @@ def _clean(args: argparse.Namespace) -> dict[str, object]:
     """Parse and validate every option; the messages use the API's names."""
     values: dict[str, object] = {}
     for name, check in _CHECKS.items():
-        parse = _validate.parse_int if check is _validate.positive_int else _validate.parse_float
+        parse = _validate.parse_int if check is _validate.stride else _validate.parse_float
         values[name] = check(name, parse(name, getattr(args, name)))
     if args.method not in METHODS:
         raise ValueError(f"--method must be one of {', '.join(METHODS)}; got {args.method!r}")

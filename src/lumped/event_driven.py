@@ -497,7 +497,7 @@ class ExactSolution:
         at its time.  ``final_rest`` is :meth:`rest_through` at ``t_N``.
         """
         dt = _validate.positive("dt", dt)
-        save_every = _validate.positive_int("save_every", save_every)
+        save_every = _validate.stride("save_every", save_every)
         n = _validate.step_count(self.t_end, dt)
         _validate.output_size(n, save_every)
         index = np.arange(0, n + 1, save_every)

@@ -196,6 +196,44 @@ class BinghamDashpot(Dashpot):
         return DashpotState(*bingham_corrector(predictor, eta, self.threshold, self.viscosity))
 
 
+def sticks(predictor: float, low: float, high: float) -> bool:
+    """The stick test: does the closed band ``[low, high]`` hold the predictor?
+
+    Algorithm 1's line 5 is this test on the band ``[-mu_s N_f, mu_s N_f]``,
+    ``|F~| <= mu_s N_f``: *closed*, so a predictor on an edge of the band
+    sticks.  The network step applies the same test to every rigid piece of
+    an element's step graph (``z = f + sigma w`` in ``[lo + sigma a, hi + sigma
+    a]``, :func:`lumped.network.step.solve_step`), so that a Bingham element
+    at the edge of its band sticks there too, and a string or locking
+    dashpot at the edge of its rigid piece is taut or locked.
+
+    Parameters
+    ----------
+    predictor : float, N
+        ``F~`` of eq. (15b), or the network's ``z``.
+    low, high : float, N
+        Edges of the band, ``low <= high`` (infinite edges allowed).
+
+    Returns
+    -------
+    bool
+        ``low <= predictor <= high`` (``False`` for a NaN predictor).
+
+    Notes
+    -----
+    This is the one Python definition; the compiled loops repeat it in C:
+    ``fabs(predictor) <= tau`` in ``_kernel.c`` and (in vector lanes)
+    ``_batch_lanes.h``, ``np.abs(predictor) <= tau`` in the NumPy loop of
+    :mod:`lumped.batched` (all equal to ``-tau <= predictor <= tau``: negation
+    and ``abs`` are exact), and ``mode_of`` in ``_network_kernel.c``.
+    ``tests/test_band_edge.py`` releases a mass on both edges of the band
+    through every one of these paths and requires each to stick;
+    ``tests/test_algorithm1.py`` and ``tests/test_network_kernel.py`` keep
+    the C loops equal to the Python ones.
+    """
+    return low <= predictor <= high
+
+
 def bingham_corrector(predictor: float, eta: float, threshold: float, viscosity: float) -> tuple[float, float]:
     """Corrector of Algorithm 1 (lines 5 to 10), returning ``(F_d, v)``.
 
@@ -209,7 +247,7 @@ def bingham_corrector(predictor: float, eta: float, threshold: float, viscosity:
     form ``v = (F~ - s*mu_s N_f) / (eta + c)``, which has no cancellation and is
     also finite at ``c = 0``.
     """
-    if abs(predictor) <= threshold:
+    if sticks(predictor, -threshold, threshold):  # line 5: |F~| <= mu_s N_f
         return predictor, 0.0
     signed = math.copysign(threshold, predictor)
     force = (eta * signed + viscosity * predictor) / (eta + viscosity)

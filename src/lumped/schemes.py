@@ -135,7 +135,7 @@ def _start(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, save_
         raise ValueError(f"oscillator must be an Oscillator, got {type(osc).__name__}")
     t_end, dt = _validate.positive("t_end", t_end), _validate.positive("dt", dt)
     x0, v0 = _validate.finite("x0", x0), _validate.finite("v0", v0)
-    save_every = _validate.positive_int("save_every", save_every)
+    save_every = _validate.stride("save_every", save_every)
     n_steps = _validate.step_count(t_end, dt)
     _validate.output_size(n_steps, save_every)
     per_step = _COST_OVER_PYTHON_BE * _seconds_per_step(osc, None, "python", dt)  # law's cost measured there

@@ -226,7 +226,7 @@ def simulate_network(
     if not isinstance(network, Network):
         raise ValueError(f"network must be a Network, got {type(network).__name__}")
     t_end, dt = _validate.positive("t_end", t_end), _validate.positive("dt", dt)
-    save_every = _validate.positive_int("save_every", save_every)
+    save_every = _validate.stride("save_every", save_every)
     if solver not in SOLVERS:
         raise ValueError(f"solver must be one of {', '.join(SOLVERS)}; got {solver!r}")
     pair = _paper_form(network) if solver == "auto" else None
