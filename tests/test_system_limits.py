@@ -14,7 +14,7 @@ import pytest
 
 import lumped as L
 from lumped.cli import main
-from lumped.network import Bingham, Mass, MaxwellBingham, Network, Spring
+from lumped.network import Bingham, Mass, MaxwellBingham, Network, Spring, simulate_network
 from lumped.network.elements import MAX_NAME_LENGTH
 from lumped.network.files import MAX_FILE_BYTES, load_system, parse_system
 from lumped.network.model import MAX_ELEMENTS, MAX_MASSES
@@ -193,3 +193,11 @@ def test_coulomb_maxwell_force0_outside_its_band_is_refused(tmp_path, capsys, fo
 def test_maxwell_force0_that_is_a_state_is_accepted(tmp_path, gamma: str, force0: str) -> None:
     """On the band's edge, or beyond it with a finite gamma (the dashpot creeps: notebook 07)."""
     assert simulate(tmp_path, MAXWELL.format(gamma=gamma, force0=force0)) == 0
+
+
+def test_the_summary_of_many_masses_is_one_short_line() -> None:
+    """Twelve free masses on springs: the summary names the first ten and counts the other two."""
+    masses = [Mass(f"m{i}", 1.0, x0=0.1) for i in range(12)]
+    springs = [Spring(f"k{i}", ("ground", f"m{i}"), stiffness=1.0) for i in range(12)]
+    text = simulate_network(Network(masses, springs), 0.01, 0.01).summary()
+    assert text.count(" still moving ") == 10 and text.endswith("; ... and 2 more masses")

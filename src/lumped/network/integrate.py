@@ -107,17 +107,18 @@ class NetworkTrajectory:
         out |= {f"F_{n}": self.force[:, i] for i, n in enumerate(net.element_names)}
         return out
 
-    def summary(self) -> str:
-        """Each mass's rest time and position, or that it still moves."""
-        parts = []
-        for i, name in enumerate(self.network.mass_names):
+    def summary(self, shown: int = 10) -> str:
+        """Each mass's rest time and position, or that it still moves (the first ``shown`` masses)."""
+        parts, names = [], self.network.mass_names
+        for i, name in enumerate(names[:shown]):
             if math.isnan(self.rest_time[i]):
                 parts.append(f"{name} still moving at t = {self.t[-1]:.6g} s (x = {self.x[-1, i]:.9g} m)")
             else:
                 parts.append(
                     f"{name} at rest from t = {self.rest_time[i]:.10g} s at x = {self.rest_position[i]:.10g} m"
                 )
-        return "; ".join(parts)
+        more = f"; ... and {len(names) - shown} more masses" if len(names) > shown else ""
+        return "; ".join(parts) + more
 
 
 def _paper_form(net: Network) -> OneMass | None:
