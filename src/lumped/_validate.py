@@ -130,7 +130,7 @@ def parse_float(name: str, text: str) -> float:
 def parse_int(name: str, text: str) -> int:
     """A command-line integer >= 1 (decimal digits, any size)."""
     word = text.strip().lstrip("+")
-    if not word.isdigit():
+    if not (word.isascii() and word.isdigit()):  # "²".isdigit() is true, and int("²") fails
         raise ValueError(f"{name} must be an integer >= 1, got {text!r}")
     return positive_int(name, int(word))
 

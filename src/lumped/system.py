@@ -147,7 +147,7 @@ def check_magnitudes(osc: Oscillator, t_end: float, dt: float, x0: float, v0: fl
             )
 
 
-def _energy_bound(m, k, c, t_end, dt, x0, v0, amplitude):  # noqa: ANN001, ANN202 (floats or arrays alike)
+def _energy_bound(m, k, c, t_end, dt, x0, v0, amplitude):  # floats or arrays alike
     """The square roots of the initial energy and work (``parts``) and the bounded quantities."""
     sqrt = np.sqrt
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
