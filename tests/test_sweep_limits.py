@@ -177,3 +177,18 @@ def test_a_row_error_names_vary_and_the_row(tmp_path, capsys):
     status = main(["sweep", "--vary", "x0=0:1e299:3", "--output", str(tmp_path / "s.csv")])
     err = _one_line(capsys, status, "lumped sweep: error: --vary: x0: the run could reach")
     assert err.endswith("(row 1: x0 = 5e+298)")
+
+
+# ---- what the stops column counts -----------------------------------------------------------------------
+
+
+def test_stops_counts_the_samples_stops_as_documented():
+    """From x0 = 0.5 backward Euler's one-step sticks at reversals count: 3, where the exact solution stops once."""
+    import lumped as L
+
+    be = sweep({"x0": [0.5]}, t_end=4.0)["stops"]
+    exact = sweep({"x0": [0.5]}, t_end=4.0, method="exact")["stops"]
+    solution = L.solve_exact(L.Oscillator.bingham(), 4.0, x0=0.5)
+    stops = [e for e in solution.events if e.kind == "stop"]
+    assert be.tolist() == [3] and exact.tolist() == [len(stops)] == [1]
+    assert "the exact solution's stop events" in sweep_module.__doc__

@@ -526,14 +526,52 @@ def _simulate_system(args: argparse.Namespace, output: _Output) -> str:
     if args.method != "backward-euler":
         _one_mass(network, args)
     output.create()
-    if args.method == "backward-euler":
-        traj = simulate_network(network, values["t_end"], values["dt"], save_every=values["save_every"])
-    else:
-        traj = simulate_one_mass(
-            network, values["t_end"], values["dt"], save_every=values["save_every"], method=args.method, **options
-        )
+    try:
+        if args.method == "backward-euler":
+            traj = simulate_network(network, values["t_end"], values["dt"], save_every=values["save_every"])
+        else:
+            traj = simulate_one_mass(
+                network, values["t_end"], values["dt"], save_every=values["save_every"], method=args.method, **options
+            )
+    except ValueError as err:
+        raise ValueError(_system_message(str(err), args.system, network)) from None
     output.commit(traj.columns(os.path.splitext(args.output)[1].lower()))
     return traj.summary()
+
+
+#: The single-mass API's parameter names -> (table, key) of a one-mass system file.
+_SYSTEM_ENTRIES = {
+    "mass": ("mass", "mass"),
+    "x0": ("mass", "x0"),
+    "v0": ("mass", "v0"),
+    "stiffness": ("element", "stiffness"),
+    "threshold": ("element", "threshold"),
+    "gamma": ("element", "gamma"),
+    "force_amplitude": ("force", "amplitude"),
+    "force_omega": ("force", "omega"),
+    "force_phase": ("force", "phase"),
+    "force_until": ("force", "until"),
+}
+
+
+def _system_message(message: str, path: str, network: object) -> str:
+    """A run's error in the words of the system file: the entry and key for a single-mass parameter.
+
+    The runs of a one-mass file go through the single-mass API, whose messages
+    begin with its parameter's name (``x0: ...``); ``--x0`` is not an option
+    here, so the file, the entry and its key are named instead.
+    """
+    lead = _LEADING_NAME.match(message)
+    if lead is None or lead.group(1) not in _SYSTEM_ENTRIES:
+        return message
+    table, key = _SYSTEM_ENTRIES[lead.group(1)]
+    entries = {
+        "mass": [repr(m.name) for m in network.masses],  # type: ignore[attr-defined]
+        "element": [repr(e.name) for e in network.elements if hasattr(e, key)],  # type: ignore[attr-defined]
+        "force": [f"on {f.on!r}" for f in network.loads],  # type: ignore[attr-defined]
+    }[table]
+    where = " ".join([f"[[{table}]]", ", ".join(entries), key]).replace("  ", " ")
+    return f"system file {path!r}: {where}{message[lead.end() :]}"
 
 
 def _one_mass(network: object, args: argparse.Namespace) -> None:
