@@ -113,6 +113,7 @@ RUNS = [
     ("exact", dict(vary={"x0": np.linspace(-1, 1, 40)}, dt=0.5)),
     ("exact", dict(vary={"x0": np.linspace(-1, 1, 20)}, dt=1e-4)),
     ("exact", dict(vary={"x0": np.linspace(-1, 1, 5)}, t_end=10.0, dt=0.01, force_amplitude=10.0, force_omega=15.7)),
+    ("exact", dict(vary={"x0": np.linspace(-1, 1, 4)}, t_end=25.0, dt=0.01, force_amplitude=10.0, force_omega=15.7)),
     ("event-driven", dict(vary={"x0": np.linspace(-1, 1, 10)}, dt=0.5)),
 ]
 

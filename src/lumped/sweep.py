@@ -120,17 +120,19 @@ SECONDS_PER_BATCHED_ROW = 1e-6
 #: Estimated cost (s) of a single-run row (exact, event-driven): per row, per
 #: grid point sampled and per event, the latter from the solver's own upper
 #: estimate of the number of events (``lumped.event_driven._event_estimate``).
-#: Measured in sweeps on this project's 2-core machine: exact 0.76 ms a row at
-#: 5 grid points, 1.8 ms at 20001 (52 ns a point), 31 us per estimated event
-#: of a free Coulomb decay, 100 to 186 us of a forced run (eq. 17b, 10 to 25 s);
+#: Measured in sweeps on this project's 2-core machine: exact 0.3 to 0.76 ms a
+#: row at 5 grid points (8.4 estimated events of the free Bingham decay), 1.8
+#: ms at 20001 (52 ns a point), 31 us per estimated event
+#: of a free Coulomb decay, 50 to 186 us of a forced run (eq. 17b, 10 to 25 s);
 #: event-driven 3.2 ms a row of the free Bingham decay at 5 grid points (8.4
 #: estimated events), 75 ns a point, 0.83 ms per estimated event of a 200 s
 #: Coulomb decay and 0.28 ms of the forced run.  The constants are about twice
-#: those, but for the event-driven Coulomb decay (0.6 ms an event against 0.83:
-#: one cost per event for both laws); tests/test_sweep_limits.py holds the
-#: estimate within a factor 4 of a measured run.
+#: those, but where one cost must serve a range: a forced exact event (1.2e-4
+#: s, the geometric middle) and an event-driven event of either law (0.6 ms
+#: against 0.83 for the long Coulomb decay).  tests/test_sweep_limits.py holds
+#: the estimate within a factor 4 of a measured run.
 SECONDS_PER_RUN = {
-    "exact": {"row": 8e-4, "sample": 1.1e-7, "free event": 6e-5, "forced event": 2.5e-4},
+    "exact": {"row": 5e-4, "sample": 1.1e-7, "free event": 6e-5, "forced event": 1.2e-4},
     "event-driven": {"row": 2e-3, "sample": 1.5e-7, "free event": 6e-4, "forced event": 6e-4},
 }
 #: Rows whose events :meth:`SweepSpec.seconds` estimates, evenly spread over the grid.
