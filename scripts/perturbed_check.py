@@ -15,7 +15,7 @@ committed notebooks, as the README's test command does) once per environment:
   log, tanh, sinh and cosh by one ulp (the strongest: another machine's libm).
 
 Each run prints one row (environment, outcome, counts, seconds) and, for a
-failure, the failing test ids.  Exit status 0 when every environment passes,
+failure, the failing test ids and the file holding pytest's output.  Exit status 0 when every environment passes,
 1 when one fails, 2 on a bad argument.  The whole table takes about 2 minutes
 per environment on 2 cores.
 
@@ -32,6 +32,7 @@ import os
 import re
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 
@@ -64,9 +65,11 @@ def run(name: str, targets: list[str]) -> tuple[bool, str, float, list[str]]:
     cmd = [sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider", *targets]
     proc = subprocess.run(cmd, cwd=ROOT, env=environment(name), capture_output=True, text=True)
     seconds = time.monotonic() - start
+    log = Path(tempfile.gettempdir()) / f"perturbed_check-{name}.log"
+    log.write_text(proc.stdout + proc.stderr, encoding="utf-8")
     lines = proc.stdout.strip().splitlines()
     summary = re.sub(r"\x1b\[[0-9;]*m", "", lines[-1]) if lines else proc.stderr.strip()[-200:]
-    failed = [line.split()[1] for line in lines if line.startswith(("FAILED ", "ERROR "))]
+    failed = [line.split(" ", 1)[1].split(" - ")[0] for line in lines if line.startswith(("FAILED ", "ERROR "))]
     return proc.returncode == 0, summary.strip("= "), seconds, failed
 
 
@@ -98,6 +101,10 @@ def main(argv: list[str] | None = None) -> int:
         print(f"{name:16s} {'pass' if passed else 'FAIL':7s} {seconds:7.0f}  {summary}", flush=True)
         for test in failed:
             print(f"{'':16s} {'':7s} {'':7s}  failed: {test}")
+        if not passed:
+            print(
+                f"{'':16s} {'':7s} {'':7s}  pytest's output: {Path(tempfile.gettempdir()) / f'perturbed_check-{name}.log'}"
+            )
     return 0 if ok else 1
 
 
