@@ -34,7 +34,11 @@ def test_unknown_environment_is_one_line():
 
 @pytest.mark.slow
 def test_round_off_sensitive_tests_pass_under_libm_ulp():
-    # The tests and notebook that followed round-off before issue 19 (about 30 s).
-    targets = ["tests/test_dop853.py", "tests/test_den_hartog.py", "notebooks/09_which_method.ipynb"]
+    # The tests and notebooks that followed round-off before issue 19 (about 25 s on 2 cores).
+    targets = ["tests/test_dop853.py", "tests/test_den_hartog.py"]
+    targets += [
+        f"notebooks/{n}.ipynb"
+        for n in ("02_sgn_zero_failure", "05_free_vibrations", "09_which_method", "11_den_hartog")
+    ]
     proc = subprocess.run([sys.executable, SCRIPT, "--env", "libm-ulp", *targets], capture_output=True, text=True)
     assert proc.returncode == 0, proc.stdout
