@@ -588,6 +588,7 @@ def test_signal_removes_the_temporary_file(tmp_path, phase, sig, status):
     assert os.listdir(tmp_path) == []
 
 
+@pytest.mark.skipif(timestepping.KERNEL != "compiled", reason="C kernel not built (or LUMPED_PURE_PYTHON=1)")
 def test_sigint_stops_the_c_kernel_at_once(tmp_path):
     proc, waited = _interrupt(tmp_path, LONG_RUN, signal.SIGINT, started=_exists, wait=1.5)
     assert proc.returncode == 130 and waited < 1.0
