@@ -46,6 +46,7 @@ setup(
         Extension(
             f"lumped.{name}",
             [f"src/lumped/{name}.c"],
+            depends=["src/lumped/_sine.h"],  # the project's sine
             extra_compile_args=["-O2", "-ffp-contract=off", "-fno-fast-math"],
             optional=True,
         )
@@ -57,7 +58,7 @@ setup(
         Extension(
             "lumped._batch_kernel",
             ["src/lumped/_batch_kernel.c"],
-            depends=["src/lumped/_batch_lanes.h"],  # its vector loop, included once per instruction set
+            depends=["src/lumped/_batch_lanes.h", "src/lumped/_sine.h"],  # its vector loop (once per instruction set), the sine
             extra_compile_args=["-O3", "-fopenmp", "-ffp-contract=off", "-fno-fast-math", "-Wno-psabi"],
             extra_link_args=["-fopenmp"],
             optional=True,
