@@ -284,11 +284,12 @@ class SweepSpec:
         return SECONDS_PER_SAMPLE
 
     def _check_rows(self) -> None:
-        """Per-row checks of the magnitudes and of the window of ``periods`` forcing periods."""
+        """Per-row checks of the forcing's argument (the sine's range), the magnitudes and the window."""
         from lumped.system import check_magnitudes
 
         p = self.parameters()
         t_last = self.n_steps * self.dt
+        _validate.sine_argument(p["force_omega"], p["force_phase"], np.minimum(t_last, p["force_until"]))
         for j in range(self.rows):
             row = {n: float(v[j]) for n, v in p.items()}
             check_magnitudes(_oscillator(row), t_last, self.dt, row["x0"], row["v0"], row["force_amplitude"])
