@@ -64,14 +64,14 @@ static inline __attribute__((always_inline)) sine_vd project_sine(sine_vd x) {
     const sine_vd big = x * SINE_INV_PIO2 + SINE_SHIFT; /* 1. */
     const sine_vd k = big - SINE_SHIFT;
     const sine_vl quadrant = (sine_vl)big & 3;
-    const sine_vd a = x - k * SINE_P1; /* 2. exact */
-    sine_vd c = -(k * SINE_P2), hi = a + c, bb = hi - a;
+    const sine_vd a = x - k * SINE_P1; /* 2. exact; below, k*-P is -(k*P) (rounding is symmetric) */
+    sine_vd c = k * -SINE_P2, hi = a + c, bb = hi - a;
     sine_vd lo = (a - (hi - bb)) + (c - bb);
     sine_vd h = hi;
-    c = -(k * SINE_P3), hi = h + c, bb = hi - h;
+    c = k * -SINE_P3, hi = h + c, bb = hi - h;
     lo = lo + ((h - (hi - bb)) + (c - bb));
     h = hi;
-    c = -(k * SINE_P4), hi = h + c, bb = hi - h;
+    c = k * -SINE_P4, hi = h + c, bb = hi - h;
     lo = lo + ((h - (hi - bb)) + (c - bb));
     lo = lo - k * SINE_P5;
     const sine_vd r = hi + lo, rr = lo - (r - hi);
@@ -81,10 +81,12 @@ static inline __attribute__((always_inline)) sine_vd project_sine(sine_vd x) {
     const sine_vd pc = z * (SINE_C1 + z * (SINE_C2 + z * SINE_C3)) + w * w * (SINE_C4 + z * (SINE_C5 + z * SINE_C6));
     const sine_vd hz = 0.5 * z, one_hz = 1.0 - hz;
     const sine_vd co = one_hz + (((1.0 - one_hz) - hz) + (z * pc - r * rr));
-    const sine_vl odd = (quadrant & 1) != 0, negative = (quadrant & 2) << 62;
+    /* masks by negation and shift, not by 64-bit integer compares (SSE2 has none) */
+    const sine_vl odd = -(quadrant & 1), negative = (quadrant & 2) << 62;
     const sine_vl value = (((sine_vl)co & odd) | ((sine_vl)s & ~odd)) ^ negative;
-    const sine_vl outside = ~(((sine_vl)x & 0x7fffffffffffffffLL) <= (sine_vl)(zero + SINE_MAX));
-    return (sine_vd)((value & ~outside) | ((sine_vl)(zero + __builtin_nan("")) & outside));
+    const sine_vd size = (sine_vd)((sine_vl)x & 0x7fffffffffffffffLL);
+    const sine_vl inside = size <= SINE_MAX; /* false for nan */
+    return (sine_vd)((value & inside) | ((sine_vl)(zero + __builtin_nan("")) & ~inside));
 }
 
 #undef sine_vd
