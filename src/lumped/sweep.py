@@ -71,12 +71,13 @@ SWEEP_METHODS = ("backward-euler", "exact", "event-driven")
 #: Largest number of rows of a grid.
 MAX_ROWS = 100_000_000
 #: Estimated cost (s) per trajectory-step of the batched kernels, unforced and forced grids: about twice
-#: what benchmarks/bench_sweep.py measures on this project's 2-core machine (compiled: 0.46-0.48 ns on the
-#: AVX2 loop, 1.09 ns on SSE2, 5.6-6.5 ns forced, where a C-library sin per step dominates), so a
-#: single-core or loaded machine stays within the estimate.
+#: what benchmarks/bench_sweep.py measures on this project's 2-core machine under load (compiled: 0.5-1.1 ns
+#: free; forced, the project's sine in the vector lanes, 1.2-1.5 ns when quiet and 2.5-4 ns loaded on the
+#: AVX-512 loop, about twice that on AVX2; NumPy: 12 ns free, 130 ns forced), so a single-core, loaded or
+#: AVX2-only machine stays within the estimate.
 SECONDS_PER_TRAJECTORY_STEP = {
-    "compiled": {"free": 2.5e-9, "forced": 1.3e-8},
-    "python": {"free": 2.5e-8, "forced": 1.3e-7},
+    "compiled": {"free": 2.5e-9, "forced": 8e-9},
+    "python": {"free": 2.5e-8, "forced": 2.6e-7},
 }
 #: Estimated cost (s) per grid point of a sampled single run (exact, event-driven).
 SECONDS_PER_SAMPLE = 1e-6
