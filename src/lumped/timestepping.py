@@ -121,8 +121,9 @@ if os.environ.get("LUMPED_PURE_PYTHON", "") in ("", "0"):
 
 #: Estimated cost of one step (s) of the Bingham loops, for the run-time bound
 #: (measured on this project's 2-core machine: about 1e-8 s compiled and
-#: 5.5e-7 s in Python, with the other core busy; a margin of about 1.5 to 2).
-_SECONDS_PER_STEP = {"compiled": 1.5e-8, "python": 1.2e-6}
+#: 5.5e-7 s in Python free, 9e-7 s forced (the project's sine in Python), with
+#: the other core busy; a margin of about 1.5 to 2).
+_SECONDS_PER_STEP = {"compiled": 1.5e-8, "python": 1.8e-6}
 
 
 def _generic_block(
