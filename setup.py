@@ -46,11 +46,11 @@ setup(
         Extension(
             f"lumped.{name}",
             [f"src/lumped/{name}.c"],
-            depends=["src/lumped/_sine.h"],  # the project's sine
+            depends=depends,
             extra_compile_args=["-O2", "-ffp-contract=off", "-fno-fast-math"],
             optional=True,
         )
-        for name in ("_kernel", "_network_kernel")
+        for name, depends in (("_kernel", ["src/lumped/_sine.h"]), ("_network_kernel", []))
     ]
     + [
         # the batched Algorithm 1: both cores through OpenMP, and -O3 for the
