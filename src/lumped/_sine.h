@@ -5,9 +5,13 @@
  * x86-64 machine: no C library, no contraction (the kernels are compiled with
  * -ffp-contract=off), only correctly rounded + - * and bit masks.
  *
- * Supported range |x| <= SINE_MAX = 2e8 rad; the error there is below 1 ulp
- * (tests/test_sine.py checks it against mpmath on random and adversarial
- * arguments).  Outside the range, and for inf, the result is NaN; NaN gives NaN.
+ * Supported range |x| <= SINE_MAX = 2e8 rad; the stated error bound there is
+ * 1 ulp: the reduction's relative error (at most 2^-81 on the test set, the
+ * doubles nearest a multiple of pi/2 included) and the polynomials' (below
+ * 2^-58) leave the rounding of the last additions.  tests/test_sine.py checks
+ * it against mpmath on 50000 random and adversarial arguments; the largest
+ * error found is 0.76 ulp, near pi/4.  Outside the range, and for inf, the
+ * result is NaN; NaN gives NaN.
  *
  * Algorithm.
  * 1. k = nearest integer to x * 2/pi, by adding and subtracting 0x1.8p52
