@@ -57,6 +57,7 @@ def _arguments() -> np.ndarray:
     near = np.array([float(mpmath.mpf(int(j)) * mpmath.pi / 2) for j in k])  # the nearest double to k pi/2
     quarter = np.array([float((2 * int(j) + 1) * mpmath.pi / 4) for j in k[:500]])  # the reduction's edges
     special = [0.0, 5e-324, 1e-300, 1e-8, math.pi / 4, math.pi / 2, math.pi, 1e8, _sine.MAX_ARGUMENT]
+    special.append(0.7865477133408341)  # the largest error found in a wider random search: 0.76 ulp
     parts = [
         rng.uniform(-4.0, 4.0, 3000),
         rng.uniform(-_sine.MAX_ARGUMENT, _sine.MAX_ARGUMENT, 3000),
@@ -96,7 +97,7 @@ def test_the_hardest_arguments_are_in_the_test_set():
 
 
 def test_error_below_one_ulp_against_mpmath():
-    """Every argument, with mpmath as the reference: max error < BOUND_ULPS (measured about 0.76)."""
+    """Every argument, with mpmath as the reference: max error < BOUND_ULPS (measured 0.76, near pi/4)."""
     y = _sine.sin_array(ARGS)
     errors = np.array([_ulps(float(x), float(v)) for x, v in zip(ARGS, y)])
     assert errors.max() < BOUND_ULPS, (errors.max(), ARGS[np.argmax(errors)])
