@@ -51,7 +51,7 @@
 #include <omp.h>
 #endif
 
-#define BLOCK 128 /* trajectories per block: the block's state (14 KB) stays in the L1 data cache */
+#define BLOCK 128 /* trajectories per block: the block's state (16 KB) stays in the L1 data cache */
 #define CHUNK 2 /* time steps taken per pass over the block, state held in registers */
 #define NPAR 10
 #define NSUM 7
