@@ -50,7 +50,10 @@ setup(
             extra_compile_args=["-O2", "-ffp-contract=off", "-fno-fast-math"],
             optional=True,
         )
-        for name, depends in (("_kernel", ["src/lumped/_sine.h"]), ("_network_kernel", []))
+        for name, depends in (
+            ("_kernel", ["src/lumped/_binding_checks.h", "src/lumped/_sine.h"]),
+            ("_network_kernel", ["src/lumped/_binding_checks.h"]),
+        )
     ]
     + [
         # the batched Algorithm 1: both cores through OpenMP, and -O3 for the

@@ -195,15 +195,18 @@ fig = chatter({r"forward Euler, $\Delta t = 10^{-4}$": euler[1e-4],
 # discontinuity. Here the discontinuity is *everywhere* along the computed path,
 # so the step keeps shrinking. We give `solve_ivp`'s RK45 a budget of $10^5$
 # right-hand-side evaluations (the wall-time budget is set far out of reach, so
-# the outcome is deterministic) and ask it for one second.
+# the outcome is deterministic on one machine) and ask it for one second. Its
+# step sizes follow round-off here (every step straddles the discontinuity),
+# so the run is printed as the decades it falls in, not to its last digits.
 
 # %%
 rk45 = T.integrate_adaptive(model, 1.0, x0=x0, method="RK45", rtol=1e-8, atol=1e-10,
                             max_nfev=100_000, max_seconds=600.0)
-assert not rk45.finished
-print(f"finished: {rk45.finished}, t reached: {rk45.t_reached:.3e} s of 1 s")
-print(f"evaluations: {rk45.nfev}, accepted steps: {rk45.t.size - 1}, "
-      f"median step: {rk45.median_step:.2e} s")
+steps = rk45.t.size - 1
+assert not rk45.finished and 1e-6 < rk45.t_reached < 1e-4 and 1e3 < steps < 1e4 and 1e-9 < rk45.median_step < 1e-8
+print(f"finished: {rk45.finished}, t reached: between 1e-6 and 1e-4 s of 1 s")
+print(f"evaluations: {rk45.nfev >= 100_000 and 'the budget of 1e5'}, accepted steps: between 1e3 and 1e4, "
+      f"median step: between 1e-9 and 1e-8 s")
 
 # %% [markdown]
 # After $10^5$ evaluations RK45 has advanced about $10^{-5}$ s, with a median
@@ -222,11 +225,12 @@ energy = lambda x, v: 0.5 * m * v**2 + 0.5 * k * x**2  # noqa: E731
 gain = energy(bdf.x[-1], bdf.v[-1]) / energy(x0, 0.0)
 a0 = model.rhs(0.0, np.array([x0, 0.0]))[1]  # the acceleration at v = 0, -k x0 / m
 off_path = np.abs(bdf.x - (x0 + a0 * bdf.t**2 / 2)).max()
-print(f"finished: {bdf.finished}, evaluations: {bdf.nfev}, "
+assert bdf.nfev < 100 and off_path < 1e-7  # BDF's count and error follow round-off: printed as bounds
+print(f"finished: {bdf.finished}, evaluations: fewer than 100, "
       f"x({bdf.t[-1]:.3g}) = {bdf.x[-1]:+.4f} m, v = {bdf.v[-1]:+.4f} m/s")
 print(f"energy: {energy(x0, 0.0):.3g} J at t = 0, {energy(bdf.x[-1], bdf.v[-1]):.3g} J at "
       f"t = {bdf.t[-1]:.3g} s, {gain:.0f} times as much")
-print(f"largest distance from x0 + a0 t^2/2 (a0 = {a0:+.3f} m/s^2): {off_path:.1e} m")
+print(f"largest distance from x0 + a0 t^2/2 (a0 = {a0:+.3f} m/s^2): below 1e-7 m")
 
 # %% [markdown]
 # The returned path, $x \approx x_0 + a_0 t^2/2$ ($x_0 - t^2/4$

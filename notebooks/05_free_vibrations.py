@@ -170,8 +170,9 @@ loss = start - turns
 print("exact turning points |x| (m):", np.array2string(turns, precision=4))
 print("loss per half-swing (m):     ", np.array2string(loss, precision=4))
 print("  viscous part (1 - r)|x|:   ", np.array2string((1 - r) * start, precision=4))
-print(f"  largest |loss - (1 - r)|x| - (1 + r) mu_s N_f/k|: "
-      f"{np.abs(loss - (1 - r) * start - (1 + r) * band).max(initial=0.0):.1e} m")
+# the residual is round-off, a few ulps of |x0| = 0.5 m (1.1e-16 m each), so its bound is printed
+assert np.abs(loss - (1 - r) * start - (1 + r) * band).max(initial=0.0) < 1e-15
+print("  largest |loss - (1 - r)|x| - (1 + r) mu_s N_f/k|: below 1e-15 m (round-off)")
 
 # %% [markdown]
 # With the paper's values ($\zeta = 0.05$) the viscous part dominates the first

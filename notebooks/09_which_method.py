@@ -63,20 +63,28 @@ print(f"{len(study.results)} runs on {len(study.references)} cases; steps {A.STE
 # those cases holds in every build.
 
 # %%
-for name, ref in study.references.items():
+for name, ref in sorted(study.references.items()):  # sorted: the same order from a run or the file
     what = "rest position" if ref["final"] == "rest" else "position at the end"
-    events = ", ".join(f"{n} {k}" for k, n in ref["events"].items() if n)
+    events = ", ".join(f"{n} {k}" for k, n in sorted(ref["events"].items()) if n)
     print(f"{name:12s} {ref['method']:13s} {what} {ref['position']:+.6e} m; events: {events}")
 
 # %% [markdown]
 # How good is the event-driven reference? On the free decay, where `exact`
 # applies, the event-driven method at its tightest tolerances is checked
-# against it:
+# against it. An adaptive method's error follows its step sequence, which
+# follows round-off (a different machine's `sin` moves it by per cents), so
+# what is printed is the bound it stays within: each accepted step's local
+# error is at most `rtol` of the state and the decay does not magnify it, so
+# the rest position is within (steps × `rtol`), a few hundred `rtol`; it is
+# printed against 1000 `rtol`, the rest time against `rtol` seconds
+# (`tests/test_accuracy.py` checks both with the same bounds):
 
 # %%
 for r in study.select("free-decay", "event-driven")[-2:]:
-    print(f"event-driven, rtol {r.resolution:.0e}: rest position {r.relative_position_error:.1e} (relative), "
-          f"rest time {r.rest_time_error:.1e} s from exact")
+    position, time = 1000 * r.resolution, r.resolution
+    assert r.relative_position_error < position and r.rest_time_error < time
+    print(f"event-driven, rtol {r.resolution:.0e}: rest position within {position:.0e} (relative), "
+          f"rest time within {time:.0e} s of exact")
 
 # %% [markdown]
 # ## Events of a trajectory on a grid
@@ -93,7 +101,7 @@ for r in study.select("free-decay", "event-driven")[-2:]:
 # %%
 be = study.select("forced-17b", "backward-euler")[-1]
 print(f"Algorithm 1 at dt = {be.resolution:.0e} s on eq. (17b): event errors")
-for kind, err in be.event_errors.items():
+for kind, err in sorted(be.event_errors.items()):
     print(f"  {A.KINDS[kind]:22s} {err:.2e} {'m' if kind == 'forcing-off' else 's'}")
 
 # %% [markdown]
@@ -146,14 +154,17 @@ for method in ("backward-euler", "theta", "event-capturing"):
 # %% [markdown]
 # For Herschel-Bulkley the event-driven method reaches a relative error of
 # $10^{-8}$ in a few hundred steps, where backward Euler at $10^{-4}$ s takes
-# forty thousand and is still off by tens of per cent:
+# forty thousand and is still off by tens of per cent. (The event-driven
+# run's step count and error follow round-off, so they are printed as the
+# bounds they stay within, with margin; `tests/test_accuracy.py` checks them.)
 
 # %%
 for case in ("hb-n0.5", "hb-n2"):
     fine = [r for r in study.select(case, "event-driven") if r.relative_position_error <= 1e-8]
     be = study.select(case, "backward-euler")[-1]
-    print(f"{case}: event-driven rtol {fine[0].resolution:.0e}, {fine[0].work} steps, error "
-          f"{fine[0].relative_position_error:.1e}; backward Euler {be.work} steps, error {be.relative_position_error:.2f}")
+    assert fine[0].work < 1000
+    print(f"{case}: event-driven rtol {fine[0].resolution:.0e}, fewer than 1000 steps, error below 1e-8; "
+          f"backward Euler {be.work} steps, error {be.relative_position_error:.2f}")
 
 # %% [markdown]
 # ## The tanh model creeps
@@ -163,14 +174,19 @@ for case in ("hb-n0.5", "hb-n2"):
 # exact stop it keeps creeping towards $x = 0$ at a rate that shrinks with
 # $\varepsilon$ (section 2.2 of the paper, notebook 02). Its "rest position",
 # the position at the end of the run, approaches the true one only as
-# $\varepsilon \to 0$, and it depends on how long one waits:
+# $\varepsilon \to 0$, and it depends on how long one waits. LSODA's step
+# counts and the last digits of its errors follow round-off (another
+# machine took 845 steps where this one takes 853), so the errors are
+# printed to one digit and the counts not at all (figure acc02 has them;
+# `tests/test_accuracy.py` checks that each printed digit would hold if
+# the error moved by a tenth of LSODA's own error):
 
 # %%
 for r in study.select("free-decay", "tanh"):
-    print(f"eps {r.eps:.0e} m/s, rtol {r.resolution:.0e}: error {r.relative_position_error:.2e} ({r.work} steps)")
+    print(f"eps {r.eps:.0e} m/s, rtol {r.resolution:.0e}: error {r.relative_position_error:.0e}")
 reached = [r for r in study.select("free-decay", "tanh") if r.relative_position_error <= 1e-3]
 best = min(reached, key=lambda r: r.work) if reached else None
-print("reaches 1e-3:", f"eps {best.eps:.0e}, rtol {best.resolution:.0e}, {best.work} steps" if best else "never")
+print("reaches 1e-3:", f"eps {best.eps:.0e}, rtol {best.resolution:.0e}" if best else "never")
 
 # %% [markdown]
 # ## Which method, when

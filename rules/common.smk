@@ -15,7 +15,8 @@ def checked_config(raw):
     configuration. Exiting from the Snakefile prints only our lines; a
     WorkflowError would add the file, line and a traceback frame.
     """
-    problems = lumped.config.problems(raw)
+    # The --config texts too: Snakemake reads gamma=1e400 as inf, which the values cannot tell from gamma=inf.
+    problems = lumped.config.problems(raw, list(workflow.config_settings.config_args or []))
     if problems:
         print("\n".join(problems), file=sys.stderr)
         sys.exit(2)

@@ -245,3 +245,54 @@ def test_the_cases_ignore_configuration_overrides(tmp_path, monkeypatch):
     assert lumped.config.load()["gamma"] == float("inf")  # the override is what load() sees
     free = A.cases()["free-decay"]
     assert free.oscillator.dashpot.gamma == cfg["gamma"] and free.x0 == cfg["x0_large"]
+
+
+# ------------------------------------------------- what notebook 09 prints of adaptive runs
+# An adaptive run's step sizes follow round-off (tests/test_dop853.py: one ulp of sin moves
+# DOP853's by 3.5e-3, a reordered sum by 2.3e-2), so its step count and the last digits of
+# its error differ between machines; notebook 09 prints bounds and one-digit errors instead.
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("rtol", [1e-10, 1e-12])
+def test_event_driven_free_decay_within_the_printed_bounds(rtol):
+    # Each accepted step's local error is at most rtol of the state and the decay does not
+    # magnify it, so the rest position is within steps x rtol (145 and 232 steps here); the
+    # notebook prints 1000 rtol, and the rest time within rtol seconds.
+    r = A.run("free-decay", "event-driven", rtol)
+    assert r.relative_position_error < r.work * rtol < 1000 * rtol
+    assert r.rest_time_error < rtol
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("case, rtol", [("hb-n0.5", 1e-8), ("hb-n2", 1e-10)])
+def test_herschel_bulkley_reaches_1e8_in_the_printed_steps(case, rtol):
+    # The notebook prints the first rtol whose error is below 1e-8: it must be so with the
+    # margin a round-off change of the steps leaves (a tenth of the error, see the tanh test),
+    # and the coarser rtol must miss it by as much.
+    coarser = A.run(case, "event-driven", rtol * 100)
+    r = A.run(case, "event-driven", rtol)
+    assert r.relative_position_error * 1.1 < 1e-8 < coarser.relative_position_error * 0.9
+    assert r.work < 1000
+
+
+def _digit_is_stable(value: float, spread: float) -> bool:
+    """Whether every number within ``spread`` of ``value`` prints as ``value`` does with ``.0e``."""
+    return f"{value - spread:.0e}" == f"{value:.0e}" == f"{value + spread:.0e}"
+
+
+def test_digit_is_stable_sees_a_rounding_boundary():
+    assert _digit_is_stable(1.22e-3, 1e-5) and not _digit_is_stable(1.22e-3, 3e-4)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("eps", A.TANH_EPS)
+def test_tanh_errors_print_the_same_digit_whatever_the_round_off(eps):
+    # LSODA's own error at rtol 1e-6 is the difference from the run at 1e-9 (whose error is
+    # ~1e-3 of that: errors scale with rtol).  Round-off changes LSODA's step sizes by a few
+    # parts in 1e2 (as DOP853's), and the error, of order ~5 in h, by a tenth of itself
+    # at most: the digit notebook 09 prints must hold over that spread.
+    coarse, fine = (A.run("free-decay", "tanh", rtol, eps=eps) for rtol in A.TANH_RTOLS)
+    solver_error = abs(coarse.relative_position_error - fine.relative_position_error)
+    assert _digit_is_stable(coarse.relative_position_error, 0.1 * solver_error)
+    assert _digit_is_stable(fine.relative_position_error, 0.1 * solver_error * 1e-3)

@@ -126,6 +126,8 @@ BAD = [
     (["--force-until", "-1"], "--force-until"),
     (["--save-every", "0"], "--save-every"),
     (["--save-every", "1.5"], "--save-every"),
+    (["--save-every", "2000000001"], "--save-every"),  # beyond the most steps of any run
+    (["--save-every", "100000000000000000000000"], "--save-every"),
     (["--method", "rk4"], "--method"),
     (["--t-end", "1e9", "--dt", "1e-9"], "--t-end"),
     (["--t-end", "1e5", "--dt", "1e-4"], "--save-every"),

@@ -248,3 +248,67 @@ class _Text:
 
     def read_text(self, _):
         return self.text
+
+
+# ---- issue 19: the runs' bounds, numbers YAML reads as strings, overflowing literals, malformed YAML ----------
+
+#: Values the schema's ranges accept and the runs refuse: refused by problems() before any job, naming the key.
+RUN_REFUSED = [
+    ({"stiffness": 1e300}, "config: t_end_forced: the exact solution would have about 6.9e+149 events"),
+    ({"x0_large": 1e300}, "config: x0_large: the run could reach spring force |F_s| = 1e+302"),
+    ({"force_amplitude_large": 1e300}, "config: force_amplitude_large: the run could reach spring force"),
+    ({"mass": 1e-320}, "config: mass: 1e-320 is below the smallest normal double"),
+]
+
+
+@pytest.mark.parametrize(("change", "expected"), RUN_REFUSED, ids=[next(iter(c)) for c, _ in RUN_REFUSED])
+def test_values_the_runs_refuse_are_refused_by_the_check(change, expected):
+    found = lumped.config.problems(DEFAULTS | change)
+    assert len(found) == 1 and found[0].startswith(expected), found
+
+
+@pytest.mark.parametrize(
+    ("text", "expected"),
+    [
+        ("1e-4", "(YAML reads 1e-4 as a string: its floats need a dot and a signed exponent; write 1.0e-4)"),
+        ("1e+4", "write 1.0e+4)"),
+        ("2.5e3", "write 2.5e+3)"),
+        ("1e400", "(beyond double precision, about 1.8e308; write .inf for infinity)"),
+    ],
+)
+def test_a_number_yaml_reads_as_a_string_says_why(tmp_path, text, expected):
+    path = tmp_path / "config.yaml"
+    path.write_text((ROOT / "config" / "config.yaml").read_text().replace("dt: 1.0e-4", f"dt: {text}"))
+    with pytest.raises(ValueError) as info:
+        lumped.config.load(path)
+    message = str(info.value)
+    assert message.startswith(f"config: dt must be a finite number > 0 (s); got '{text}' (") and message.endswith(
+        expected
+    )
+
+
+def test_gamma_1e400_on_the_command_line_is_not_coulomb():
+    """Snakemake reads gamma=1e400 as inf; with the --config texts it is refused, gamma=inf and .inf are not."""
+    raw = _overridden("gamma=1e400")
+    assert raw["gamma"] == math.inf and lumped.config.problems(raw) == []  # the values alone cannot tell
+    found = lumped.config.problems(raw, ["gamma=1e400"])
+    assert found == ["config: gamma=1e400 is beyond double precision (about 1.8e308); write .inf for infinity"]
+    for text in ("gamma=inf", "gamma=.inf", "gamma=-inf"):
+        assert not any("beyond double precision" in line for line in lumped.config.problems(raw, [text]))
+
+
+def test_an_overflowing_float_in_the_file_names_its_line(tmp_path):
+    path = tmp_path / "config.yaml"
+    path.write_text((ROOT / "config" / "config.yaml").read_text().replace("gamma: 1.0 ", "gamma: 1.0e+400 "))
+    with pytest.raises(ValueError, match=rf"^config: {path}, line 8: 1\.0e\+400 is beyond double precision"):
+        lumped.config.load(path)
+    path.write_text((ROOT / "config" / "config.yaml").read_text().replace("gamma: 1.0 ", "gamma: .inf "))
+    assert lumped.config.load(path)["gamma"] == math.inf
+
+
+def test_malformed_yaml_names_the_file_and_line(tmp_path):
+    path = tmp_path / "config.yaml"
+    path.write_text("mass: 1.0\nstiffness: [1\n")
+    with pytest.raises(ValueError, match=rf"^config: {path}, line 3: not valid YAML: expected ',' or ']'") as info:
+        lumped.config.load(path)
+    assert "\n" not in str(info.value)

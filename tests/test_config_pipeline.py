@@ -60,6 +60,14 @@ def _assert_one_clean_line(done: subprocess.CompletedProcess, expected: str, not
 BAD = [
     (["dt=abc"], "config: dt must be a finite number > 0 (s); got 'abc'"),
     (["dtt=1e-3"], "config: unknown key dtt; did you mean dt?"),
+    # Snakemake reads 1e400 as inf: without the --config texts this became Coulomb friction silently
+    (["gamma=1e400"], "config: gamma=1e400 is beyond double precision (about 1.8e308); write .inf for infinity"),
+    # accepted by the schema, refused by the run (its own check, before any job)
+    (
+        ["x0_large=1e300"],
+        "config: x0_large: the run could reach spring force |F_s| = 1e+302 (bound from the energy), above the "
+        "1e+300 that double precision carries through a step (the free_large run)",
+    ),
 ]
 
 

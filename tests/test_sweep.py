@@ -259,11 +259,9 @@ def test_csv_and_npz_columns(tmp_path):
 
 def test_progress_goes_to_stderr_only(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr("lumped.batched.CALL_SIZE", 2)
-    slow = {"free": 1.0, "forced": 1.0}  # an estimate long enough to show progress
-    monkeypatch.setattr("lumped.sweep.SECONDS_PER_TRAJECTORY_STEP", {"compiled": slow, "python": slow})
+    # an estimate long enough to show progress (50 s), not so long as to be refused
+    monkeypatch.setattr("lumped.sweep.SECONDS_PER_BATCHED_ROW", 10.0)
     out = tmp_path / "s.csv"
-    # the inflated estimate is not refused
-    monkeypatch.setattr("lumped.sweep.SweepSpec.check", lambda self, rows=None: None)
     assert main(["sweep", "--vary", "x0=0:1:5", "--t-end", "0.1", "--output", str(out)]) == 0
     assert "sweep: 5/5 rows" in capsys.readouterr().err
     lines = out.read_text().splitlines()
@@ -425,13 +423,13 @@ def test_an_unknown_vector_path_is_refused():
 
 
 def test_the_estimate_is_for_the_chunk_that_runs():
-    """The full rest study (20000 exact rows of 6 s at 1e-4) is too long as one run and fine as 16 chunks."""
-    axes = [axis("x0", np.linspace(-1, 1, 20000))]
-    with pytest.raises(ValueError, match=r"^vary: 1\.2e\+09 steps of exact rows would take about"):
+    """200000 exact rows of 6 s at 1e-4 (ten times the full rest study) are too long as one run, fine as 16 chunks."""
+    axes = [axis("x0", np.linspace(-1, 1, 200_000))]
+    with pytest.raises(ValueError, match=r"^vary: 200000 rows of exact \(60000 steps each\) would take about"):
         SweepSpec.build(axes, t_end=6.0, method="exact")
     spec = SweepSpec.build(axes, t_end=6.0, method="exact", chunk=(15, 16))
-    assert spec.rows == 20000 and len(range(spec.rows)[spec.chunk(15, 16)]) == 1250
-    with pytest.raises(ValueError, match=r"^vary: 1\.2e\+09 steps of exact rows"):  # a chunk too long is still refused
+    assert spec.rows == 200_000 and len(range(spec.rows)[spec.chunk(15, 16)]) == 12500
+    with pytest.raises(ValueError, match=r"^vary: 200000 rows of exact"):  # a chunk too long is still refused
         SweepSpec.build(axes, t_end=6.0, method="exact", chunk=(0, 1))
 
 

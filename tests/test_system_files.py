@@ -166,3 +166,11 @@ def test_single_mass_options_refused_with_system(tmp_path, capsys, option: str) 
     status, _ = run(tmp_path, GOOD, "out.npz", option)
     assert status == 2 and option.split("=")[0] in capsys.readouterr().err
     assert not any(tmp_path.glob("out.npz*"))
+
+
+@pytest.mark.parametrize("stride", ["2000000001", "100000000000000000000000"])
+def test_save_every_beyond_the_most_steps_is_refused_with_system(tmp_path, capsys, stride: str) -> None:
+    status, _ = run(tmp_path, CHAIN, "out.npz", "--save-every", stride)
+    err = capsys.readouterr().err
+    assert status == 2 and err.count("\n") == 1 and "--save-every must be an integer from 1 to 2000000000" in err
+    assert not any(tmp_path.glob("out.npz*"))

@@ -14,7 +14,8 @@
  * arrays: state = (F_s, v, F_d), counters = (row, rest_start, bad_step,
  * bad_quantity).  rest_start is the first step of the current run of v == 0;
  * a non-finite v, F_d or F_s stops the loop with bad_step and bad_quantity
- * (1: v, 2: F_d, 3: F_s) set and that step not saved. */
+ * (1: v, 2: F_d, 3: F_s) set and that step not saved.  The binding checks
+ * every argument first (_binding_checks.h): a bad one raises ValueError. */
 #define PY_SSIZE_T_CLEAN
 #include <Python.h>
 #include <math.h>
@@ -22,18 +23,54 @@
 #define SINE_LANES 1
 #include "_sine.h" /* the project's sine, one lane: project_sine1 */
 
+#include "_binding_checks.h"
+
+/* The arguments' checks (see _binding_checks.h): -1 with ValueError if one is bad. */
+static int check_block(held_t *h, const double *p, Py_ssize_t n_first, Py_ssize_t n_last, Py_ssize_t n_steps,
+                       Py_ssize_t save_every, PyObject *const *arrays) {
+    static const char *names[] = {"m", "k", "dt", "tau", "c", "amp", "omega", "phase", "until"};
+    for (int i = 0; i < 9; i++) {
+        const int positive = i < 3, non_negative = i == 3 || i == 4, time = i == 8;
+        if (check_real(names[i], p[i], positive || non_negative || time ? 0.0 : -INFINITY, positive, time) < 0)
+            return -1;
+    }
+    if (check_steps(n_first, n_last, n_steps, save_every) < 0) return -1;
+    const Py_buffer *table = take(h, arrays[0], "force_values", 'd', -1, 0);
+    if (table == NULL || !take(h, arrays[1], "state", 'd', 3, 1)) return -1;
+    const Py_buffer *counters = take(h, arrays[2], "counters", 'q', 4, 1);
+    const Py_buffer *out = counters ? take(h, arrays[3], "out", 'd', -1, 1) : NULL;
+    if (out == NULL) return -1;
+    if (items(table) != 0 && items(table) != n_last - n_first + 1) {
+        PyErr_Format(PyExc_ValueError, "force_values must hold 0 or n_last - n_first + 1 = %zd float64 values, got %zd",
+                     n_last - n_first + 1, items(table));
+        return -1;
+    }
+    if (items(out) % 6 != 0) {
+        PyErr_Format(PyExc_ValueError, "out must have 6 columns (t, x, v, F_s, F_d, F), got %zd values", items(out));
+        return -1;
+    }
+    const int64_t row = ((const int64_t *)counters->buf)[0];
+    return check_rows("out", row, items(out) / 6, n_first, n_last, n_steps, save_every);
+}
+
 static PyObject *bingham_block(PyObject *self, PyObject *args) {
     double m, k, dt, tau, c, amp, omega, phase, until;
     Py_ssize_t n_first, n_last, n_steps, save_every;
-    Py_buffer table, state, counters, out;
-    if (!PyArg_ParseTuple(args, "dddddnnnnddddy*w*w*w*", &m, &k, &dt, &tau, &c, &n_first,
-                          &n_last, &n_steps, &save_every, &amp, &omega, &phase, &until, &table,
-                          &state, &counters, &out))
+    PyObject *arrays[4];
+    if (!PyArg_ParseTuple(args, "dddddnnnnddddOOOO", &m, &k, &dt, &tau, &c, &n_first, &n_last, &n_steps,
+                          &save_every, &amp, &omega, &phase, &until, arrays, arrays + 1, arrays + 2, arrays + 3))
         return NULL;
-    const double *force_values = (const double *)table.buf;
-    double *st = (double *)state.buf, *o = (double *)out.buf;
-    int64_t *cnt = (int64_t *)counters.buf;
-    const int tabulated = table.len > 0;
+    held_t h = {.n = 0};
+    const double p[] = {m, k, dt, tau, c, amp, omega, phase, until};
+    if (check_block(&h, p, n_first, n_last, n_steps, save_every, arrays) < 0) {
+        release_held(&h);
+        return NULL;
+    }
+    const Py_buffer *table = h.b, *state = h.b + 1, *counters = h.b + 2, *out = h.b + 3;
+    const double *force_values = (const double *)table->buf;
+    double *st = (double *)state->buf, *o = (double *)out->buf;
+    int64_t *cnt = (int64_t *)counters->buf;
+    const int tabulated = table->len > 0;
     Py_BEGIN_ALLOW_THREADS
     const double eta = m / dt + k * dt;
     double f_s = st[0], v = st[1], f_d = st[2], f;
@@ -69,10 +106,7 @@ static PyObject *bingham_block(PyObject *self, PyObject *args) {
     st[0] = f_s; st[1] = v; st[2] = f_d;
     cnt[0] = row; cnt[1] = rest_start;
     Py_END_ALLOW_THREADS
-    PyBuffer_Release(&table);
-    PyBuffer_Release(&state);
-    PyBuffer_Release(&counters);
-    PyBuffer_Release(&out);
+    release_held(&h);
     Py_RETURN_NONE;
 }
 

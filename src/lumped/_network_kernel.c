@@ -29,6 +29,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "_binding_checks.h"
+
 #define MAX_PIECES 5
 enum { SPRING = 0, STRING = 1, BINGHAM = 2, MAXWELL = 3, DASHPOT = 4, LOCKING = 5 };
 static const double SCALES[] = {1.0, 0.25, 4.0, 1.0 / 16, 16.0}; /* step.SIGMA_SCALES */
@@ -98,7 +100,7 @@ static int step_graph(int64_t kind, const double *p, double s, double dt, piece 
     case DASHPOT:
         g[0] = free_piece(0.0, p[0], -INFINITY, INFINITY);
         return 1;
-    default: { /* LOCKING: tau, c, v_lock */
+    case LOCKING: { /* tau, c, v_lock */
         const double lock = p[2], edge = p[0] + p[1] * p[2];
         g[0] = rigid_piece(-lock, -INFINITY, -edge);
         band(g + 1, p[0], p[1], -lock, lock);
@@ -106,6 +108,7 @@ static int step_graph(int64_t kind, const double *p, double s, double dt, piece 
         return 5;
     }
     }
+    return 0; /* not reached: the bindings refuse any other code (take_topology) */
 }
 
 /* Element.next_state for each kind. */
@@ -121,12 +124,17 @@ static double next_state(int64_t kind, const double *p, double s, double dt, dou
     }
 }
 
-/* step._mode: the piece whose range of z = f + sigma w holds z. */
+/* step._mode: the piece whose range of z = f + sigma w holds z.  A rigid
+ * piece holds the closed band [lo + sigma a, hi + sigma a]: the C copy of
+ * lumped.laws.sticks, Algorithm 1's |F~| <= tau, so a Bingham element sticks
+ * on both edges of its band (tests/test_band_edge.py runs both steps there);
+ * a rigid piece of zero width (a threshold 0) is never taken. */
 static int mode_of(const piece *g, int n, double z, double sigma) {
-    for (int k = 0; k < n - 1; k++) {
-        const double top = g[k].rigid ? g[k].hi + sigma * g[k].a : g[k].a + (g[k].b + sigma) * g[k].hi;
-        if (z <= top) return k;
-    }
+    for (int k = 0; k < n; k++)
+        if (g[k].rigid && g[k].lo < g[k].hi && g[k].lo + sigma * g[k].a <= z && z <= g[k].hi + sigma * g[k].a)
+            return k;
+    for (int k = 0; k < n - 1; k++)
+        if (!g[k].rigid && z <= g[k].a + (g[k].b + sigma) * g[k].hi) return k;
     return n - 1;
 }
 
@@ -349,22 +357,110 @@ static int march(net_t *q, march_t *m, const record_t *o, const double *table, P
 
 /* ---- the Python binding ------------------------------------------------ */
 
-static int buffers(PyObject *seq, Py_buffer *b, Py_ssize_t count, int writable) {
-    if (!PyTuple_Check(seq) || PyTuple_GET_SIZE(seq) != count) {
-        PyErr_Format(PyExc_TypeError, "expected a tuple of %zd arrays", count);
-        return -1;
+/* Every argument is checked before the loop runs (_binding_checks.h): the
+ * lengths and item types of the arrays against the counts (elements from
+ * `kind`, masses from `inertia`, rows from `t`), the kind codes, every index
+ * (points, elements, masses, modes) within range and the forest's order. */
+
+/* The items of a tuple of `count` arrays, or NULL with ValueError naming it. */
+static PyObject *const *tuple_items(PyObject *obj, const char *name, Py_ssize_t count) {
+    if (!PyTuple_Check(obj) || PyTuple_GET_SIZE(obj) != count) {
+        PyErr_Format(PyExc_ValueError, "%s must be a tuple of %zd arrays", name, count);
+        return NULL;
     }
-    for (Py_ssize_t i = 0; i < count; i++) {
-        if (PyObject_GetBuffer(PyTuple_GET_ITEM(seq, i), b + i, writable ? PyBUF_WRITABLE | PyBUF_C_CONTIGUOUS : PyBUF_C_CONTIGUOUS) < 0) {
-            for (Py_ssize_t j = 0; j < i; j++) PyBuffer_Release(b + j);
+    return &PyTuple_GET_ITEM(obj, 0);
+}
+
+static const char *const TOPOLOGY[] = {
+    "topology[0] (kind)",  "topology[1] (par)",    "topology[2] (first)",      "topology[3] (second)",
+    "topology[4] (order)", "topology[5] (parent)", "topology[6] (link_start)", "topology[7] (link_el)",
+    "topology[8] (sign)",  "topology[9] (inertia)", "topology[10] (sigma)",    "topology[11] (load_mass)"};
+
+/* -1 with ValueError unless lo <= values[i] < hi for every i. */
+static int check_indices(const char *name, const Py_buffer *b, int64_t lo, int64_t hi) {
+    const int64_t *values = b->buf;
+    for (Py_ssize_t i = 0; i < items(b); i++)
+        if (values[i] < lo || values[i] >= hi) {
+            PyErr_Format(PyExc_ValueError, "%s must hold values in %lld..%lld, got %lld at %zd", name, (long long)lo,
+                         (long long)hi - 1, (long long)values[i], i);
             return -1;
         }
-    }
     return 0;
 }
 
-static void release(Py_buffer *b, Py_ssize_t count) {
-    for (Py_ssize_t i = 0; i < count; i++) PyBuffer_Release(b + i);
+/* -1 with ValueError unless order lists every point once, each point's parent before it, the ground a root. */
+static int check_forest(const int64_t *order, const int64_t *parent, Py_ssize_t n_pt) {
+    Py_ssize_t *place = malloc(n_pt * sizeof(Py_ssize_t));
+    if (place == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    for (Py_ssize_t p = 0; p < n_pt; p++) place[p] = -1;
+    const char *bad = NULL;
+    for (Py_ssize_t i = 0; i < n_pt && !bad; i++) {
+        if (place[order[i]] >= 0) bad = "topology[4] (order) must list every point once";
+        place[order[i]] = i;
+    }
+    for (Py_ssize_t p = 0; p < n_pt && !bad; p++)
+        if (parent[p] >= 0 && place[parent[p]] > place[p])
+            bad = "topology[5] (parent) must come before each point in topology[4] (order)";
+    if (!bad && parent[n_pt - 1] != -1) bad = "topology[5] (parent) of the ground must be -1 (a root)";
+    free(place);
+    if (bad) PyErr_SetString(PyExc_ValueError, bad);
+    return bad ? -1 : 0;
+}
+
+/* Take the topology tuple's 12 arrays into h, checked; set q's counts and topology.  q is zeroed. */
+static int take_topology(held_t *h, PyObject *obj, net_t *q) {
+    memset(q, 0, sizeof *q);
+    PyObject *const *a = tuple_items(obj, "topology", 12);
+    const Py_buffer *b[12];
+    if (a == NULL || !(b[0] = take(h, a[0], TOPOLOGY[0], 'q', -1, 0)) || !(b[9] = take(h, a[9], TOPOLOGY[9], 'd', -1, 0)))
+        return -1;
+    const Py_ssize_t n_el = items(b[0]), n_mass = items(b[9]), n_pt = n_mass + 1;
+    const Py_ssize_t count[12] = {n_el, 4 * n_el, n_el, n_el, n_pt, n_pt, n_pt + 1, -1, n_el, n_mass, n_el, -1};
+    for (int i = 1; i < 12; i++)
+        if (i != 9 && !(b[i] = take(h, a[i], TOPOLOGY[i], i == 1 || i == 8 || i == 10 ? 'd' : 'q', count[i], 0)))
+            return -1;
+    const int64_t *link_start = b[6]->buf;
+    if (check_indices(TOPOLOGY[0], b[0], 0, 6) < 0 || check_indices(TOPOLOGY[2], b[2], 0, n_pt) < 0 ||
+        check_indices(TOPOLOGY[3], b[3], 0, n_pt) < 0 || check_indices(TOPOLOGY[4], b[4], 0, n_pt) < 0 ||
+        check_indices(TOPOLOGY[5], b[5], -1, n_pt) < 0 || check_indices(TOPOLOGY[6], b[6], 0, items(b[7]) + 1) < 0 ||
+        check_indices(TOPOLOGY[7], b[7], 0, n_el) < 0 || check_indices(TOPOLOGY[11], b[11], 0, n_mass) < 0 ||
+        check_forest(b[4]->buf, b[5]->buf, n_pt) < 0)
+        return -1;
+    for (Py_ssize_t p = 0; p < n_pt; p++)
+        if (link_start[p + 1] < link_start[p]) {
+            PyErr_Format(PyExc_ValueError, "%s must not decrease, got %lld after %lld", TOPOLOGY[6],
+                         (long long)link_start[p + 1], (long long)link_start[p]);
+            return -1;
+        }
+    q->kind = b[0]->buf, q->par = b[1]->buf, q->first = b[2]->buf, q->second = b[3]->buf, q->order = b[4]->buf;
+    q->parent = b[5]->buf, q->link_start = link_start, q->link_el = b[7]->buf, q->sign = b[8]->buf;
+    q->inertia = b[9]->buf, q->sigma = b[10]->buf, q->load_mass = b[11]->buf;
+    q->n_mass = n_mass, q->n_el = n_el, q->n_pt = n_pt, q->n_load = items(b[11]);
+    return 0;
+}
+
+/* Take a tuple of arrays of the given names, item types and counts (writable) into h. */
+static int take_tuple(held_t *h, PyObject *obj, const char *name, int n, const char *const *names, const char *types,
+                      const Py_ssize_t *counts, Py_buffer **out) {
+    PyObject *const *a = tuple_items(obj, name, n);
+    if (a == NULL) return -1;
+    for (int i = 0; i < n; i++)
+        if (!(out[i] = take(h, a[i], names[i], types[i], counts[i], 1))) return -1;
+    return 0;
+}
+
+/* -1 with ValueError unless every warm-start mode is -1 or a piece of its element's graph. */
+static int check_modes(const char *name, const int64_t *modes, const int *pieces, Py_ssize_t n_el) {
+    for (Py_ssize_t e = 0; e < n_el; e++)
+        if (modes[e] < -1 || modes[e] >= pieces[e]) {
+            PyErr_Format(PyExc_ValueError, "%s must be -1 or in 0..%d for element %zd, got %lld", name, pieces[e] - 1,
+                         e, (long long)modes[e]);
+            return -1;
+        }
+    return 0;
 }
 
 static int allocate(net_t *q, Py_ssize_t n_mass, Py_ssize_t n_el) {
@@ -388,39 +484,36 @@ static void deallocate(net_t *q) {
     free(q->graph), free(q->count), free(q->rig), free(q->D), free(q->seen);
 }
 
-/* The network's arrays from the topology tuple (see network_block), and its work arrays. */
-static int bind(net_t *q, Py_buffer *tb, double dt) {
-    memset(q, 0, sizeof *q);
-    const Py_ssize_t n_mass = tb[9].len / (Py_ssize_t)sizeof(double), n_el = tb[0].len / (Py_ssize_t)sizeof(int64_t);
-    if (allocate(q, n_mass, n_el) < 0) {
-        deallocate(q);
-        PyErr_NoMemory();
-        return -1;
-    }
-    q->kind = tb[0].buf, q->par = tb[1].buf, q->first = tb[2].buf, q->second = tb[3].buf, q->order = tb[4].buf;
-    q->parent = tb[5].buf, q->link_start = tb[6].buf, q->link_el = tb[7].buf, q->sign = tb[8].buf;
-    q->inertia = tb[9].buf, q->sigma = tb[10].buf, q->load_mass = tb[11].buf;
-    q->n_load = tb[11].len / (Py_ssize_t)sizeof(int64_t), q->dt = dt;
-    return 0;
-}
-
 /* network_solve(topology, pieces, counts, rhs, solution) -> iterations (0: did not settle).
  * One step problem with the given graphs: pieces (elements, 5, 5) rows (rigid, a, b, lo, hi),
- * counts (elements,); solution = (v, w, f, modes, rigid) written in place; the warm start is
+ * counts (elements,) in 1..5; solution = (v, w, f, modes, rigid) written in place; the warm start is
  * modes (-1: the middle piece). */
 static PyObject *network_solve(PyObject *self, PyObject *args) {
-    PyObject *topo_obj, *sol_obj;
-    Py_buffer pieces, counts, rhs, tb[12], sb[5];
-    if (!PyArg_ParseTuple(args, "Oy*y*y*O", &topo_obj, &pieces, &counts, &rhs, &sol_obj)) return NULL;
-    int iterations = 0, ok = 0;
-    if (buffers(topo_obj, tb, 12, 0) < 0) goto fail_args;
-    if (buffers(sol_obj, sb, 5, 1) < 0) goto fail_topo;
+    static const char *const names[] = {"solution[0] (v)", "solution[1] (w)", "solution[2] (f)",
+                                        "solution[3] (modes)", "solution[4] (rigid)"};
+    PyObject *topo_obj, *pieces_obj, *counts_obj, *rhs_obj, *sol_obj;
+    if (!PyArg_ParseTuple(args, "OOOOO", &topo_obj, &pieces_obj, &counts_obj, &rhs_obj, &sol_obj)) return NULL;
+    held_t h = {.n = 0};
     net_t q;
-    if (bind(&q, tb, 1.0) < 0) goto fail;
-    const double *pc = pieces.buf, *r = rhs.buf;
-    const int64_t *cnt = counts.buf, *warm = sb[3].buf;
-    for (Py_ssize_t e = 0; e < q.n_el; e++) {
-        q.count[e] = (int)cnt[e];
+    Py_buffer *sb[5];
+    const Py_buffer *pieces, *counts, *rhs;
+    if (take_topology(&h, topo_obj, &q) < 0 || !(pieces = take(&h, pieces_obj, "pieces", 'd', q.n_el * MAX_PIECES * 5, 0)) ||
+        !(counts = take(&h, counts_obj, "counts", 'q', q.n_el, 0)) || !(rhs = take(&h, rhs_obj, "rhs", 'd', q.n_mass, 0)))
+        goto fail;
+    const Py_ssize_t sizes[] = {q.n_mass, q.n_el, q.n_el, q.n_el, q.n_el};
+    if (take_tuple(&h, sol_obj, "solution", 5, names, "dddqB", sizes, sb) < 0 ||
+        check_indices("counts", counts, 1, MAX_PIECES + 1) < 0)
+        goto fail;
+    const Py_ssize_t n_el = q.n_el;
+    if (allocate(&q, q.n_mass, n_el) < 0) {
+        PyErr_NoMemory();
+        goto fail_alloc;
+    }
+    const double *pc = pieces->buf, *r = rhs->buf;
+    const int64_t *cnt = counts->buf, *warm = sb[3]->buf;
+    for (Py_ssize_t e = 0; e < n_el; e++) q.count[e] = (int)cnt[e];
+    if (check_modes(names[3], warm, q.count, n_el) < 0) goto fail_alloc;
+    for (Py_ssize_t e = 0; e < n_el; e++) {
         for (int k = 0; k < q.count[e]; k++) {
             const double *row = pc + (e * MAX_PIECES + k) * 5;
             q.graph[e * MAX_PIECES + k] = row[0] != 0.0 ? rigid_piece(row[1], row[3], row[4]) : free_piece(row[1], row[2], row[3], row[4]);
@@ -428,25 +521,23 @@ static PyObject *network_solve(PyObject *self, PyObject *args) {
         q.mode[e] = warm[e] < 0 ? q.count[e] / 2 : (int)warm[e];
     }
     for (Py_ssize_t i = 0; i < q.n_mass; i++) q.rhs[i] = r[i];
-    ok = solve(&q, &iterations);
-    double *v = sb[0].buf, *w = sb[1].buf, *f = sb[2].buf;
-    int64_t *modes = sb[3].buf;
-    uint8_t *rigid = sb[4].buf;
+    int iterations = 0;
+    const int ok = solve(&q, &iterations);
+    double *v = sb[0]->buf, *w = sb[1]->buf, *f = sb[2]->buf;
+    int64_t *modes = sb[3]->buf;
+    uint8_t *rigid = sb[4]->buf;
     for (Py_ssize_t i = 0; i < q.n_mass; i++) v[i] = q.vall[i];
-    for (Py_ssize_t e = 0; e < q.n_el; e++) {
+    for (Py_ssize_t e = 0; e < n_el; e++) {
         w[e] = q.w[e], f[e] = q.f[e], modes[e] = q.mode[e];
         rigid[e] = (uint8_t)chosen(&q, e, q.mode)->rigid;
     }
     deallocate(&q);
-    release(sb, 5), release(tb, 12);
-    PyBuffer_Release(&pieces), PyBuffer_Release(&counts), PyBuffer_Release(&rhs);
+    release_held(&h);
     return PyLong_FromLong(ok ? iterations : 0);
+fail_alloc:
+    deallocate(&q);
 fail:
-    release(sb, 5);
-fail_topo:
-    release(tb, 12);
-fail_args:
-    PyBuffer_Release(&pieces), PyBuffer_Release(&counts), PyBuffer_Release(&rhs);
+    release_held(&h);
     return NULL;
 }
 
@@ -454,34 +545,56 @@ fail_args:
  * topology = (kind, par, first, second, order, parent, link_start, link_el, sign, inertia, sigma, load_mass)
  * marching = (x, v, state, modes, rest, counters); record = (t, x, v, force, state, rigid). */
 static PyObject *network_block(PyObject *self, PyObject *args) {
-    PyObject *topo_obj, *march_obj, *rec_obj;
-    Py_buffer table, tb[12], mb[6], rb[6];
+    static const char *const march_names[] = {"marching[0] (x)",     "marching[1] (v)",    "marching[2] (state)",
+                                              "marching[3] (modes)", "marching[4] (rest)", "marching[5] (counters)"};
+    static const char *const record_names[] = {"record[0] (t)",     "record[1] (x)",     "record[2] (v)",
+                                               "record[3] (force)", "record[4] (state)", "record[5] (rigid)"};
+    PyObject *topo_obj, *march_obj, *rec_obj, *table_obj;
     double dt;
     Py_ssize_t n_first, n_last, n_steps, save_every;
-    if (!PyArg_ParseTuple(args, "OOOy*dnnnn", &topo_obj, &march_obj, &rec_obj, &table, &dt, &n_first, &n_last,
+    if (!PyArg_ParseTuple(args, "OOOOdnnnn", &topo_obj, &march_obj, &rec_obj, &table_obj, &dt, &n_first, &n_last,
                           &n_steps, &save_every))
         return NULL;
-    if (buffers(topo_obj, tb, 12, 0) < 0) goto fail_table;
-    if (buffers(march_obj, mb, 6, 1) < 0) goto fail_topo;
-    if (buffers(rec_obj, rb, 6, 1) < 0) goto fail_march;
+    held_t h = {.n = 0};
     net_t q;
-    if (bind(&q, tb, dt) < 0) goto fail;
-    march_t m = {mb[0].buf, mb[1].buf, mb[2].buf, mb[3].buf, mb[4].buf, mb[5].buf};
-    record_t o = {rb[0].buf, rb[1].buf, rb[2].buf, rb[3].buf, rb[4].buf, rb[5].buf};
+    Py_buffer *mb[6], *rb[6];
+    const Py_buffer *table;
+    PyObject *const *r;
+    if (check_real("dt", dt, 0.0, 1, 0) < 0 || check_steps(n_first, n_last, n_steps, save_every) < 0 ||
+        take_topology(&h, topo_obj, &q) < 0)
+        goto fail;
+    const Py_ssize_t nm = q.n_mass, ne = q.n_el;
+    const Py_ssize_t march_sizes[] = {nm, nm, ne, ne, nm, 4};
+    if (take_tuple(&h, march_obj, "marching", 6, march_names, "dddqqq", march_sizes, mb) < 0 ||
+        !(table = take(&h, table_obj, "table", 'd', (n_last - n_first + 1) * q.n_load, 0)) ||
+        !(r = tuple_items(rec_obj, "record", 6)) || !(rb[0] = take(&h, r[0], record_names[0], 'd', -1, 1)))
+        goto fail;
+    const Py_ssize_t rows = items(rb[0]), record_sizes[] = {rows, rows * nm, rows * nm, rows * ne, rows * ne, rows * ne};
+    for (int i = 1; i < 6; i++)
+        if (!(rb[i] = take(&h, r[i], record_names[i], "ddddB"[i - 1], record_sizes[i], 1))) goto fail;
+    int64_t *counters = mb[5]->buf;
+    if (check_rows(record_names[0], counters[0], rows, n_first, n_last, n_steps, save_every) < 0) goto fail;
+    if (allocate(&q, nm, ne) < 0) {
+        PyErr_NoMemory();
+        goto fail_alloc;
+    }
+    const double *state = mb[2]->buf;
+    for (Py_ssize_t e = 0; e < ne; e++)
+        q.count[e] = step_graph(q.kind[e], q.par + 4 * e, state[e], dt, q.graph + e * MAX_PIECES);
+    if (check_modes(march_names[3], mb[3]->buf, q.count, ne) < 0) goto fail_alloc;
+    q.dt = dt;
+    march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters};
+    record_t o = {rb[0]->buf, rb[1]->buf, rb[2]->buf, rb[3]->buf, rb[4]->buf, rb[5]->buf};
     Py_BEGIN_ALLOW_THREADS
-    march(&q, &m, &o, table.buf, n_first, n_last, n_steps, save_every);
+    march(&q, &m, &o, table->buf, n_first, n_last, n_steps, save_every);
     Py_END_ALLOW_THREADS
     deallocate(&q);
-    release(rb, 6), release(mb, 6), release(tb, 12), PyBuffer_Release(&table);
+    release_held(&h);
     Py_RETURN_NONE;
+fail_alloc:
+    deallocate(&q);
 fail:
-    release(rb, 6);
-fail_march:
-    release(mb, 6);
-fail_topo:
-    release(tb, 12);
-fail_table:
-    PyBuffer_Release(&table);
+    release_held(&h);
     return NULL;
 }
 

@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import sys
 
 import numpy as np
 
@@ -27,6 +28,11 @@ MAX_STEPS = 2_000_000_000
 MAX_OUTPUT_BYTES = 4 * 1024**3
 #: Longest estimated run time, in seconds, that a single run may take.
 MAX_SECONDS = 600.0
+#: Smallest normal double, ``2^-1022`` (about 2.2e-308).  A positive value
+#: below it is subnormal and keeps fewer than 16 significant digits (``1e-320``
+#: is stored as ``9.99989e-321``): :func:`positive` and :func:`positive_or_inf`
+#: refuse it.
+TINY = sys.float_info.min
 
 
 def _show(value: object) -> str:
@@ -56,10 +62,19 @@ def finite(name: str, value: object) -> float:
 
 
 def positive(name: str, value: object) -> float:
-    """Return ``value`` as a finite float > 0."""
+    """Return ``value`` as a finite float > 0, not subnormal (at least :data:`TINY`)."""
     out = finite(name, value)
     if out <= 0:
         raise ValueError(f"{name} must be > 0 and finite, got {out}")
+    return _normal(name, out)
+
+
+def _normal(name: str, out: float) -> float:
+    if out < TINY:
+        raise ValueError(
+            f"{name}: {out:.3g} is below the smallest normal double, {TINY:.3g}, "
+            "where fewer than 16 significant digits remain"
+        )
     return out
 
 
@@ -72,11 +87,11 @@ def non_negative(name: str, value: object) -> float:
 
 
 def positive_or_inf(name: str, value: object) -> float:
-    """Return ``value`` as a float in (0, inf]."""
+    """Return ``value`` as a float in [:data:`TINY`, inf]."""
     out = _as_float(name, value)
     if out <= 0:
         raise ValueError(f"{name} must be > 0 (inf allowed), got {out}")
-    return out
+    return _normal(name, out)
 
 
 def time_or_inf(name: str, value: object) -> float:
@@ -94,6 +109,19 @@ def positive_int(name: str, value: object) -> int:
     out = int(value)
     if out < 1:
         raise ValueError(f"{name} must be an integer >= 1, got {out}")
+    return out
+
+
+def stride(name: str, value: object) -> int:
+    """Return ``value`` as a stride of saved grid points: an int from 1 to ``MAX_STEPS``.
+
+    No run takes more than ``MAX_STEPS`` steps, so a larger stride could only
+    save ``t = 0`` and the last point, which ``MAX_STEPS`` already does: it is
+    refused (a typo, like a ``dt`` that would need more steps than that).
+    """
+    out = positive_int(name, value)
+    if out > MAX_STEPS:
+        raise ValueError(f"{name} must be an integer from 1 to {MAX_STEPS} (the most steps of a run), got {_show(out)}")
     return out
 
 
@@ -119,7 +147,7 @@ def parse_float(name: str, text: str) -> float:
 def parse_int(name: str, text: str) -> int:
     """A command-line integer >= 1 (decimal digits, any size)."""
     word = text.strip().lstrip("+")
-    if not word.isdigit():
+    if not (word.isascii() and word.isdigit()):  # "²".isdigit() is true, and int("²") fails
         raise ValueError(f"{name} must be an integer >= 1, got {text!r}")
     return positive_int(name, int(word))
 

@@ -47,7 +47,7 @@ _OPTIONS = (  # (API name, default, help); the option is "--" + name with "-" fo
     ("force_until", "inf", "time after which the force is zero (s)"),
     ("t_end", "2", "final time > 0 (s)"),
     ("dt", "1e-4", "time step > 0 (s)"),
-    ("save_every", "1", "keep every K-th grid point"),
+    ("save_every", "1", "keep every K-th grid point (1 to 2e9)"),
 )
 
 _CHECKS = {  # API name -> validator (the API's own, so the messages are the API's)
@@ -63,7 +63,7 @@ _CHECKS = {  # API name -> validator (the API's own, so the messages are the API
     "force_until": _validate.time_or_inf,
     "t_end": _validate.positive,
     "dt": _validate.positive,
-    "save_every": _validate.positive_int,
+    "save_every": _validate.stride,
 }
 
 
@@ -135,6 +135,19 @@ class _HelpFormatter(argparse.HelpFormatter):
         return textwrap.wrap(" ".join(text.split()), width, break_on_hyphens=False)
 
 
+class _SweepHelpFormatter(_HelpFormatter):
+    """Option help wrapped as :class:`_HelpFormatter`; the description keeps its paragraphs."""
+
+    def _fill_text(self, text: str, width: int, indent: str) -> str:
+        import textwrap
+
+        paragraphs = text.split("\n\n")
+        return "\n\n".join(
+            textwrap.fill(" ".join(p.split()), width, initial_indent=indent, subsequent_indent=indent)
+            for p in paragraphs
+        )
+
+
 def build_parser() -> argparse.ArgumentParser:
     """The argument parser (defaults are the paper's values, section 3).
 
@@ -187,18 +200,40 @@ Run the single-mass system for every parameter set of a grid and write one row
 per set (.csv or .npz): the varied parameters, then rest_time, rest_position
 (nan while still moving), max_abs_x, stops and, when some row is forced,
 steady_amplitude and stops_per_period over the last --periods forcing periods
-(nan in rows whose forcing is zero, constant or ends before the run).  See the
-README, Sweeps, for the definitions."""
+(nan in rows whose forcing is zero, constant or ends before the run).
+
+stops counts the grid steps that enter the stick branch from motion (v_n = 0,
+v_{{n-1}} != 0), as the method's samples show them, not the exact solution's
+stops: backward Euler also sticks for one step at some velocity reversals the
+exact motion passes through (from --x0 0.5: 3 stops, --method exact: 1).
+
+Refused before any work: more than {rows:.0e} rows (the product of the --vary
+counts, checked before any value), more than {memory:.0f} GiB of memory by the
+estimate (some 300 to 500 bytes a row), an output file that could exceed
+{file:.0f} GiB ({csv} bytes a value in .csv, {npz} in .npz), or more than {seconds:.0f} s by
+the estimate (steps, runs and their events, writing the file); the message
+states the estimate.  Split a larger grid into several sweeps.  See the README,
+Sweeps, for the definitions."""
 
 
 def _add_sweep(sub: argparse._SubParsersAction) -> None:
     """The ``sweep`` subcommand: the single-mass options of ``simulate`` and its own."""
+    from lumped import sweep
+
+    limits = dict(
+        rows=sweep.MAX_ROWS,
+        memory=sweep.MAX_MEMORY_BYTES / 1024**3,
+        file=_validate.MAX_OUTPUT_BYTES / 1024**3,
+        csv=sweep.FILE_BYTES_PER_VALUE[".csv"],
+        npz=sweep.FILE_BYTES_PER_VALUE[".npz"],
+        seconds=_validate.MAX_SECONDS,
+    )
     sw = sub.add_parser(
         "sweep",
         help="run a grid of parameter sets and write one row of summaries per set",
-        description=_SWEEP_DESCRIPTION,
+        description=_SWEEP_DESCRIPTION.format(**limits),
         allow_abbrev=False,
-        formatter_class=_HelpFormatter,
+        formatter_class=_SweepHelpFormatter,
     )
     for name, default, text in _OPTIONS:
         if name != "save_every":  # a sweep keeps summaries, not trajectories
@@ -316,7 +351,7 @@ def _clean(args: argparse.Namespace) -> dict[str, object]:
     """Parse and validate every option; the messages use the API's names."""
     values: dict[str, object] = {}
     for name, check in _CHECKS.items():
-        parse = _validate.parse_int if check is _validate.positive_int else _validate.parse_float
+        parse = _validate.parse_int if check is _validate.stride else _validate.parse_float
         values[name] = check(name, parse(name, getattr(args, name)))
     if args.method not in METHODS:
         raise ValueError(f"--method must be one of {', '.join(METHODS)}; got {args.method!r}")
@@ -491,14 +526,52 @@ def _simulate_system(args: argparse.Namespace, output: _Output) -> str:
     if args.method != "backward-euler":
         _one_mass(network, args)
     output.create()
-    if args.method == "backward-euler":
-        traj = simulate_network(network, values["t_end"], values["dt"], save_every=values["save_every"])
-    else:
-        traj = simulate_one_mass(
-            network, values["t_end"], values["dt"], save_every=values["save_every"], method=args.method, **options
-        )
+    try:
+        if args.method == "backward-euler":
+            traj = simulate_network(network, values["t_end"], values["dt"], save_every=values["save_every"])
+        else:
+            traj = simulate_one_mass(
+                network, values["t_end"], values["dt"], save_every=values["save_every"], method=args.method, **options
+            )
+    except ValueError as err:
+        raise ValueError(_system_message(str(err), args.system, network)) from None
     output.commit(traj.columns(os.path.splitext(args.output)[1].lower()))
     return traj.summary()
+
+
+#: The single-mass API's parameter names -> (table, key) of a one-mass system file.
+_SYSTEM_ENTRIES = {
+    "mass": ("mass", "mass"),
+    "x0": ("mass", "x0"),
+    "v0": ("mass", "v0"),
+    "stiffness": ("element", "stiffness"),
+    "threshold": ("element", "threshold"),
+    "gamma": ("element", "gamma"),
+    "force_amplitude": ("force", "amplitude"),
+    "force_omega": ("force", "omega"),
+    "force_phase": ("force", "phase"),
+    "force_until": ("force", "until"),
+}
+
+
+def _system_message(message: str, path: str, network: object) -> str:
+    """A run's error in the words of the system file: the entry and key for a single-mass parameter.
+
+    The runs of a one-mass file go through the single-mass API, whose messages
+    begin with its parameter's name (``x0: ...``); ``--x0`` is not an option
+    here, so the file, the entry and its key are named instead.
+    """
+    lead = _LEADING_NAME.match(message)
+    if lead is None or lead.group(1) not in _SYSTEM_ENTRIES:
+        return message
+    table, key = _SYSTEM_ENTRIES[lead.group(1)]
+    entries = {
+        "mass": [repr(m.name) for m in network.masses],  # type: ignore[attr-defined]
+        "element": [repr(e.name) for e in network.elements if hasattr(e, key)],  # type: ignore[attr-defined]
+        "force": [f"on {f.on!r}" for f in network.loads],  # type: ignore[attr-defined]
+    }[table]
+    where = " ".join([f"[[{table}]]", ", ".join(entries), key]).replace("  ", " ")
+    return f"system file {path!r}: {where}{message[lead.end() :]}"
 
 
 def _one_mass(network: object, args: argparse.Namespace) -> None:
@@ -524,14 +597,18 @@ def _simulate(args: argparse.Namespace, output: _Output) -> str:
 
 
 def _sweep_spec(args: argparse.Namespace):  # noqa: ANN202 (a lumped.sweep.SweepSpec)
-    """Parse and validate the sweep's options into a :class:`~lumped.sweep.SweepSpec`."""
-    from lumped.sweep import SweepSpec, parse_vary
+    """Parse and validate the sweep's options into a :class:`~lumped.sweep.SweepSpec`.
 
-    axes = [parse_vary(text) for text in args.vary]
+    The grid's size (rows, memory, file, time) is checked from the ``--vary``
+    counts before any of its values is built or checked.
+    """
+    from lumped.sweep import SWEEP_METHODS, SweepSpec, check_size, vary_text
+
+    varies = [vary_text(text) for text in args.vary]
     given = {name: getattr(args, name) for name in _CHECKS if getattr(args, name, None) is not None}
-    for a in axes:
-        if a.name in given:
-            raise ValueError(f"{_flag(a.name)} is also varied by --vary {a.name}; give one of the two")
+    for v in varies:
+        if v.name in given:
+            raise ValueError(f"{_flag(v.name)} is also varied by --vary {v.name}; give one of the two")
     defaults = {name: default for name, default, _ in _OPTIONS}
     values = {
         name: _CHECKS[name](name, _validate.parse_float(name, given.get(name, defaults[name])))
@@ -541,8 +618,15 @@ def _sweep_spec(args: argparse.Namespace):  # noqa: ANN202 (a lumped.sweep.Sweep
     options = _method_options(args) if args.method in METHODS else {}
     t_end, dt = values.pop("t_end"), values.pop("dt")
     periods = _validate.parse_int("periods", args.periods)
-    _check_output(args.output)
-    return SweepSpec.build(axes, t_end=t_end, dt=dt, method=args.method, periods=periods, options=options, **values)
+    suffix = os.path.splitext(_check_output(args.output))[1].lower()
+    if args.method in SWEEP_METHODS:  # another is refused by SweepSpec.build
+        forced = values["force_amplitude"] != 0 or any(v.name == "force_amplitude" and not v.all_zero for v in varies)
+        n_steps = _validate.step_count(t_end, dt)
+        check_size([v.count for v in varies], n_steps=n_steps, method=args.method, forced=forced, output=suffix)
+    axes = [v.axis() for v in varies]
+    return SweepSpec.build(
+        axes, t_end=t_end, dt=dt, method=args.method, periods=periods, options=options, output=suffix, **values
+    )
 
 
 def _sweep(args: argparse.Namespace, output: _Output) -> str:
@@ -554,7 +638,7 @@ def _sweep(args: argparse.Namespace, output: _Output) -> str:
     spec = _sweep_spec(args)
     output.create()
     start = time.perf_counter()
-    long = spec.rows * spec.n_steps * spec.seconds_per_step() > 5.0
+    long = spec.seconds() > 5.0
     rows = run_sweep(spec, progress=Progress(sys.stderr, sys.stderr.isatty() or long))
     output.commit(rows)
     return f"{spec.rows} rows in {time.perf_counter() - start:.3g} s"

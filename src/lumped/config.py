@@ -80,16 +80,44 @@ def load(path: str | os.PathLike[str] | None = None) -> dict[str, Any]:
         If ``path`` or ``$LUMPED_CONFIG`` names a file that cannot be read
         (never replaced by the default).
     """
-    import yaml
-
-    return check(yaml.safe_load(_source(path or os.environ.get("LUMPED_CONFIG")).read_text(encoding="utf-8")))
+    return check(_read(_source(path or os.environ.get("LUMPED_CONFIG"))))
 
 
 def default() -> dict[str, Any]:
     """The repository's configuration, whatever ``$LUMPED_CONFIG`` says (what ``--config`` overrides)."""
+    return check(_read(_source(None)))
+
+
+#: How YAML writes infinity (any other literal that overflows to inf is refused).
+_INF_WORDS = frozenset({".inf", "+.inf", "-.inf", ".Inf", "+.Inf", "-.Inf", ".INF", "+.INF", "-.INF"})
+
+
+def _read(source: Path | Traversable) -> Any:
+    """The YAML of ``source``; ``ValueError`` naming the file and line of malformed YAML or of a number beyond
+    double precision (``1.0e400``, which YAML would read as infinity: Coulomb friction for ``gamma``)."""
     import yaml
 
-    return check(yaml.safe_load(_source(None).read_text(encoding="utf-8")))
+    class Loader(yaml.SafeLoader):
+        pass
+
+    def number(loader: yaml.SafeLoader, node: yaml.ScalarNode) -> float:
+        value = loader.construct_yaml_float(node)
+        if math.isinf(value) and node.value not in _INF_WORDS:
+            raise ValueError(
+                f"config: {source}, line {node.start_mark.line + 1}: {node.value} is beyond double precision "
+                "(about 1.8e308); write .inf for infinity"
+            )
+        return value
+
+    Loader.add_constructor("tag:yaml.org,2002:float", number)
+    text = source.read_text(encoding="utf-8")
+    try:
+        return yaml.load(text, Loader=Loader)  # noqa: S506 (a SafeLoader)
+    except yaml.YAMLError as err:
+        mark = getattr(err, "problem_mark", None)
+        where = f", line {mark.line + 1}" if mark is not None else ""
+        what = " ".join(str(getattr(err, "problem", None) or err).split())
+        raise ValueError(f"config: {source}{where}: not valid YAML: {what}") from None
 
 
 def _source(chosen: str | os.PathLike[str] | None) -> Path | Traversable:
@@ -160,7 +188,7 @@ def check(raw: Any) -> dict[str, Any]:
     return _coerced(raw)
 
 
-def problems(raw: Any) -> list[str]:
+def problems(raw: Any, overrides: list[str] | None = None) -> list[str]:
     """One line ``config: ...`` per problem of the configuration ``raw``; empty if none.
 
     Parameters
@@ -168,18 +196,47 @@ def problems(raw: Any) -> list[str]:
     raw : dict
         Keys to values as YAML or ``snakemake --config`` gives them (a value
         may be a string such as ``".inf"``).
+    overrides : list of str, optional
+        The ``KEY=VALUE`` texts of ``snakemake --config``: Snakemake reads
+        ``gamma=1e400`` with ``float()`` as infinity, which the values alone
+        cannot tell from ``gamma=inf``; the texts can (as the command line
+        refuses ``--gamma 1e400``).
 
     Notes
     -----
-    First the schema: unknown keys (with the closest known one), missing keys,
-    values out of range. NaN passes every JSON-schema comparison, so it is
-    refused here. Only if the schema holds, the time step: ``dt`` below each
-    end time and at most :data:`MAX_STEPS` steps per run.
+    First the overrides' texts, then the schema: unknown keys (with the
+    closest known one), missing keys, values out of range. NaN passes every
+    JSON-schema comparison, so it is refused here. Only if the schema holds,
+    the time step: ``dt`` below each end time and at most :data:`MAX_STEPS`
+    steps per run; then the runs themselves (:func:`_run_problems`): the
+    checks every run makes before it starts, on the four runs of
+    :func:`lumped.examples.paper`, so that a value a run would refuse (``stiffness:
+    1e300``) is refused before any job.
     """
     if not isinstance(raw, dict):
         return [f"config: the configuration must be a mapping of keys to values; got {_shown(raw)}"]
+    found = _override_problems(overrides or [])
+    if found:
+        return found
     values = _coerced(raw)
-    return _schema_problems(values, raw) or _step_problems(values)
+    return _schema_problems(values, raw) or _step_problems(values) or _run_problems(values)
+
+
+def _override_problems(overrides: list[str]) -> list[str]:
+    """``KEY=VALUE`` texts whose number overflows to infinity (``gamma=1e400``), one line each."""
+    found = []
+    for text in overrides:
+        key, _, value = text.partition("=")
+        word = value.strip()
+        try:
+            number = float(word)
+        except ValueError:
+            continue
+        if math.isinf(number) and word.lstrip("+-").lower() not in ("inf", "infinity", ".inf"):
+            found.append(
+                f"config: {key.strip()}={word} is beyond double precision (about 1.8e308); write .inf for infinity"
+            )
+    return found
 
 
 def _coerced(raw: dict[str, Any]) -> dict[str, Any]:
@@ -233,8 +290,64 @@ def _schema_problems(values: dict[str, Any], raw: dict[str, Any]) -> list[str]:
         if key not in values:
             found.append(f"config: {key} is missing; it must be {rule['description']}")
         elif key in bad:
-            found.append(f"config: {key} must be {rule['description']}; got {_shown(raw[key])}")
+            found.append(f"config: {key} must be {rule['description']}; got {_shown(raw[key])}{_hint(raw[key])}")
     return found
+
+
+def _hint(value: Any) -> str:
+    """Why a number YAML read as a string is one: ``1e-4`` has no dot (YAML 1.1 floats need one)."""
+    if not isinstance(value, str):
+        return ""
+    try:
+        number = float(value)
+    except ValueError:
+        return ""
+    if math.isinf(number):
+        return " (beyond double precision, about 1.8e308; write .inf for infinity)"
+    mantissa, _, exponent = value.strip().lower().partition("e")
+    fixed = f"{mantissa if '.' in mantissa else mantissa + '.0'}" + (
+        f"e{exponent if exponent[:1] in '+-' else '+' + exponent}" if exponent else ""
+    )
+    return f" (YAML reads {value} as a string: its floats need a dot and a signed exponent; write {fixed})"
+
+
+#: The examples' run arguments -> the configuration's key, per run (:func:`lumped.examples.paper`).
+_RUN_KEYS = {
+    "forced_small": {"t_end": "t_end_forced", "force_amplitude": "force_amplitude_small"},
+    "forced_large": {"t_end": "t_end_forced", "force_amplitude": "force_amplitude_large"},
+    "free_small": {"t_end": "t_end_small", "x0": "x0_small"},
+    "free_large": {"t_end": "t_end_large", "x0": "x0_large"},
+}
+
+
+def _run_problems(values: dict[str, Any]) -> list[str]:
+    """The up-front checks of Algorithm 1 and of the exact solution on the four runs, in the config's keys.
+
+    The bounds are the runs' own (:func:`lumped.system.check_magnitudes`, the
+    exact solver's checks), not restated here; a refusal is reported with the
+    key the run's argument comes from (``x0`` of the free large run is
+    ``x0_large``, ``force_omega`` is ``force_omega_over_pi``).
+    """
+    from lumped import examples
+    from lumped.event_driven import _check_inputs
+    from lumped.forcing import SwitchedSine
+    from lumped.system import check_magnitudes
+
+    try:
+        runs = examples.paper(values)
+    except ValueError as err:  # a parameter an oscillator refuses (mass: 1e-320)
+        return [f"config: {' '.join(str(err).split())}"]
+    for name, run in runs.items():
+        force = run.force or SwitchedSine()
+        amplitude = run.force.amplitude if run.force else 0.0
+        try:
+            check_magnitudes(run.oscillator, run.t_end, run.dt, run.x0, run.v0, amplitude)
+            _check_inputs(run.oscillator, force, run.t_end, run.x0, run.v0, 100_000)
+        except ValueError as err:
+            arg, _, rest = str(err).partition(":")
+            key = _RUN_KEYS[name].get(arg, "force_omega_over_pi" if arg == "force_omega" else arg)
+            return [f"config: {key}: {' '.join(rest.split())} (the {name} run)"]
+    return []
 
 
 def _step_problems(values: dict[str, Any]) -> list[str]:

@@ -14,6 +14,7 @@ from types import MappingProxyType
 
 import numpy as np
 
+from lumped import _validate
 from lumped.event_driven import solve_exact
 from lumped.event_integration import DEFAULT_RTOL, solve_event_driven
 from lumped.forcing import SwitchedSine
@@ -127,4 +128,5 @@ def simulate(
     those of :func:`~lumped.timestepping.backward_euler`.
     """
     options = method_options(method, options)
+    save_every = _validate.stride("save_every", save_every)  # before a method solves, then samples
     return METHODS[method](oscillator, t_end, dt, x0, v0, force, save_every, **options)

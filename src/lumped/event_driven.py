@@ -499,7 +499,7 @@ class ExactSolution:
         at its time.  ``final_rest`` is :meth:`rest_through` at ``t_N``.
         """
         dt = _validate.positive("dt", dt)
-        save_every = _validate.positive_int("save_every", save_every)
+        save_every = _validate.stride("save_every", save_every)
         n = _validate.step_count(self.t_end, dt)
         _validate.output_size(n, save_every)
         index = np.arange(0, n + 1, save_every)
@@ -697,7 +697,9 @@ def _event_estimate(osc: Oscillator, force: SwitchedSine, t_end: float, x0: floa
     P, w, _ = (0.0, 0.0, 0.0) if force.is_zero else force.canonical()
     t_on = min(t_end, force.until) if P else 0.0
     forced = t_on * (modes.q + 2 * w) / math.pi + 2 if P else 0.0
-    amplitude = abs(x0) + math.sqrt(m / k) * abs(v0) + 2 * P * t_on / math.sqrt(m * k)
+    amplitude = (
+        abs(x0) + math.sqrt(m / k) * abs(v0) + 2 * P * t_on / (math.sqrt(m) * math.sqrt(k))
+    )  # sqrt(m k) underflows at m = 1e-200
     band = osc.dashpot.threshold / k
     fit = (t_end - t_on) * modes.q / math.pi + 1
     cycles = min(_half_cycles_to_rest(amplitude, band, modes), fit)
@@ -781,6 +783,8 @@ def solve_exact(
         argument ``|omega| t + |phase|`` above :data:`MAX_PHASE` (``force_omega``), more than
         ``max_events`` events (``t_end``), or a value that is not finite.
     """
+    if not isinstance(oscillator, Oscillator):
+        raise ValueError(f"oscillator must be an Oscillator, got {type(oscillator).__name__}")
     if not isinstance(oscillator.dashpot, BinghamDashpot):
         raise ValueError("dashpot: the exact solver needs a BinghamDashpot (any gamma)")
     if force is not None and not isinstance(force, SwitchedSine):

@@ -274,7 +274,9 @@ def _motion_scale(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float,
     m, k = osc.mass, osc.stiffness
     P = 0.0 if force.is_zero else abs(force.amplitude)
     t_on = min(t_end, force.until) if P else 0.0
-    amplitude = abs(x0) + math.sqrt(m / k) * abs(v0) + 2 * P * t_on / math.sqrt(m * k)
+    amplitude = (
+        abs(x0) + math.sqrt(m / k) * abs(v0) + 2 * P * t_on / (math.sqrt(m) * math.sqrt(k))
+    )  # sqrt(m k) underflows at m = 1e-200
     band = osc.threshold / k
     scale = min(amplitude, band) if band > 0 else amplitude
     scale = scale if scale > 0 else 1.0

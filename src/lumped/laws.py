@@ -33,6 +33,7 @@ __all__ = [
     "Dashpot",
     "BinghamDashpot",
     "MonotoneDashpot",
+    "MONOTONE_SAMPLE",
     "HerschelBulkleyDashpot",
     "DashpotState",
     "coulomb",
@@ -195,6 +196,44 @@ class BinghamDashpot(Dashpot):
         return DashpotState(*bingham_corrector(predictor, eta, self.threshold, self.viscosity))
 
 
+def sticks(predictor: float, low: float, high: float) -> bool:
+    """The stick test: does the closed band ``[low, high]`` hold the predictor?
+
+    Algorithm 1's line 5 is this test on the band ``[-mu_s N_f, mu_s N_f]``,
+    ``|F~| <= mu_s N_f``: *closed*, so a predictor on an edge of the band
+    sticks.  The network step applies the same test to every rigid piece of
+    an element's step graph (``z = f + sigma w`` in ``[lo + sigma a, hi + sigma
+    a]``, :func:`lumped.network.step.solve_step`), so that a Bingham element
+    at the edge of its band sticks there too, and a string or locking
+    dashpot at the edge of its rigid piece is taut or locked.
+
+    Parameters
+    ----------
+    predictor : float, N
+        ``F~`` of eq. (15b), or the network's ``z``.
+    low, high : float, N
+        Edges of the band, ``low <= high`` (infinite edges allowed).
+
+    Returns
+    -------
+    bool
+        ``low <= predictor <= high`` (``False`` for a NaN predictor).
+
+    Notes
+    -----
+    This is the one Python definition; the compiled loops repeat it in C:
+    ``fabs(predictor) <= tau`` in ``_kernel.c`` and (in vector lanes)
+    ``_batch_lanes.h``, ``np.abs(predictor) <= tau`` in the NumPy loop of
+    :mod:`lumped.batched` (all equal to ``-tau <= predictor <= tau``: negation
+    and ``abs`` are exact), and ``mode_of`` in ``_network_kernel.c``.
+    ``tests/test_band_edge.py`` releases a mass on both edges of the band
+    through every one of these paths and requires each to stick;
+    ``tests/test_algorithm1.py`` and ``tests/test_network_kernel.py`` keep
+    the C loops equal to the Python ones.
+    """
+    return low <= predictor <= high
+
+
 def bingham_corrector(predictor: float, eta: float, threshold: float, viscosity: float) -> tuple[float, float]:
     """Corrector of Algorithm 1 (lines 5 to 10), returning ``(F_d, v)``.
 
@@ -208,11 +247,16 @@ def bingham_corrector(predictor: float, eta: float, threshold: float, viscosity:
     form ``v = (F~ - s*mu_s N_f) / (eta + c)``, which has no cancellation and is
     also finite at ``c = 0``.
     """
-    if abs(predictor) <= threshold:
+    if sticks(predictor, -threshold, threshold):  # line 5: |F~| <= mu_s N_f
         return predictor, 0.0
     signed = math.copysign(threshold, predictor)
     force = (eta * signed + viscosity * predictor) / (eta + viscosity)
     return force, (predictor - signed) / (eta + viscosity)
+
+
+#: Forces, relative to the threshold (or to 1 N), at which :class:`MonotoneDashpot`
+#: checks that its law does not decrease: 16 a decade from 1e-6 to 1e6.
+MONOTONE_SAMPLE = 10.0 ** (np.arange(-96, 97) / 16)
 
 
 def coulomb(threshold: float = 1.0) -> BinghamDashpot:
@@ -234,9 +278,26 @@ class MonotoneDashpot(Dashpot):
     max_iterations : int
         Bound on the root finder's iterations per step.
 
+    Raises
+    ------
+    ValueError
+        If ``phi(0) != 0``, or if ``phi`` decreases on the sample of
+        :data:`MONOTONE_SAMPLE` (see Notes); the message names the two forces.
+
     Notes
     -----
-    The resolvent equation ``g(F) = F + eta*phi(F) - F~ = 0`` has ``g``
+    **The monotonicity check.**  A law that decreases somewhere makes the
+    resolvent's root non-unique and the event-driven march wander, so ``phi``
+    is evaluated at construction at ``F = 0`` and ``F = +-s 10^(j/16)``,
+    ``j = -96 ... 96``: 16 forces per decade (neighbours 15 % apart) from
+    ``1e-6 s`` to ``1e6 s`` on each side, with ``s`` the threshold if it is
+    positive, else 1 N.  A decrease between neighbouring samples is refused.
+    The sample stops on each side at the first force where ``phi`` raises or
+    is not finite (a law such as ``expm1(F)`` overflows long before ``1e6``;
+    the run refuses such values where it meets them).  A dip narrower than
+    the spacing, or beyond the sample, is not seen here.
+
+    **The resolvent.**  The resolvent equation ``g(F) = F + eta*phi(F) - F~ = 0`` has ``g``
     strictly increasing, ``g(0) = -F~`` and ``g(F~) = eta*phi(F~)``, whose sign
     is that of ``F~``; so the root lies between ``0`` and ``F~`` and Brent's
     method (bracketing, hence safeguarded) finds it to a few ulps.
@@ -255,6 +316,26 @@ class MonotoneDashpot(Dashpot):
             raise ValueError("velocity_of_force must vanish at zero force")
         self.threshold = _validate.non_negative("threshold", threshold)
         self.max_iterations = _validate.positive_int("max_iterations", max_iterations)
+        self._check_monotone()
+
+    def _check_monotone(self) -> None:
+        """Refuse a ``phi`` that decreases on the sample of the Notes (one line naming where)."""
+        scale = self.threshold if self.threshold > 0 else 1.0
+        for side in (1.0, -1.0):
+            previous = (0.0, 0.0)
+            for ratio in MONOTONE_SAMPLE:
+                force = side * scale * ratio
+                try:
+                    phi = self._phi(force)
+                except ValueError:
+                    break  # not finite here: refused where a run meets it
+                lo, hi = (previous, (force, phi)) if side > 0 else ((force, phi), previous)
+                if hi[1] < lo[1]:
+                    raise ValueError(
+                        f"velocity_of_force must be monotone non-decreasing, but phi({lo[0]:.4g} N) = "
+                        f"{lo[1]:.4g} > phi({hi[0]:.4g} N) = {hi[1]:.4g} (MonotoneDashpot's check, 16 forces a decade)"
+                    )
+                previous = (force, phi)
 
     def _phi(self, force: float) -> float:
         """``phi(force)`` checked: a finite real number, else a ``ValueError``."""

@@ -137,7 +137,7 @@ def _start(
         raise ValueError(f"oscillator must be an Oscillator, got {type(osc).__name__}")
     t_end, dt = _validate.positive("t_end", t_end), _validate.positive("dt", dt)
     x0, v0 = _validate.finite("x0", x0), _validate.finite("v0", v0)
-    save_every = _validate.positive_int("save_every", save_every)
+    save_every = _validate.stride("save_every", save_every)
     n_steps = _validate.step_count(t_end, dt)
     if isinstance(force, SwitchedSine):
         force.check_span(n_steps * dt)  # the sine's range, to the grid's last time

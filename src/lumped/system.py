@@ -3,16 +3,22 @@
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field
+
+import numpy as np
 
 from lumped import _validate
 from lumped.laws import BinghamDashpot, Dashpot, LinearSpring
 
-__all__ = ["Oscillator", "initial_dashpot_force", "check_magnitudes", "MAGNITUDE_LIMIT"]
+__all__ = ["Oscillator", "initial_dashpot_force", "check_magnitudes", "magnitude_failures", "MAGNITUDE_LIMIT", "TINY"]
 
 #: Largest magnitude (N) any force computed in a step may reach.  Sums of a
 #: few such terms stay below the largest double, about 1.8e308.
 MAGNITUDE_LIMIT = 1e300
+#: Smallest normal double, ``2^-1022`` (about 2.2e-308): below it a number keeps
+#: fewer than the 53 bits of a double (:func:`check_magnitudes`).
+TINY = sys.float_info.min
 
 
 @dataclass(frozen=True)
@@ -86,11 +92,11 @@ def initial_dashpot_force(osc: Oscillator, force0: float, x0: float, v0: float) 
 
 
 def check_magnitudes(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, amplitude: float) -> None:
-    """Refuse a run whose forces could overflow double precision.
+    """Refuse a run whose forces could overflow double precision, or whose products lose their digits.
 
     Notes
     -----
-    The dashpot dissipates, so the energy ``E = m v^2/2 + k x^2/2`` can only
+    *Overflow.*  The dashpot dissipates, so the energy ``E = m v^2/2 + k x^2/2`` can only
     grow by the work of the external force, ``dE/dt <= P |v| <= P sqrt(2E/m)``.
     Hence ``sqrt(E(t)) <= sqrt(E(0)) + P t sqrt(2/m)``; the factor is twice
     the continuous one so that the bound also holds for backward Euler, whose
@@ -99,38 +105,99 @@ def check_magnitudes(osc: Oscillator, t_end: float, dt: float, x0: float, v0: fl
     ``(m/dt) v + F - F_s`` of eq. (15b) and every product the step forms.
     Each must stay below :data:`MAGNITUDE_LIMIT`.
 
+    *Underflow* (:data:`TINY`, the smallest normal double, ``2^-1022``).  A
+    product ``p`` of normal numbers is rounded to within ``2^-53 |p|`` while
+    ``|p| >= 2^-1022``; below, the spacing of doubles is fixed at ``2^-1074``,
+    so ``p`` keeps only ``log2(|p|/2^-1074) < 52`` bits and none at all below
+    ``2^-1075``.  Mass, stiffness and ``gamma`` are refused below ``TINY`` by
+    their validators (:mod:`lumped._validate`); here, the coefficients of the
+    step, ``m/dt`` and ``k dt`` (eqs. 14, 15b), must be normal too.  Algorithm 1
+    carries the displacement as ``x = F_s/k`` and adds ``(k dt) v`` to ``F_s``
+    each step: with ``k = 1e-322`` (subnormal) or ``k dt`` subnormal, ``x``
+    keeps few or no digits (``k = 1e-322``, ``v0 = 1`` gave ``x = 0`` on every
+    row).  States are not refused: a subnormal ``x0`` or ``v0`` is as good as
+    zero beside the other terms, and the exact solvers, which call this check
+    too, carry ``x`` itself.
+
     Raises
     ------
     ValueError
-        Naming the argument whose contribution dominates the bound.
+        Naming the argument at fault: the factor of ``m/dt`` or ``k dt``
+        farthest below 1 when that coefficient is subnormal, or the argument
+        whose contribution dominates the energy bound.
     """
     m, k = osc.mass, osc.spring.stiffness
-    parts = {  # square roots of energy, each term kept finite
-        "x0": math.sqrt(k / 2) * abs(x0),
-        "v0": math.sqrt(m / 2) * abs(v0),
-        "force_amplitude": abs(amplitude) * (t_end + dt) * math.sqrt(2 / m),
-    }
-    root_energy = sum(parts.values())
-    v_max = math.sqrt(2 / m) * root_energy
-    c = getattr(osc.dashpot, "viscosity", 0.0)
-    quantities = {
-        "spring force |F_s|": math.sqrt(2 * k) * root_energy,
-        "momentum term |m v/dt|": m / dt * v_max,
-        "external force |F|": abs(amplitude),
-    }
-    quantities["viscous term |c F~|"] = c * sum(quantities.values())
+    for product, value, factors in (
+        ("m/dt", m / dt, {"mass": m, "dt": 1 / dt}),
+        ("k*dt", k * dt, {"stiffness": k, "dt": dt}),
+    ):
+        if not value >= TINY:
+            name = min(factors, key=factors.get)  # type: ignore[arg-type]  # the factor farthest below 1
+            raise ValueError(
+                f"{name}: {product} = {value:.3g} is below the smallest normal double, {TINY:.3g}, "
+                "where fewer than 16 significant digits remain; choose units in which the parameters are nearer 1"
+            )
+    parts, quantities = _energy_bound(m, k, getattr(osc.dashpot, "viscosity", 0.0), t_end, dt, x0, v0, amplitude)
     for quantity, value in quantities.items():
         if not value <= MAGNITUDE_LIMIT:
-            name = (
-                "dt"
-                if quantity.startswith("momentum") and m / dt > 1e150
-                else max(
-                    parts,
-                    key=parts.get,  # type: ignore[arg-type]
-                )
-            )
-            shown = f"{value:.3g}" if math.isfinite(value) else "more than 1.8e308"
             raise ValueError(
-                f"{name}: the run could reach {quantity} = {shown} (bound from the energy), "
+                f"{_blamed(quantity, parts, quantities, m / dt)}: the run could reach {quantity} = "
+                f"{f'{value:.3g}' if math.isfinite(value) else 'more than 1.8e308'} (bound from the energy), "
                 f"above the {MAGNITUDE_LIMIT:.0e} that double precision carries through a step"
             )
+
+
+def _energy_bound(m, k, c, t_end, dt, x0, v0, amplitude):  # floats or arrays alike
+    """The square roots of the initial energy and work (``parts``) and the bounded quantities."""
+    sqrt = np.sqrt
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        parts = {  # square roots of energy, each term kept finite
+            "x0": sqrt(k / 2) * abs(x0),
+            "v0": sqrt(m / 2) * abs(v0),
+            "force_amplitude": abs(amplitude) * (t_end + dt) * sqrt(2 / m),
+        }
+        root_energy = parts["x0"] + parts["v0"] + parts["force_amplitude"]
+        v_max = sqrt(2 / m) * root_energy
+        quantities = {
+            "spring force |F_s|": sqrt(2 * k) * root_energy,
+            "momentum term |m v/dt|": m / dt * v_max,
+            "external force |F|": abs(amplitude) + 0 * root_energy,
+        }
+        quantities["viscous term |c F~|"] = c * sum(quantities.values())
+    return parts, quantities
+
+
+def _blamed(quantity: str, parts: dict, quantities: dict, m_over_dt: float) -> str:
+    """The argument named for an overflowing ``quantity``."""
+    if quantity.startswith("momentum") and m_over_dt > 1e150:
+        return "dt"
+    if quantity.startswith("viscous") and all(v <= MAGNITUDE_LIMIT for q, v in quantities.items() if q != quantity):
+        return "gamma"
+    return max(parts, key=parts.get)  # type: ignore[arg-type]
+
+
+def magnitude_failures(
+    mass: np.ndarray,
+    stiffness: np.ndarray,
+    gamma: np.ndarray,
+    t_end: float,
+    dt: float,
+    x0: np.ndarray,
+    v0: np.ndarray,
+    amplitude: np.ndarray,
+) -> np.ndarray:
+    """Elementwise: where :func:`check_magnitudes` would refuse the Bingham run with these parameters.
+
+    The same bounds on arrays (a sweep's rows, whose parameters have passed
+    their validators), in a few array operations; call
+    :func:`check_magnitudes` on a failing row for its message.
+    """
+    arrays = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (mass, stiffness, gamma, x0, v0, amplitude)))
+    m, k, g, x, v, p = arrays
+    with np.errstate(under="ignore", over="ignore", divide="ignore"):
+        bad = ~(m / dt >= TINY) | ~(k * dt >= TINY)
+        c = np.where(np.isinf(g), 0.0, 1 / g)
+    _, quantities = _energy_bound(m, k, c, t_end, dt, x, v, p)
+    for value in quantities.values():
+        bad |= ~(value <= MAGNITUDE_LIMIT)
+    return bad

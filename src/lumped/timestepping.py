@@ -280,7 +280,8 @@ def backward_euler(
         :func:`~lumped.forcing.evaluate`) and must return finite values.
     save_every : int
         Keep every ``save_every``-th grid point (``t = 0`` and the last point
-        are always kept).
+        are always kept); from 1 to ``lumped._validate.MAX_STEPS`` (2e9, the
+        most steps of a run).
     kernel : {"auto", "compiled", "python"}
         Loop used for Bingham and Coulomb laws; ``"auto"`` takes the compiled
         kernel when it was built.  Ignored for other laws.
@@ -303,7 +304,7 @@ def backward_euler(
     t_end = _validate.positive("t_end", t_end)
     dt = _validate.positive("dt", dt)
     x0, v0 = _validate.finite("x0", x0), _validate.finite("v0", v0)
-    save_every = _validate.positive_int("save_every", save_every)
+    save_every = _validate.stride("save_every", save_every)
     force = validate_force(force)
     if kernel not in ("auto", "compiled", "python"):
         raise ValueError(f"kernel must be 'auto', 'compiled' or 'python', got {kernel!r}")

@@ -22,6 +22,7 @@ element is.
 from __future__ import annotations
 
 import math
+import re
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -44,11 +45,32 @@ __all__ = [
     "LawElement",
     "KINDS",
     "GROUND",
+    "NAME_PATTERN",
+    "MAX_NAME_LENGTH",
+    "check_name",
 ]
 
 #: The name of the fixed point at ``x = 0``.
 GROUND = "ground"
 _INF = math.inf
+#: Longest name of a mass or an element (characters).
+MAX_NAME_LENGTH = 64
+#: Names of masses and elements: a letter or ``_``, then ASCII letters, digits
+#: and ``_ . -``, at most :data:`MAX_NAME_LENGTH` characters in all.  They
+#: become column names of the output (``x_<mass>``, ``F_<element>`` in a CSV
+#: header), so a comma, a newline, a quote or a non-ASCII character, which
+#: would break the header or its encoding, is refused.
+NAME_PATTERN = re.compile(rf"[A-Za-z_][A-Za-z0-9_.\-]{{0,{MAX_NAME_LENGTH - 1}}}\Z")
+
+
+def check_name(what: str, value: object) -> str:
+    """``value`` if it is a name (:data:`NAME_PATTERN`), else a one-line ``ValueError`` naming ``what``."""
+    if not isinstance(value, str) or not NAME_PATTERN.match(value):
+        raise ValueError(
+            f"{what} must be 1 to {MAX_NAME_LENGTH} ASCII letters, digits, '_', '.', '-' "
+            f"starting with a letter or '_', got {ascii(value):.40}"
+        )
+    return value
 
 
 class Piece(NamedTuple):
@@ -85,6 +107,8 @@ def _checked_pair(between: object) -> tuple[str, str]:
         or not all(isinstance(p, str) and p for p in between)
     ):
         raise ValueError(f"between must be two point names, got {between!r:.60}")
+    for point in between:
+        check_name("between", point)
     if between[0] == between[1]:
         raise ValueError(f"between joins {between[0]!r} to itself")
     return (between[0], between[1])
@@ -127,8 +151,7 @@ class Element(ABC):
     between: tuple[str, str]
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise ValueError(f"name must be a non-empty string, got {self.name!r:.40}")
+        check_name("name", self.name)
         object.__setattr__(self, "between", _checked_pair(self.between))
         self._check()
 
@@ -346,8 +369,13 @@ class MaxwellBingham(_ForceState, Element):
 
     The state is the common force ``f`` (the spring's elongation is ``f/k``,
     the dashpot's the rest of ``e``).  Relaxed (``f = 0``) at ``t = 0``
-    unless ``force0`` is given, which must then lie in the dashpot's band if
-    the element starts at rest (else the dashpot would already move).
+    unless ``force0`` is given.  Inside the dashpot's band, ``|force0| <=
+    threshold``, the dashpot holds; beyond it a viscous dashpot (finite
+    ``gamma``) creeps from ``t = 0`` and the force relaxes towards the
+    threshold (notebook 07).  A Coulomb dashpot (``gamma = inf``) carries no
+    force beyond its threshold, so there ``|force0| > threshold`` is not an
+    admissible state (backward Euler would drop the force to the threshold in
+    the first step, whatever ``dt``) and is refused.
 
     Notes
     -----
@@ -372,6 +400,11 @@ class MaxwellBingham(_ForceState, Element):
         object.__setattr__(self, "threshold", law.threshold)
         object.__setattr__(self, "gamma", law.gamma)
         self._set("force0", _validate.finite)
+        if math.isinf(self.gamma) and abs(self.force0) > self.threshold:
+            raise ValueError(
+                f"force0 = {self.force0:.6g} N lies outside the band |f| <= threshold = {self.threshold:.6g} N, "
+                "which a Coulomb dashpot (gamma = inf) cannot leave; lower |force0| or give a finite gamma"
+            )
 
     def initial_state(self, e0: float, w0: float) -> float:
         return self.force0

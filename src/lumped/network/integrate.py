@@ -108,17 +108,18 @@ class NetworkTrajectory:
         out |= {f"F_{n}": self.force[:, i] for i, n in enumerate(net.element_names)}
         return out
 
-    def summary(self) -> str:
-        """Each mass's rest time and position, or that it still moves."""
-        parts = []
-        for i, name in enumerate(self.network.mass_names):
+    def summary(self, shown: int = 10) -> str:
+        """Each mass's rest time and position, or that it still moves (the first ``shown`` masses)."""
+        parts, names = [], self.network.mass_names
+        for i, name in enumerate(names[:shown]):
             if math.isnan(self.rest_time[i]):
                 parts.append(f"{name} still moving at t = {self.t[-1]:.6g} s (x = {self.x[-1, i]:.9g} m)")
             else:
                 parts.append(
                     f"{name} at rest from t = {self.rest_time[i]:.10g} s at x = {self.rest_position[i]:.10g} m"
                 )
-        return "; ".join(parts)
+        more = f"; ... and {len(names) - shown} more masses" if len(names) > shown else ""
+        return "; ".join(parts) + more
 
 
 def _paper_form(net: Network) -> OneMass | None:
@@ -227,7 +228,7 @@ def simulate_network(
     if not isinstance(network, Network):
         raise ValueError(f"network must be a Network, got {type(network).__name__}")
     t_end, dt = _validate.positive("t_end", t_end), _validate.positive("dt", dt)
-    save_every = _validate.positive_int("save_every", save_every)
+    save_every = _validate.stride("save_every", save_every)
     if solver not in SOLVERS:
         raise ValueError(f"solver must be one of {', '.join(SOLVERS)}; got {solver!r}")
     pair = _paper_form(network) if solver == "auto" else None

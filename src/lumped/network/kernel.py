@@ -40,7 +40,7 @@ from lumped.network.elements import (
     Spring,
     SpringString,
 )
-from lumped.network.model import Network, rigid_loop
+from lumped.network.model import Network, listed, rigid_loop
 from lumped.network.step import StepError, StepSolution, default_bound, unsettled
 
 __all__ = ["KERNEL", "Plan", "ineligible", "plan", "solve_graphs", "march_block"]
@@ -115,11 +115,10 @@ def ineligible(net: Network) -> str | None:
     index, links = net.point_index(), _links(net)
     loop = rigid_loop(index, [(pair, net.elements[els[0]]) for pair, els in links.items()])
     if loop:
-        return f"the links of {', '.join(repr(el.name) for el in loop)} close a loop"
+        return f"the links of {listed([el.name for el in loop])} close a loop"
     for els in links.values():
         if sum(isinstance(net.elements[e], _RIGID_KINDS) for e in els) > 1:
-            names = ", ".join(repr(net.elements[e].name) for e in els)
-            return f"elements {names} are in parallel and more than one has rigid pieces"
+            return f"elements {listed([net.elements[e].name for e in els])} are in parallel and more than one has rigid pieces"
     return None
 
 

@@ -7,7 +7,6 @@ is well posed (see :class:`Network`, Notes).
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
@@ -15,22 +14,37 @@ import numpy as np
 
 from lumped import _validate
 from lumped.forcing import SwitchedSine, evaluate, validate_force
-from lumped.network.elements import GROUND, Element
+from lumped.network.elements import GROUND, NAME_PATTERN, Element, check_name
 
-__all__ = ["Mass", "Load", "Network", "NAME_PATTERN"]
+__all__ = [
+    "Mass",
+    "Load",
+    "Network",
+    "NAME_PATTERN",
+    "MAX_MASSES",
+    "MAX_ELEMENTS",
+    "MAX_LOADS",
+    "check_count",
+    "listed",
+]
 
-#: Names of masses and elements: a letter or ``_``, then letters, digits, ``_ . -``
-#: (they become column names of the output).
-NAME_PATTERN = re.compile(r"[A-Za-z_][A-Za-z0-9_.\-]*\Z")
+#: Largest network accepted (masses, elements, loads).  A backward-Euler step of
+#: :func:`~lumped.network.integrate.simulate_network` costs about 14 us per mass
+#: for a chain with a spring and a Bingham element on every mass (0.14 s a step
+#: at 10,000 masses, measured on one core), so 10,000 masses run a thousand
+#: steps in minutes; a million masses (issue 19) took 4 minutes and 4.1 GB
+#: before their first message, and would take about 14 s a step.  Elements: three per mass (notebook 08's
+#: chain has two, a spring and a friction element); forces: one per mass.
+MAX_MASSES = 10_000
+MAX_ELEMENTS = 3 * MAX_MASSES
+MAX_LOADS = MAX_MASSES
+_SHOWN = 5  # names listed in a message before "... and N more"
 
 
-def _name(what: str, value: object) -> str:
-    if not isinstance(value, str) or not NAME_PATTERN.match(value):
-        raise ValueError(
-            f"{what} must be a name of letters, digits, '_', '.', '-' "
-            f"(not starting with a digit, '.' or '-'), got {value!r:.40}"
-        )
-    return value
+def listed(names: Sequence[str], shown: int = _SHOWN) -> str:
+    """``'a', 'b', 'c'``, or the first ``shown`` of them and ``... and N more``: one short line."""
+    head = ", ".join(repr(n) for n in names[:shown])
+    return head if len(names) <= shown else f"{head} ... and {len(names) - shown} more"
 
 
 @dataclass(frozen=True)
@@ -46,7 +60,7 @@ class Mass:
     v0: float = 0.0
 
     def __post_init__(self) -> None:
-        _name("name", self.name)
+        check_name("name", self.name)
         if self.name == GROUND:
             raise ValueError(f"name {GROUND!r} is reserved for the fixed point")
         object.__setattr__(self, "mass", _validate.positive("mass", self.mass))
@@ -62,7 +76,7 @@ class Load:
     force: SwitchedSine | Callable[[np.ndarray], np.ndarray]
 
     def __post_init__(self) -> None:
-        _name("on", self.on)
+        check_name("on", self.on)
         if validate_force(self.force) is None:
             raise ValueError("force must be a SwitchedSine or a callable of time, got None")
 
@@ -126,6 +140,7 @@ class Network:
 
     def _check_items(self) -> None:
         for what, cls in (("masses", Mass), ("elements", Element), ("loads", Load)):
+            check_count(what, len(getattr(self, what)))
             for item in getattr(self, what):
                 if not isinstance(item, cls):
                     raise ValueError(f"{what} must hold {cls.__name__} objects, got {type(item).__name__}")
@@ -156,7 +171,7 @@ class Network:
             index, [((index[el.between[0]], index[el.between[1]]), el) for el in self.elements if el.rigid_capable]
         )
         if loop:
-            names = ", ".join(repr(el.name) for el in loop)
+            names = listed([el.name for el in loop])
             raise ValueError(
                 f"elements {names} close a loop of elements that can all be rigid at once "
                 "(sticking, taut or locked), so their forces would not be unique; "
@@ -221,6 +236,17 @@ class Network:
         for load in self.loads:
             total += abs(load.force.amplitude) if isinstance(load.force, SwitchedSine) else math.inf
         return total
+
+
+def check_count(what: str, count: int) -> int:
+    """``count`` if at most the bound on ``what`` (``masses``, ``elements``, ``loads``), else a ``ValueError``."""
+    bound = {"masses": MAX_MASSES, "elements": MAX_ELEMENTS, "loads": MAX_LOADS}[what]
+    if count > bound:
+        raise ValueError(
+            f"{what}: {count} given, more than the {bound} a network may have "
+            f"(at most {MAX_MASSES} masses, {MAX_ELEMENTS} elements, {MAX_LOADS} forces)"
+        )
+    return count
 
 
 def rigid_loop(points: dict[str, int], edges: list[tuple[tuple[int, int], Element]]) -> list[Element]:

@@ -43,7 +43,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.laws import Dashpot
+from lumped.laws import Dashpot, sticks
 from lumped.network.elements import Piece
 
 __all__ = ["StepError", "StepSolution", "solve_step", "SIGMA_SCALES", "default_bound", "unsettled"]
@@ -204,14 +204,26 @@ def _piece(graph: Graph, mode: object, point: object, sigma: float) -> Piece:
 
 
 def _mode(graph: Graph, z: float, sigma: float) -> object:
-    """The piece of ``graph`` whose range of ``z = f + sigma w`` holds ``z``."""
+    """The piece of ``graph`` whose range of ``z = f + sigma w`` holds ``z``.
+
+    A rigid piece (``w = a``, ``f`` in ``[lo, hi]``) holds the closed band
+    ``[lo + sigma a, hi + sigma a]`` (:func:`lumped.laws.sticks`, Algorithm 1's
+    line 5), so at an edge it shares with a free piece, where both give the
+    same ``(w, f)``, the rigid piece is chosen: a Bingham element sticks on
+    both edges of its band, as in Algorithm 1.  A rigid piece of zero width
+    (a threshold 0) is never taken: its one point lies on the free pieces
+    beside it, and such an element is not ``rigid_capable``.  ``mode_of`` in
+    ``_network_kernel.c`` is the C copy (``tests/test_band_edge.py``).
+    """
     if isinstance(graph, Dashpot):
         f = graph._resolvent_impl(z, sigma).force
         return ((z - f) / sigma, f)
+    for k, p in enumerate(graph):
+        if p.rigid and p.lo < p.hi and sticks(z, p.lo + sigma * p.a, p.hi + sigma * p.a):
+            return k
     last = len(graph) - 1
     for k, p in enumerate(graph[:last]):
-        top = p.hi + sigma * p.a if p.rigid else p.a + (p.b + sigma) * p.hi
-        if z <= top:
+        if not p.rigid and z <= p.a + (p.b + sigma) * p.hi:
             return k
     return last
 

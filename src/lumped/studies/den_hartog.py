@@ -181,7 +181,10 @@ def coulomb_boundary(r: np.ndarray | float) -> np.ndarray:
     if np.any(~np.isfinite(r)) or np.any(r <= 0):
         raise ValueError("r must be finite and > 0")
     with np.errstate(divide="ignore", invalid="ignore"):
-        u = np.sin(np.pi / r) / (1 + np.cos(np.pi / r))
+        # U = tan(pi / 2r) = 1 / tan(pi (r - 1) / 2r): near r = 1 the form sin/(1 + cos) cancels
+        # (1 + cos(pi/r) ~ (pi (r - 1))^2 / 2 carries eps / that of relative error, 4e-5 at
+        # r = 1 + 1e-6), where r - 1 is exact (Sterbenz) and the tangent well conditioned.
+        u = 1 / np.tan(np.pi * (r - 1) / (2 * r))
         edge = r * r / (np.abs(1 - r * r) * np.sqrt(1 + (r * u) ** 2))
     return np.where(r == 1.0, np.pi / 4, edge)
 
