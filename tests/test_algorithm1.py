@@ -47,13 +47,14 @@ def test_figure5_is_equation_19_exactly(paper_oscillator):
     assert np.all(tr.x == 0.0) and np.all(tr.v == 0.0) and np.all(tr.F_s == 0.0)
     # F_1 is the project's sine (lumped._sine, the kernels' own) of the double
     # 5*pi*t_n, exactly; recomputed independently with libm's sin it agrees to
-    # P * EPS: each sine is within 1 ulp <= 2^-53 of the true value (|sin| < 1),
-    # so the two differ by less than 2^-52 = EPS, and the product with P = 2^-1
-    # is exact.
+    # 1.5 P EPS: ours is within 1 ulp of the true value, a C library's within 2
+    # (even one moved by an ulp, as scripts/perturbed_check.py's libm-ulp does),
+    # an ulp of |sin| < 1 is at most 2^-53, so the two differ by less than
+    # 3 * 2^-53 = 1.5 EPS; the product with P = 2^-1 is exact.
     f1 = np.array([0.5 * _sine.sin(5 * np.pi * t) if t <= 1.0 else 0.0 for t in tr.t])
     libm = np.array([switched_sine(references.F17A, t) for t in tr.t])
     assert np.array_equal(tr.F, f1) and np.any(f1 != 0.0)
-    assert np.all(np.abs(tr.F - libm) <= 0.5 * EPS)
+    assert np.all(np.abs(tr.F - libm) <= 0.5 * 1.5 * EPS)
     assert np.array_equal(tr.F_d, tr.F)
     assert tr.stick_intervals() == [(0.0, 2.0)]
 
