@@ -46,11 +46,14 @@ setup(
         Extension(
             f"lumped.{name}",
             [f"src/lumped/{name}.c"],
-            depends=["src/lumped/_binding_checks.h"],  # the bindings' argument checks
+            depends=depends,
             extra_compile_args=["-O2", "-ffp-contract=off", "-fno-fast-math"],
             optional=True,
         )
-        for name in ("_kernel", "_network_kernel")
+        for name, depends in (
+            ("_kernel", ["src/lumped/_binding_checks.h", "src/lumped/_sine.h"]),
+            ("_network_kernel", ["src/lumped/_binding_checks.h"]),
+        )
     ]
     + [
         # the batched Algorithm 1: both cores through OpenMP, and -O3 for the
@@ -58,7 +61,7 @@ setup(
         Extension(
             "lumped._batch_kernel",
             ["src/lumped/_batch_kernel.c"],
-            depends=["src/lumped/_batch_lanes.h"],  # its vector loop, included once per instruction set
+            depends=["src/lumped/_batch_lanes.h", "src/lumped/_sine.h"],  # its vector loop (once per instruction set), the sine
             extra_compile_args=["-O3", "-fopenmp", "-ffp-contract=off", "-fno-fast-math", "-Wno-psabi"],
             extra_link_args=["-fopenmp"],
             optional=True,

@@ -4,6 +4,11 @@ from __future__ import annotations
 
 import io
 import math
+import os
+import signal
+import subprocess
+import sys
+import time
 
 import numpy as np
 import pytest
@@ -102,7 +107,7 @@ def test_a_too_long_sweep_states_the_estimate(tmp_path, capsys):
 
 @pytest.mark.parametrize(("forced", "kind"), [({}, "free"), ({"force_amplitude": 1.0, "force_omega": 10.0}, "forced")])
 def test_the_estimate_costs_forced_grids_as_forced(forced, kind):
-    """A forced grid's steps cost about ten times a free one's (a sin per step): the estimate says so."""
+    """A forced grid's steps cost several times a free one's (a sine per step): the estimate says so."""
     from lumped.batched import BATCH_KERNEL
     from lumped.sweep import SECONDS_PER_TRAJECTORY_STEP
 
@@ -118,11 +123,28 @@ def test_duplicate_names_through_the_api():
 # ---- rows against single runs -------------------------------------------------------------------------
 
 
+#: Call sizes: the defaults (one call here), and small ones that cut the 23 rows into blocks of 5 (the
+#: last one of 3, not a divisor) and the 2000 steps into spans of 37 // 5 = 7 and 37 // 3 = 12 steps
+#: (which divide neither 2000 nor the save stride 7 nor the window's first step), resumed call after call.
+CALLS = {"default": None, "small": (5, 37)}
+
+
+@pytest.mark.parametrize("calls", CALLS)
 @pytest.mark.parametrize("kernel", KERNELS)
-def test_batched_equals_single_runs_bit_for_bit(kernel):
-    """Free and forced, Bingham and Coulomb, moving and resting at the end: every summary with ``==``."""
+def test_batched_equals_single_runs_bit_for_bit(kernel, calls, monkeypatch):
+    """Free and forced, Bingham and Coulomb, moving and resting at the end: every summary with ``==``.
+
+    Every row and every saved step is compared, so a block of rows or a span of steps that a call
+    leaves out (``np.empty`` memory) or takes twice is caught.
+    """
+    made = []
+    if CALLS[calls] is not None:
+        monkeypatch.setattr("lumped.batched.CALL_SIZE", CALLS[calls][0])
+        monkeypatch.setattr("lumped.batched.CALL_WORK", CALLS[calls][1])
+        real = batched._call
+        monkeypatch.setattr("lumped.batched._call", lambda *a: made.append(a[2]) or real(*a))
     rng = np.random.default_rng(12)
-    n = 24
+    n = 23
     rows = {
         "mass": rng.uniform(0.5, 2, n),
         "stiffness": rng.uniform(50, 150, n),
@@ -155,6 +177,8 @@ def test_batched_equals_single_runs_bit_for_bit(kernel):
             got.x[:, j],
             L.backward_euler(osc, t_end, DT, x0=rows["x0"][j], v0=rows["v0"][j], force=force, save_every=7).x,
         )
+    if CALLS[calls] is not None:  # the calls did split rows and steps: 4 blocks of 5 in spans of 7, 1 of 3 in 12
+        assert len(made) == 4 * math.ceil(2000 / 7) + math.ceil(2000 / 12)
 
 
 _BATCH_ORDER = (
@@ -284,12 +308,23 @@ def _vector_paths() -> list[str]:
         return []
     from lumped import _batch_kernel
 
-    return ["default"] + (["avx2"] if _batch_kernel.best_path() == "avx2" else [])
+    return list(_batch_kernel.paths())
+
+
+def test_this_machine_runs_every_vector_path():
+    """The project's machine has AVX-512 and AVX2: the path tests below run every loop, none skipped."""
+    if batched.BATCH_KERNEL != "compiled":
+        pytest.skip("batched C kernel not built")
+    from lumped import _batch_kernel
+
+    flags = open("/proc/cpuinfo").read().split() if os.path.exists("/proc/cpuinfo") else []
+    expected = ["default"] + (["avx2"] if "avx2" in flags else []) + (["avx512"] if "avx512f" in flags else [])
+    assert list(_batch_kernel.paths()) == expected
 
 
 @pytest.mark.parametrize("path", _vector_paths())
 def test_each_vector_path_equals_the_numpy_twin_bit_for_bit(path):
-    """AVX2 and baseline loops against the NumPy loop, every bit of every sum and saved x.
+    """AVX-512, AVX2 and baseline loops against the NumPy loop, every bit of every sum and saved x.
 
     301 trajectories: three blocks of the kernel (the last one partial and not a
     whole number of vector lanes); windows differing within a block (from step
@@ -317,25 +352,74 @@ def test_each_vector_path_equals_the_numpy_twin_bit_for_bit(path):
     out = {}
     for name, loop in (("twin", batched._numpy_batch), ("c", batched._compiled_batch)):
         sums, xs = np.empty((7, n)), np.empty((rows, n))
-        loop(dt, n_steps, save_every, par, nw, sums, xs, *(() if name == "twin" else (path,)))
+        loop(dt, 1, n_steps, n_steps, save_every, par, nw, sums, xs, *(() if name == "twin" else (path,)))
         out[name] = (sums, xs)
     for twin, c in zip(out["twin"], out["c"]):
         assert np.array_equal(twin.view(np.uint64), c.view(np.uint64))
+
+
+def _good_arguments(n: int = 3, n_steps: int = 10, save_every: int = 4) -> list:
+    """A valid call of the batched kernel: 3 trajectories, steps 1..10 saved at 4, 8 and 10."""
+    par = np.ones((10, n))
+    return [DT, 1, n_steps, n_steps, save_every, par, np.full(n, 11.0), np.empty((7, n)), np.empty((3, n))]
+
+
+#: (argument index, bad value, words of the message): every argument the binding checks.
+BAD_BATCH = {
+    "dt zero": (0, 0.0, "dt must be > 0"),
+    "dt nan": (0, math.nan, "dt must be > 0"),
+    "first 0": (1, 0, "1 <= first"),
+    "last past n_steps": (2, 11, "1 <= first"),
+    "first past last + 1": (1, 12, "1 <= first"),
+    "n_steps negative": (3, -1, "n_steps must be >= 0"),
+    "save_every negative": (4, -1, "save_every must be >= 0"),
+    "save_every 0 with rows": (4, 0, "xs must be empty"),
+    "save_every changes the rows": (4, 3, "xs must hold exactly"),
+    "par short": (5, np.ones((9, 3)), "par must hold 10 rows"),
+    "par of ints": (5, np.ones((10, 3), dtype=np.int64), "par must hold doubles"),
+    "par of float32": (5, np.ones((10, 3), dtype=np.float32), "par must hold doubles"),
+    "par strided": (5, np.ones((10, 6))[:, ::2], "par must be a C-contiguous"),
+    "par not a buffer": (5, [1.0] * 30, "par must be a C-contiguous"),
+    "nw of ints": (6, np.full(3, 11), "nw must hold doubles"),
+    "nw longer": (6, np.full(4, 11.0), "par must hold 10 rows"),
+    "sums read-only": (7, bytes(7 * 3 * 8), "sums must be a C-contiguous writable"),
+    "sums short": (7, np.empty((6, 3)), "sums must hold 7 rows"),
+    "xs short": (8, np.empty((2, 3)), "xs must hold exactly"),
+    "xs long": (8, np.empty((4, 3)), "xs must hold exactly"),
+    "xs of bytes": (8, bytearray(9 * 8), "xs must hold doubles"),
+    "xs read-only": (8, None, "xs must be a C-contiguous writable"),  # made in the test
+}
+
+
+@pytest.mark.skipif(batched.BATCH_KERNEL != "compiled", reason="batched C kernel not built")
+@pytest.mark.parametrize("case", BAD_BATCH)
+def test_the_batched_binding_refuses_each_bad_argument(case):
+    """One line, a ValueError naming the argument; the good call beside it runs (so the refusal is the argument's)."""
+    index, value, words = BAD_BATCH[case]
+    good = _good_arguments()
+    batched._compiled_batch(*good)
+    if case == "xs read-only":
+        value = np.empty((3, 3))
+        value.setflags(write=False)
+    bad = good[:index] + [value] + good[index + 1 :]
+    with pytest.raises(ValueError, match="^bingham_batch: ") as err:
+        batched._compiled_batch(*bad)
+    assert words in str(err.value) and "\n" not in str(err.value)
+
+
+@pytest.mark.skipif(batched.BATCH_KERNEL != "compiled", reason="batched C kernel not built")
+def test_the_batched_binding_accepts_the_edges():
+    """No steps (n_steps = 0 or first = last + 1), no trajectories, nothing saved: nothing to do, no error."""
+    batched._compiled_batch(DT, 1, 0, 0, 0, np.ones((10, 3)), np.full(3, 1.0), np.empty((7, 3)), np.empty(0))
+    batched._compiled_batch(DT, 5, 4, 10, 4, np.ones((10, 3)), np.full(3, 1.0), np.zeros((7, 3)), np.empty((0, 3)))
+    batched._compiled_batch(DT, 1, 10, 10, 4, np.ones((10, 0)), np.empty(0), np.empty((7, 0)), np.empty((3, 0)))
 
 
 @pytest.mark.skipif(batched.BATCH_KERNEL != "compiled", reason="batched C kernel not built")
 def test_an_unknown_vector_path_is_refused():
     sums, x = np.empty((7, 1)), np.empty(0)
     with pytest.raises(ValueError, match="path must be"):
-        batched._compiled_batch(DT, 10, 0, np.ones((10, 1)), np.ones(1), sums, x, "avx512")
-
-
-def test_numpy_sine_agrees_with_the_c_library_on_the_forcing_arguments():
-    """The fallback's np.sin must be libm's sin for it to be bit-identical; checked on the arguments above."""
-    t = np.arange(1, 3001) * DT
-    for w in np.geomspace(3, 30, 4):
-        args = w * t + 0.0
-        assert np.array_equal(np.sin(args), [math.sin(a) for a in args])
+        batched._compiled_batch(DT, 1, 10, 10, 0, np.ones((10, 1)), np.ones(1), sums, x, "neon")
 
 
 def test_the_estimate_is_for_the_chunk_that_runs():
@@ -347,3 +431,45 @@ def test_the_estimate_is_for_the_chunk_that_runs():
     assert spec.rows == 200_000 and len(range(spec.rows)[spec.chunk(15, 16)]) == 12500
     with pytest.raises(ValueError, match=r"^vary: 200000 rows of exact"):  # a chunk too long is still refused
         SweepSpec.build(axes, t_end=6.0, method="exact", chunk=(0, 1))
+
+
+# ---- signals between bounded calls ----------------------------------------------------------------------
+
+
+@pytest.mark.skipif(batched.BATCH_KERNEL != "compiled", reason="batched C kernel not built")
+@pytest.mark.parametrize(("sig", "status"), [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
+def test_a_signal_stops_a_long_sweep_within_one_call(tmp_path, sig, status):
+    """A sweep of 20001 rows x 4e6 steps (estimated 200 s) stops within a bounded time of the signal.
+
+    Python's handlers run between kernel calls, and a call is bounded by CALL_WORK trajectory-steps:
+    at the estimated (pessimistic) cost of a forced trajectory-step, 2^24 * 1.3e-8 s = 0.22 s.  The bound
+    allows four such calls (a loaded machine) plus 1 s for the handler, the cleanup and the exit.  One
+    call for all the steps of 8192 rows, as before, takes 8192 * 4e6 * 0.45e-9 s = 15 s at least.
+    """
+    from lumped.sweep import SECONDS_PER_TRAJECTORY_STEP
+
+    bound = 1.0 + 4 * batched.CALL_WORK * SECONDS_PER_TRAJECTORY_STEP["compiled"]["forced"]
+    argv = ["sweep", "--vary", "x0=-1:1:20001", "--t-end", "400", "--dt", "1e-4", "--output", "o.csv"]
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "lumped", *argv],
+        cwd=tmp_path,
+        stderr=subprocess.PIPE,
+        text=True,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
+    try:
+        deadline = time.monotonic() + 20
+        while not list(tmp_path.glob("*.part")):  # the output is reserved just before the run
+            assert proc.poll() is None and time.monotonic() < deadline, "the sweep did not start"
+            time.sleep(0.02)
+        time.sleep(2.0)  # past the row checks, inside the kernel's calls
+        assert proc.poll() is None
+        proc.send_signal(sig)
+        sent = time.monotonic()
+        _, err = proc.communicate(timeout=bound + 30)
+        waited = time.monotonic() - sent
+    finally:
+        proc.kill()
+    assert proc.returncode == status and waited < bound, (waited, bound)
+    assert err.strip() == "lumped sweep: interrupted; no output written"
+    assert os.listdir(tmp_path) == []  # neither the output nor its temporary file

@@ -1,9 +1,15 @@
 /* The vector loop of _batch_kernel.c, included there once per instruction
- * set: LANES doubles to a vector (GCC vector extensions: 4 for one AVX2
- * register, 2 for one SSE2 register).  Every lane operation is the IEEE
- * operation of the scalar code; fabs and copysign are the same sign-bit masks
- * as the C library's, and the branches of the corrector are blends of both
- * sides.  Each name below gets the suffix LANES (run_block -> run_block4). */
+ * set: LANES doubles to a vector (GCC vector extensions: 8 for one AVX-512
+ * register, 4 for one AVX2 register, 2 for one SSE2 register).  Every lane
+ * operation is the IEEE operation of the scalar code; fabs and copysign are
+ * the same sign-bit masks as the C library's, the branches of the corrector
+ * and of the switched sine are blends of both sides, and the sine is the
+ * project's (_sine.h, instantiated here for LANES lanes), so the forcing is
+ * computed in the lanes too.  Each name below gets the suffix LANES
+ * (run_block -> run_block4). */
+#define SINE_LANES LANES
+#include "_sine.h"
+#undef SINE_LANES
 #define vd PASTE(vd, LANES)
 #define vl PASTE(vl, LANES)
 #define get PASTE(get, LANES)
@@ -18,6 +24,9 @@
 #define advance PASTE(advance, LANES)
 #define chunk PASTE(chunk, LANES)
 #define run_block PASTE(run_block, LANES)
+#define sine_buffer PASTE(sine_buffer, LANES)
+#define sine PASTE(project_sine, LANES)
+#define force PASTE(force, LANES)
 
 typedef double vd __attribute__((vector_size(8 * LANES)));
 typedef long long vl __attribute__((vector_size(8 * LANES)));
@@ -47,14 +56,23 @@ INLINE void end(const lane_state *q, Block *b, Py_ssize_t i, int window) {
     if (window) put(b->wstops + i, q->wstops), put(b->mw + i, q->mw);
 }
 
-/* Step s of lanes i .. i+LANES-1 (forcing row k of the chunk); forced: add
- * the forcing (else it is +0.0 and adding it could only change the sign of a
- * zero predictor, which sticks either way); window: track the window's stops
- * and maximum. */
-INLINE void step(lane_state *q, const Block *b, Py_ssize_t i, double s, int k, int forced, int window) {
+/* The switched sine at t = s*dt: amp*sin(omega*t + phase) where amp != 0 and
+ * t <= until, else +0.0 (the single-run kernel's expression, its sine the
+ * project's). */
+INLINE vd force(const Block *b, Py_ssize_t i, double s) {
+    const vd zero = {0.0}, amp = get(b->amp + i);
+    const double t = s * b->dt;
+    const vl on = (amp != zero) & (zero + t <= get(b->until + i));
+    return pick(on, amp * sine(get(b->omega + i) * t + get(b->phase + i)), zero);
+}
+
+/* Step s of lanes i .. i+LANES-1; forced: add the forcing (else it is +0.0
+ * and adding it could only change the sign of a zero predictor, which sticks
+ * either way); window: track the window's stops and maximum. */
+INLINE void step(lane_state *q, const Block *b, Py_ssize_t i, double s, int forced, int window) {
     const vd zero = {0.0}, one = zero + 1.0, tau = get(b->tau + i);
     vd predictor = get(b->mdt + i) * q->v; /* line 3, eq. (15b) */
-    if (forced) predictor = predictor + get(b->f[k] + i);
+    if (forced) predictor = predictor + force(b, i, s);
     predictor = predictor - q->fs;
     const vd signed_tau = (vd)(((vl)tau & ~SIGN) | ((vl)predictor & SIGN));
     const vd slip = (predictor - signed_tau) / get(b->eta_c + i); /* lines 8-9 */
@@ -79,7 +97,7 @@ INLINE void lanes(Block *restrict b, Py_ssize_t i, double s0, int steps, int for
     lane_state q[GROUP];
     for (int g = 0; g < GROUP; g++) begin(&q[g], b, i + g * LANES, window);
     for (int k = 0; k < steps; k++)
-        for (int g = 0; g < GROUP; g++) step(&q[g], b, i + g * LANES, s0 + k, k, forced, window);
+        for (int g = 0; g < GROUP; g++) step(&q[g], b, i + g * LANES, s0 + k, forced, window);
     for (int g = 0; g < GROUP; g++) end(&q[g], b, i + g * LANES, window);
 }
 
@@ -96,7 +114,8 @@ INLINE void chunk(Block *restrict b, Py_ssize_t w, double s0, int steps, int for
 }
 
 static void run_block(const double *par, const double *nw, double *sums, double *xs, Py_ssize_t n, Py_ssize_t j0,
-                      double dt, Py_ssize_t n_steps, Py_ssize_t save_every) {
+                      double dt, Py_ssize_t first_step, Py_ssize_t last_step, Py_ssize_t n_steps,
+                      Py_ssize_t save_every) {
     Block b;
     const Py_ssize_t w = (n - j0 < BLOCK) ? n - j0 : BLOCK, per_pass = LANES * GROUP;
     const Py_ssize_t wl = (w + per_pass - 1) / per_pass * per_pass; /* padded lanes stick at x = 0 */
@@ -107,11 +126,10 @@ static void run_block(const double *par, const double *nw, double *sums, double 
         if (nw[j0 + i] < first) first = nw[j0 + i];
     }
     const Py_ssize_t window_from = first < 1.0 ? 1 : (Py_ssize_t)ceil(first);
-    load(&b, par, n, j0, w, dt, nw);
+    load(&b, par, n, j0, w, dt, nw, first_step > 1 ? sums : NULL);
     Py_ssize_t row = 0;
-    for (Py_ssize_t s = 1; s <= n_steps;) {
-        const int steps = chunk_steps(s, n_steps, window_from, xs != NULL, save_every);
-        if (forced) forcing(&b, par, n, j0, w, s, steps, dt);
+    for (Py_ssize_t s = first_step; s <= last_step;) {
+        const int steps = chunk_steps(s, last_step, window_from, xs != NULL, save_every);
         chunk(&b, wl, (double)s, steps, forced, s >= window_from);
         s += steps;
         if (xs != NULL && ((s - 1) % save_every == 0 || s - 1 == n_steps)) {
@@ -121,6 +139,17 @@ static void run_block(const double *par, const double *nw, double *sums, double 
         }
     }
     store(&b, sums, n, j0, w);
+}
+
+/* The project's sine of x[0..count-1] in place, LANES at a time (a test hook). */
+static void sine_buffer(double *x, Py_ssize_t count) {
+    for (Py_ssize_t i = 0; i < count; i += LANES) {
+        double lane[LANES] = {0.0};
+        const Py_ssize_t m = count - i < LANES ? count - i : LANES;
+        memcpy(lane, x + i, (size_t)m * sizeof(double));
+        put(lane, sine(get(lane)));
+        memcpy(x + i, lane, (size_t)m * sizeof(double));
+    }
 }
 
 #undef vd
@@ -137,3 +166,6 @@ static void run_block(const double *par, const double *nw, double *sums, double 
 #undef advance
 #undef chunk
 #undef run_block
+#undef sine_buffer
+#undef sine
+#undef force

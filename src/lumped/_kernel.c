@@ -20,6 +20,8 @@
 #include <Python.h>
 #include <math.h>
 #include <stdint.h>
+#define SINE_LANES 1
+#include "_sine.h" /* the project's sine, one lane: project_sine1 */
 
 #include "_binding_checks.h"
 
@@ -76,7 +78,7 @@ static PyObject *bingham_block(PyObject *self, PyObject *args) {
     for (Py_ssize_t n = n_first; n <= n_last; n++) {
         const double t = (double)n * dt;
         if (tabulated) f = force_values[n - n_first];
-        else if (t <= until) f = amp * sin(omega * t + phase);
+        else if (t <= until) f = amp * project_sine1((sine_vd1){omega * t + phase})[0];
         else f = 0.0;
         const double predictor = (m / dt) * v + f - f_s;
         /* corrector: the C copy of lumped.laws.bingham_corrector */
@@ -108,8 +110,24 @@ static PyObject *bingham_block(PyObject *self, PyObject *args) {
     Py_RETURN_NONE;
 }
 
+/* Test hook: the project's sine (one lane) of every double of a writable buffer, in place. */
+static PyObject *sine(PyObject *self, PyObject *args) {
+    Py_buffer values;
+    if (!PyArg_ParseTuple(args, "w*", &values)) return NULL;
+    if (values.itemsize != (Py_ssize_t)sizeof(double) || values.len % (Py_ssize_t)sizeof(double)) {
+        PyBuffer_Release(&values);
+        PyErr_SetString(PyExc_ValueError, "sine: the buffer must hold doubles");
+        return NULL;
+    }
+    double *x = (double *)values.buf;
+    for (Py_ssize_t i = 0; i < values.len / (Py_ssize_t)sizeof(double); i++) x[i] = project_sine1((sine_vd1){x[i]})[0];
+    PyBuffer_Release(&values);
+    Py_RETURN_NONE;
+}
+
 static PyMethodDef methods[] = {
     {"bingham_block", bingham_block, METH_VARARGS, "Algorithm 1 for the Bingham law, one block."},
+    {"sine", sine, METH_VARARGS, "The project's sine of a buffer of doubles, in place (a test hook)."},
     {NULL, NULL, 0, NULL}};
 
 static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_kernel", NULL, -1, methods};

@@ -17,6 +17,10 @@ import math
 import numbers
 import sys
 
+import numpy as np
+
+from lumped._sine import MAX_ARGUMENT
+
 #: Largest number of time steps a single run may take (a bound, so that no run
 #: can be made to loop for hours by a typo in ``--dt``).
 MAX_STEPS = 2_000_000_000
@@ -190,3 +194,35 @@ def run_time(n_steps: int, seconds_per_step: float, what: str, names: str = "t_e
             "raise dt or shorten t_end"
         )
     return estimate
+
+
+def sine_phase(name: str, value: object) -> float:
+    """Return ``value`` as a finite float inside the sine's range ``|x| <= MAX_ARGUMENT``."""
+    out = finite(name, value)
+    if not abs(out) <= MAX_ARGUMENT:
+        raise ValueError(f"{name} must be within +-{MAX_ARGUMENT:.0e} rad (the forcing's sine), got {out:.6g}")
+    return out
+
+
+def sine_argument(omega: object, phase: object, t_on: object) -> None:
+    """Refuse a switched sine whose argument ``omega t + phase`` can leave the sine's range.
+
+    The one bound of every method on the forcing's argument: ``|phase| +
+    |omega| t_on <= MAX_ARGUMENT`` (:data:`lumped._sine.MAX_ARGUMENT`), where
+    ``t_on`` is the last time the sine is evaluated (``min(t_N, force_until)``,
+    ``t_N`` the grid's last time).  Arrays (one value per row of a sweep) are
+    checked elementwise and the first offending row is reported.  The sum is
+    formed as the kernels form ``omega t + phase``, with rounding monotone, so
+    an accepted argument is within the range there too.
+    """
+    omega, phase, t_on = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (omega, phase, t_on)))
+    for value in np.ravel(phase)[~(np.abs(np.ravel(phase)) <= MAX_ARGUMENT)][:1]:
+        sine_phase("force_phase", float(value))
+    span = np.abs(omega) * t_on + np.abs(phase)
+    bad = np.ravel(~(span <= MAX_ARGUMENT))
+    if np.any(bad):
+        worst = float(np.ravel(span)[int(np.argmax(bad))])
+        raise ValueError(
+            f"force_omega: |force_omega| * min(t_end, force_until) + |force_phase| = {worst:.3g} rad exceeds "
+            f"{MAX_ARGUMENT:.0e} rad, the range of the forcing's sine; lower force_omega or shorten t_end"
+        )

@@ -7,10 +7,16 @@ order, so its velocities and spring forces are bit-identical to the single
 run's.  The time steps of one trajectory depend on each other; different
 trajectories do not, so the compiled kernel (``_batch_kernel.c``) advances a
 block of them together in a vectorised loop and shares the blocks among the
-cores (OpenMP).  Without the extension (or with ``LUMPED_PURE_PYTHON=1``) a
-NumPy loop over the time steps, vectorised over trajectories, does the same
-arithmetic and gives the same numbers; its sine is NumPy's, which the tests
-check against the C library's on their arguments.
+cores (OpenMP), the forcing included: its sine is the project's own
+(``_sine.h``), vectorised like the rest.  Without the extension (or with
+``LUMPED_PURE_PYTHON=1``) a NumPy loop over the time steps, vectorised over
+trajectories, does the same arithmetic and gives the same numbers, its sine
+:func:`lumped._sine.sin_array`, the twin of ``_sine.h``.
+
+Each call of the kernel is bounded in work: at most :data:`CALL_SIZE`
+trajectories and about :data:`CALL_WORK` trajectory-steps, the steps split
+into spans that resume from the summaries the previous span wrote.  Python's
+signal handlers (Ctrl-C, SIGTERM) and the progress report run between calls.
 
 Only summaries are kept (:class:`BatchSummary`); the displacements at every
 ``save_every``-th step are kept as well when asked.
@@ -24,11 +30,15 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped import _validate
+from lumped._sine import sin_array
 
 __all__ = ["BatchParameters", "BatchSummary", "batch_backward_euler", "BATCH_KERNEL"]
 
-#: Trajectories per kernel call: Ctrl-C and the progress report are seen between calls.
+#: Trajectories per kernel call.
 CALL_SIZE = 8192
+#: Trajectory-steps per kernel call, about (a call takes at least one step): 2^24, about 25 ms forced
+#: on two cores, so that Ctrl-C, SIGTERM and the progress report are seen several times a second.
+CALL_WORK = 1 << 24
 
 
 class BatchParameters(NamedTuple):
@@ -86,33 +96,54 @@ class BatchSummary(NamedTuple):
 
 
 def _numpy_batch(
-    dt: float, n_steps: int, save_every: int, par: np.ndarray, nw: np.ndarray, sums: np.ndarray, xs: np.ndarray
+    dt: float,
+    first: int,
+    last: int,
+    n_steps: int,
+    save_every: int,
+    par: np.ndarray,
+    nw: np.ndarray,
+    sums: np.ndarray,
+    xs: np.ndarray,
 ) -> None:
-    """NumPy twin of ``_batch_kernel.bingham_batch`` (same arguments and layout)."""
-    m, k, tau, c, x0, v, amp, omega, phase, until = par
+    """NumPy twin of ``_batch_kernel.bingham_batch`` (same arguments and layout).
+
+    Steps ``first..last``; with ``first > 1`` the state is read back from
+    ``sums``, which a call ending at step ``first - 1`` wrote.
+    """
+    m, k, tau, c, x0, v0, amp, omega, phase, until = par
     mdt, dtk, eta_c = m / dt, dt * k, (m / dt + k * dt) + c
-    fs, forced = k * x0, amp != 0.0
-    rest = np.where(v == 0.0, 0.0, 1.0)
-    stops, wstops, mx, mw = (np.zeros_like(m) for _ in range(4))
-    f, row = np.zeros_like(m), 0
-    for s in range(1, n_steps + 1):
+    if first > 1:
+        v, fs, rest, stops, wstops, mx, mw = (row.copy() for row in sums)
+    else:
+        v, fs, rest = v0, k * x0, np.where(v0 == 0.0, 0.0, 1.0)
+        stops, wstops, mx, mw = (np.zeros_like(m) for _ in range(4))
+    forced, f, row = amp != 0.0, np.zeros_like(m), 0
+    for s in range(first, last + 1):
         t = s * dt
         if forced.any():
-            f = np.where(forced & (t <= until), amp * np.sin(omega * t + phase), 0.0)
+            f = np.where(forced & (t <= until), amp * sin_array(omega * t + phase), 0.0)
         predictor = mdt * v + f - fs  # line 3, eq. (15b)
         v_new = np.where(np.abs(predictor) <= tau, 0.0, (predictor - np.copysign(tau, predictor)) / eta_c)
         fs = fs + dtk * v_new  # line 11, eq. (14)
         stop = (v_new == 0.0) & (v != 0.0)
-        stops += stop
-        wstops += stop & (s >= nw)
+        stops = stops + stop
+        wstops = wstops + (stop & (s >= nw))
         rest = np.where(v_new != 0.0, s + 1.0, rest)
         mx = np.maximum(mx, np.abs(fs))
         mw = np.where((s >= nw) & (np.abs(fs) > mw), np.abs(fs), mw)
         v = v_new
-        if xs.size and (s % save_every == 0 or s == n_steps):
+        if save_every and (s % save_every == 0 or s == n_steps):
             xs[row] = fs / k
             row += 1
     sums[:] = (v, fs, rest, stops, wstops, mx, mw)
+
+
+def saved_rows(first: int, last: int, n_steps: int, save_every: int) -> int:
+    """Saved steps among ``first..last``: the multiples of ``save_every``, and ``n_steps`` (0 if not saving)."""
+    if not save_every or last < first:
+        return 0
+    return last // save_every - (first - 1) // save_every + (last == n_steps and n_steps % save_every != 0)
 
 
 BATCH_KERNEL = "python"
@@ -137,13 +168,20 @@ def _as_columns(params: BatchParameters) -> np.ndarray:
     return par
 
 
-def _call(kernel: str, dt: float, n_steps: int, save_every: int, par: np.ndarray, nw: np.ndarray, rows: int):
-    """Run one call of the kernel; returns ``(sums, xs)``."""
-    sums = np.empty((7, par.shape[1]))
-    xs = np.empty((rows, par.shape[1])) if rows else np.empty(0)
+def _call(kernel: str, dt: float, steps: range, n_steps: int, save_every: int, par, nw, sums, xs) -> None:  # noqa: ANN001
+    """One call of the kernel over the steps ``steps`` (``sums`` in and out, ``xs`` out)."""
     loop = _numpy_batch if kernel == "python" else _compiled_batch
-    loop(dt, n_steps, save_every, par, nw, sums, xs)  # type: ignore[misc]
-    return sums, xs
+    loop(dt, steps.start, steps.stop - 1, n_steps, save_every, par, nw, sums, xs)  # type: ignore[misc]
+
+
+def _spans(n: int, n_steps: int) -> list[tuple[slice, range]]:
+    """The calls: rows by :data:`CALL_SIZE`, steps by about :data:`CALL_WORK` trajectory-steps."""
+    out = []
+    for first in range(0, n, CALL_SIZE):
+        rows = slice(first, min(first + CALL_SIZE, n))
+        span = max(1, CALL_WORK // (rows.stop - rows.start))
+        out += [(rows, range(s, min(s + span, n_steps + 1))) for s in range(1, n_steps + 1, span)]
+    return out
 
 
 def _kernel_name(kernel: str) -> str:
@@ -183,8 +221,10 @@ def batch_backward_euler(
     kernel : {"auto", "compiled", "python"}
         The C kernel or the NumPy loop (bit-identical).
     progress : callable, optional
-        Called as ``progress(done, total)`` (trajectories) after each call of
-        the kernel, which takes :data:`CALL_SIZE` trajectories.
+        Called as ``progress(done, total)`` (trajectories, ``done`` counting
+        a part-run block by the fraction of its steps) after each call of the
+        kernel (:data:`CALL_SIZE` trajectories, about :data:`CALL_WORK`
+        trajectory-steps).
 
     Returns
     -------
@@ -199,13 +239,15 @@ def batch_backward_euler(
     stride = 0 if save_every is None else _validate.positive_int("save_every", save_every)
     rows = 0 if not stride else _validate.output_rows(n_steps, stride) - 1
     sums, xs = np.empty((7, n)), np.empty((rows, n))
-    for first in range(0, n, CALL_SIZE):
-        part = slice(first, min(first + CALL_SIZE, n))
-        sums[:, part], chunk_x = _call(kernel, dt, n_steps, stride, np.ascontiguousarray(par[:, part]), nw[part], rows)
-        if rows:
-            xs[:, part] = chunk_x
+    for part, steps in _spans(n, n_steps):
+        width, before = part.stop - part.start, saved_rows(1, steps.start - 1, n_steps, stride)
+        block_sums = np.ascontiguousarray(sums[:, part])  # read back when resuming
+        block_x = np.empty((saved_rows(steps.start, steps.stop - 1, n_steps, stride), width))
+        _call(kernel, dt, steps, n_steps, stride, np.ascontiguousarray(par[:, part]), nw[part], block_sums, block_x)
+        sums[:, part] = block_sums
+        xs[before : before + block_x.shape[0], part] = block_x
         if callable(progress):
-            progress(part.stop, n)
+            progress(part.start + width * (steps.stop - 1) // n_steps, n)
     return _summary(par, nw, n_steps, sums, xs if rows else None)
 
 

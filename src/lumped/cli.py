@@ -59,7 +59,7 @@ _CHECKS = {  # API name -> validator (the API's own, so the messages are the API
     "v0": _validate.finite,
     "force_amplitude": _validate.finite,
     "force_omega": _validate.finite,
-    "force_phase": _validate.finite,
+    "force_phase": _validate.sine_phase,
     "force_until": _validate.time_or_inf,
     "t_end": _validate.positive,
     "dt": _validate.positive,

@@ -39,6 +39,7 @@ from typing import ClassVar
 import numpy as np
 
 from lumped import _validate
+from lumped._sine import MAX_ARGUMENT
 from lumped.forcing import SwitchedSine
 from lumped.laws import BinghamDashpot, coulomb
 from lumped.results import COLUMNS, Trajectory
@@ -51,9 +52,10 @@ _BLOCK = 256  # samples per block when bracketing a zero of v
 _MAX_BLOCKS = 100_000  # bound on the search for one zero of v (2.6e7 samples)
 _PER_SCALE = 32  # samples per time scale of the bracketing grid
 _GRADE = 1.25  # growth factor of the grid from the fast to the slow time scale
-#: Largest forcing phase ``|omega| t`` (rad): beyond it one ulp of the phase is
-#: about 0.2 rad and ``sin`` keeps no significant digit.
-MAX_PHASE = 1e15
+#: Largest forcing argument ``|omega| t + |phase|`` (rad): the range of the
+#: project's sine (:data:`lumped._sine.MAX_ARGUMENT`), the one bound that every
+#: method, the sweep and the command line share.
+MAX_PHASE = MAX_ARGUMENT
 
 
 @dataclass(frozen=True)
@@ -729,19 +731,14 @@ def _check_inputs(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float,
 
 
 def check_scales(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float, v0: float) -> None:
-    """Refuse a forcing phase beyond :data:`MAX_PHASE` or forces that could overflow (any dashpot law).
+    """Refuse a forcing argument beyond :data:`MAX_PHASE` or forces that could overflow (any dashpot law).
 
     The Coulomb part of the bound of :func:`_check_inputs`; it uses only the
     threshold of the dashpot, so every event-driven solver shares it.
     """
-    P, w, _ = (0.0, 0.0, 0.0) if force.is_zero else force.canonical()
+    P = 0.0 if force.is_zero else force.canonical()[0]
     t_on = min(t_end, force.until) if P else t_end
-    if w * t_on > MAX_PHASE:
-        raise ValueError(
-            f"force_omega: |force_omega| * min(t_end, force_until) = {w * t_on:.3g} rad exceeds "
-            f"{MAX_PHASE:.0e} rad, beyond which the forcing's phase keeps no significant digit; "
-            "lower force_omega or shorten t_end"
-        )
+    force.check_span(t_end)
     m, k = osc.mass, osc.stiffness
     dt = max(t_on, math.sqrt(m) / math.sqrt(k))
     check_magnitudes(dataclasses.replace(osc, dashpot=coulomb(osc.threshold)), t_on, dt, x0, v0, P)
@@ -783,7 +780,7 @@ def solve_exact(
     ValueError
         One line beginning with the argument to change: bad input, forces
         that could overflow (``x0``, ``v0``, ``force_amplitude``), a forcing
-        phase ``|omega| t`` above :data:`MAX_PHASE` (``force_omega``), more than
+        argument ``|omega| t + |phase|`` above :data:`MAX_PHASE` (``force_omega``), more than
         ``max_events`` events (``t_end``), or a value that is not finite.
     """
     if not isinstance(oscillator, Oscillator):

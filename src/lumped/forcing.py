@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lumped import _validate
+from lumped._sine import sin, sin_array
 
 __all__ = ["SwitchedSine", "evaluate", "validate_force"]
 
@@ -28,6 +29,8 @@ class SwitchedSine:
     amplitude : float, N
     omega : float, rad/s
     phase : float, rad
+        Within ``+-MAX_ARGUMENT = 2e8`` (:mod:`lumped._sine`); a run also
+        needs ``|omega| t + |phase|`` in that range (:meth:`check_span`).
     until : float, s
         Time ``t_off >= 0`` after which the force is zero; ``inf`` for never.
     """
@@ -41,20 +44,28 @@ class SwitchedSine:
         for name, check in (
             ("amplitude", _validate.finite),
             ("omega", _validate.finite),
-            ("phase", _validate.finite),
+            ("phase", _validate.sine_phase),
             ("until", _validate.time_or_inf),
         ):
             object.__setattr__(self, name, check("force_" + name, getattr(self, name)))
 
     def __call__(self, t: np.ndarray | float) -> np.ndarray | float:
-        on = self.amplitude * np.sin(self.omega * np.asarray(t) + self.phase)
+        """The force at the times ``t`` (N), with the kernels' sine (:func:`lumped._sine.sin_array`), bit for bit."""
+        on = self.amplitude * sin_array(self.omega * np.asarray(t, dtype=float) + self.phase)
         out = np.where(np.asarray(t) <= self.until, on, 0.0)
         return float(out) if np.ndim(out) == 0 else out
+
+    def check_span(self, t_last: float) -> None:
+        """Refuse a run to ``t_last`` (s) whose argument ``omega t + phase`` leaves the sine's range.
+
+        See :func:`lumped._validate.sine_argument`, the one bound every method shares.
+        """
+        _validate.sine_argument(self.omega, self.phase, min(t_last, self.until))
 
     @property
     def is_zero(self) -> bool:
         """True when the force vanishes at all times."""
-        return self.amplitude == 0 or (self.omega == 0 and math.sin(self.phase) == 0)
+        return self.amplitude == 0 or (self.omega == 0 and sin(self.phase) == 0)
 
     def canonical(self) -> tuple[float, float, float]:
         """``(P, omega, phase)`` with ``P >= 0`` and ``omega >= 0``, same function."""

@@ -41,7 +41,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped import _validate
+from lumped import _sine, _validate
 from lumped.event_driven import Event
 from lumped.forcing import SwitchedSine, evaluate, validate_force
 from lumped.laws import BinghamDashpot, Dashpot, HerschelBulkleyDashpot, MonotoneDashpot, bingham_corrector
@@ -129,7 +129,9 @@ def _theta_rows(
     return rest_start * dt
 
 
-def _start(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, save_every: int, kind: str) -> tuple:
+def _start(
+    osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, save_every: int, kind: str, force: object
+) -> tuple:
     """Validate the common arguments; return ``(t_end, dt, x0, v0, save_every, n_steps)``."""
     if not isinstance(osc, Oscillator):
         raise ValueError(f"oscillator must be an Oscillator, got {type(osc).__name__}")
@@ -137,6 +139,8 @@ def _start(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, save_
     x0, v0 = _validate.finite("x0", x0), _validate.finite("v0", v0)
     save_every = _validate.stride("save_every", save_every)
     n_steps = _validate.step_count(t_end, dt)
+    if isinstance(force, SwitchedSine):
+        force.check_span(n_steps * dt)  # the sine's range, to the grid's last time
     _validate.output_size(n_steps, save_every)
     per_step = _COST_OVER_PYTHON_BE * _seconds_per_step(osc, None, "python", dt)  # law's cost measured there
     _validate.run_time(n_steps, per_step, f"the {kind} scheme")
@@ -191,7 +195,7 @@ def theta_method(
       does not have (Coulomb under eq. 17b).
 
     """
-    t_end, dt, x0, v0, save_every, n_steps = _start(oscillator, t_end, dt, x0, v0, save_every, "theta")
+    t_end, dt, x0, v0, save_every, n_steps = _start(oscillator, t_end, dt, x0, v0, save_every, "theta", force)
     theta = _validate.finite("theta", theta)
     if not 0.5 <= theta <= 1:
         raise ValueError(f"theta must lie in [0.5, 1], got {theta!r}")
@@ -243,7 +247,7 @@ class _Piece:
     end: float
 
     def __call__(self, t: float) -> float:
-        return self.amplitude * math.sin(self.omega * t + self.phase) if self.amplitude else 0.0
+        return self.amplitude * _sine.sin(self.omega * t + self.phase) if self.amplitude else 0.0
 
 
 class _State(NamedTuple):
@@ -493,7 +497,7 @@ def event_capturing(
     solved for the force, where ``psi`` is smooth), 1.99 for the rest
     position and 1.92 for the event times.
     """
-    t_end, dt, x0, v0, save_every, n_steps = _start(oscillator, t_end, dt, x0, v0, save_every, "event-capturing")
+    t_end, dt, x0, v0, save_every, n_steps = _start(oscillator, t_end, dt, x0, v0, save_every, "event-capturing", force)
     if force is not None and not isinstance(force, SwitchedSine):
         raise ValueError("force: the event-capturing scheme needs a SwitchedSine or None")
     force = force or SwitchedSine()

@@ -106,12 +106,13 @@ FILE_BYTES_PER_VALUE = {".csv": 25, ".npz": 8}
 #: project's 2-core machine (random doubles); ``.npz`` writes the arrays whole.
 WRITE_SECONDS_PER_VALUE = {".csv": 1.7e-6, ".npz": 2e-8}
 #: Estimated cost (s) per trajectory-step of the batched kernels, unforced and forced grids: about twice
-#: what benchmarks/bench_sweep.py measures on this project's 2-core machine (compiled: 0.46-0.48 ns on the
-#: AVX2 loop, 1.09 ns on SSE2, 5.6-6.5 ns forced, where a C-library sin per step dominates), so a
-#: single-core or loaded machine stays within the estimate.
+#: what benchmarks/bench_sweep.py measures on this project's 2-core machine under load (compiled: 0.5-1.1 ns
+#: free; forced, the project's sine in the vector lanes, 1.2-1.5 ns when quiet and 2.5-4 ns loaded on the
+#: AVX-512 loop, about twice that on AVX2; NumPy: 12 ns free, 130 ns forced), so a single-core, loaded or
+#: AVX2-only machine stays within the estimate.
 SECONDS_PER_TRAJECTORY_STEP = {
-    "compiled": {"free": 2.5e-9, "forced": 1.3e-8},
-    "python": {"free": 2.5e-8, "forced": 1.3e-7},
+    "compiled": {"free": 2.5e-9, "forced": 8e-9},
+    "python": {"free": 2.5e-8, "forced": 2.6e-7},
 }
 #: Estimated cost (s) per row of the batched sweep besides its steps: the
 #: parameters, the checks of :meth:`SweepSpec.check` and the summaries, some
@@ -548,11 +549,12 @@ class SweepSpec:
         return SECONDS_PER_RUN[self.method]["sample"]
 
     def _check_rows(self) -> None:
-        """Every row's magnitudes (:func:`~lumped.system.magnitude_failures`, at once) and forcing window."""
+        """Every row's forcing argument (the sine's range), magnitudes (at once) and forcing window."""
         from lumped.system import check_magnitudes, magnitude_failures
 
         p = self.parameters()
         t_last = self.n_steps * self.dt
+        _validate.sine_argument(p["force_omega"], p["force_phase"], np.minimum(t_last, p["force_until"]))
         args = (p["mass"], p["stiffness"], p["gamma"], t_last, self.dt, p["x0"], p["v0"], p["force_amplitude"])
         for j in np.flatnonzero(magnitude_failures(*args))[:1]:
             row = {n: float(v[j]) for n, v in p.items()}

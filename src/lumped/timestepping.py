@@ -32,7 +32,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from lumped import _validate
+from lumped import _sine, _validate
 from lumped.forcing import SwitchedSine, evaluate, validate_force
 from lumped.laws import BinghamDashpot, bingham_corrector
 from lumped.results import COLUMNS, Trajectory
@@ -73,7 +73,8 @@ def _bingham_block(
     bad_step, bad_quantity)``, both updated in place (see ``_kernel.c``).
     ``force_values`` holds ``F(t_n)`` for ``n_first..n_last`` for a general
     forcing; when it is empty the forcing is the switched sine
-    ``amp*sin(omega t + phase)``, ``t <= until``.  Saved rows go to ``out``
+    ``amp*sin(omega t + phase)``, ``t <= until``, with the project's sine
+    (:func:`lumped._sine.sin`, the twin of ``_sine.h``).  Saved rows go to ``out``
     (columns t, x, v, F_s, F_d, F).
 
     The corrector is :func:`~lumped.laws.bingham_corrector`, the one Python
@@ -89,7 +90,7 @@ def _bingham_block(
         if tabulated:
             f = float(force_values[n - n_first])
         elif t <= until:
-            f = amp * math.sin(omega * t + phase)
+            f = amp * _sine.sin(omega * t + phase)  # the kernels' sine, bit for bit
         else:
             f = 0.0
         predictor = (m / dt) * v + f - f_s  # line 3, eq. (15b)
@@ -120,8 +121,9 @@ if os.environ.get("LUMPED_PURE_PYTHON", "") in ("", "0"):
 
 #: Estimated cost of one step (s) of the Bingham loops, for the run-time bound
 #: (measured on this project's 2-core machine: about 1e-8 s compiled and
-#: 5.5e-7 s in Python, with the other core busy; a margin of about 1.5 to 2).
-_SECONDS_PER_STEP = {"compiled": 1.5e-8, "python": 1.2e-6}
+#: 5.5e-7 s in Python free, 9e-7 s forced (the project's sine in Python), with
+#: the other core busy; a margin of about 1.5 to 2).
+_SECONDS_PER_STEP = {"compiled": 1.5e-8, "python": 1.8e-6}
 
 
 def _generic_block(
@@ -193,6 +195,8 @@ def _check_run(
 ) -> None:
     """Refuse up front what would overflow or run too long."""
     amplitude = force.amplitude if isinstance(force, SwitchedSine) else 0.0
+    if isinstance(force, SwitchedSine):
+        force.check_span(n_steps * dt)  # the sine's range, to the grid's last time
     check_magnitudes(osc, t_end, dt, x0, v0, amplitude)
     what = "Algorithm 1" if isinstance(osc.dashpot, BinghamDashpot) else "the generic loop"
     _validate.run_time(n_steps, _seconds_per_step(osc, force, kernel, dt), what)

@@ -24,6 +24,7 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped import _validate
+from lumped.forcing import SwitchedSine
 from lumped.network import kernel
 from lumped.network.elements import Bingham, Element, HerschelBulkley, LawElement, Spring
 from lumped.network.model import Network
@@ -235,6 +236,9 @@ def simulate_network(
         return _via_algorithm1(network, pair, t_end, dt, save_every)
     path = _path(network, solver)
     n_steps = _validate.step_count(t_end, dt)
+    for load in network.loads:
+        if isinstance(load.force, SwitchedSine):
+            load.force.check_span(n_steps * dt)  # the sine's range, to the grid's last time
     width = 1 + 2 * len(network.masses) + 3 * len(network.elements)
     rows = _validate.output_size(n_steps, save_every, width)
     fixed, per_element = _COST[path]
