@@ -81,6 +81,9 @@ def test_normal_values_at_the_bounds_still_run(k):
         dict(mass=1.0, stiffness=100.0, threshold=1.0, gamma=1.0, x0=1e160, v0=0.0, amplitude=0.0),
         dict(mass=1.0, stiffness=100.0, threshold=1.0, gamma=1e-300, x0=0.0, v0=1.0, amplitude=0.0),
         dict(mass=1.0, stiffness=100.0, threshold=1.0, gamma=1.0, x0=0.0, v0=0.0, amplitude=1e300),
+        dict(mass=2.0**-996, stiffness=2.0**-996, threshold=0.0, gamma=math.inf, x0=1e-10, v0=0.0, amplitude=0.0),
+        dict(mass=2.0**-996, stiffness=2.0**-996, threshold=1.0, gamma=math.inf, x0=1e-10, v0=0.0, amplitude=0.0),
+        dict(mass=1.0, stiffness=1e-300, threshold=0.0, gamma=1.0, x0=0.0, v0=1e-20, amplitude=1e-310),
     ],
 )
 def test_the_array_form_agrees_with_the_scalar_check(row):
@@ -92,7 +95,8 @@ def test_the_array_form_agrees_with_the_scalar_check(row):
     except ValueError:
         refused = True
     args = [np.array([row[n]]) for n in ("mass", "stiffness", "gamma")]
-    bad = magnitude_failures(*args, 2.0, 1e-3, np.array([row["x0"]]), np.array([row["v0"]]), row["amplitude"])
+    state = (np.array([row["x0"]]), np.array([row["v0"]]), row["amplitude"])
+    bad = magnitude_failures(*args, 2.0, 1e-3, *state)
     assert bad.tolist() == [refused]
 
 
@@ -101,3 +105,36 @@ def test_a_sweep_refuses_a_subnormal_row_naming_the_parameter(tmp_path, capsys):
     assert main(["sweep", "--vary", "mass=1e-320:1:3", "--output", str(out)]) == 2
     err = capsys.readouterr().err.strip()
     assert err.startswith("lumped sweep: error: --vary: mass: 1e-320 is below the smallest normal double"), err
+
+
+@pytest.mark.parametrize("exponent", [-900, -996])
+def test_a_run_whose_every_force_is_subnormal_is_refused(exponent):
+    """m = k = 2^e, x0 = 1e-10, no threshold: every force is about 2^e 1e-10.
+
+    Scaling m and k by a power of two scales m/dt, k dt and every force exactly, so
+    while the forces stay normal the displacements are those of m = k = 1 bit for
+    bit (2^-900 1e-10 = 1.2e-281).  At 2^-996 they are about 1.5e-310, subnormal,
+    and the run differed from the unscaled one by 3.4e-13 of x0: refused, naming x0.
+    """
+    scaled = L.Oscillator.bingham(2.0**exponent, 2.0**exponent, 0.0, math.inf)
+    unscaled = L.backward_euler(L.Oscillator.bingham(1.0, 1.0, 0.0, math.inf), 1.0, 1e-3, x0=1e-10)
+    if exponent == -900:
+        assert np.array_equal(L.backward_euler(scaled, 1.0, 1e-3, x0=1e-10).x, unscaled.x)
+    else:  # the exact solver carries x itself: it runs and keeps x0 to the last bit at t = 0
+        assert L.solve_exact(scaled, 1.0, x0=1e-10).sample(1e-3).x[0] == 1e-10
+        with pytest.raises(
+            ValueError, match=r"^x0: every spring and external force of the run stays below 1\.\d+e-310 N"
+        ):
+            L.backward_euler(scaled, 1.0, 1e-3, x0=1e-10)
+
+
+def test_a_run_whose_every_force_is_subnormal_is_refused_on_the_command_line(tmp_path, capsys):
+    out = tmp_path / "run.csv"
+    argv = ["simulate", "--mass", "1e-300", "--stiffness", "1e-300", "--threshold", "0", "--gamma", "inf"]
+    assert main([*argv, "--x0", "1e-10", "--output", str(out)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert (
+        err.startswith("lumped simulate: error: --x0: every spring and external force of the run stays below")
+        and len(err.splitlines()) == 1
+    )
+    assert not out.exists()

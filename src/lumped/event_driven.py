@@ -741,7 +741,8 @@ def check_scales(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float, 
     force.check_span(t_end)
     m, k = osc.mass, osc.stiffness
     dt = max(t_on, math.sqrt(m) / math.sqrt(k))
-    check_magnitudes(dataclasses.replace(osc, dashpot=coulomb(osc.threshold)), t_on, dt, x0, v0, P)
+    coulomb_part = dataclasses.replace(osc, dashpot=coulomb(osc.threshold))
+    check_magnitudes(coulomb_part, t_on, dt, x0, v0, P, carries_force=False)  # x is carried, not F_s = k x
 
 
 def solve_exact(

@@ -556,10 +556,19 @@ class SweepSpec:
         t_last = self.n_steps * self.dt
         _validate.sine_argument(p["force_omega"], p["force_phase"], np.minimum(t_last, p["force_until"]))
         args = (p["mass"], p["stiffness"], p["gamma"], t_last, self.dt, p["x0"], p["v0"], p["force_amplitude"])
-        for j in np.flatnonzero(magnitude_failures(*args))[:1]:
+        carries = self.method == "backward-euler"  # the exact solver carries x, not F_s = k x
+        for j in np.flatnonzero(magnitude_failures(*args, carries_force=carries))[:1]:
             row = {n: float(v[j]) for n, v in p.items()}
             try:
-                check_magnitudes(_oscillator(row), t_last, self.dt, row["x0"], row["v0"], row["force_amplitude"])
+                check_magnitudes(
+                    _oscillator(row),
+                    t_last,
+                    self.dt,
+                    row["x0"],
+                    row["v0"],
+                    row["force_amplitude"],
+                    carries_force=carries,
+                )
             except ValueError as err:
                 raise ValueError(self._row_error(str(err), row, int(j))) from None
         start = window_start(p, t_last, self.periods)

@@ -91,7 +91,9 @@ def initial_dashpot_force(osc: Oscillator, force0: float, x0: float, v0: float) 
     return math.copysign(min(abs(net), law.threshold), net)
 
 
-def check_magnitudes(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, amplitude: float) -> None:
+def check_magnitudes(
+    osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, amplitude: float, *, carries_force: bool = True
+) -> None:
     """Refuse a run whose forces could overflow double precision, or whose products lose their digits.
 
     Notes
@@ -119,6 +121,12 @@ def check_magnitudes(osc: Oscillator, t_end: float, dt: float, x0: float, v0: fl
     zero beside the other terms, and the exact solvers, which call this check
     too, carry ``x`` itself.
 
+    *Subnormal forces.*  When the bounds on the spring force and the load are
+    both below ``TINY`` (and not zero), every force of the run is subnormal and
+    ``F_s`` keeps only its leading bits, whatever the threshold; such a run is
+    refused too, unless ``carries_force`` is false (the exact solver carries
+    ``x`` and no ``F_s``).
+
     Raises
     ------
     ValueError
@@ -138,6 +146,13 @@ def check_magnitudes(osc: Oscillator, t_end: float, dt: float, x0: float, v0: fl
                 "where fewer than 16 significant digits remain; choose units in which the parameters are nearer 1"
             )
     parts, quantities = _energy_bound(m, k, getattr(osc.dashpot, "viscosity", 0.0), t_end, dt, x0, v0, amplitude)
+    scale = _force_scale(quantities)
+    if carries_force and 0 < scale < TINY:
+        raise ValueError(
+            f"{max(parts, key=parts.get)}: every spring and external force of the run stays below {scale:.3g} N "
+            f"(bound from the energy and the load), under the smallest normal double, {TINY:.3g}, where "
+            "F_s = k x keeps fewer than 16 significant digits; choose units in which the forces are nearer 1"
+        )
     for quantity, value in quantities.items():
         if not value <= MAGNITUDE_LIMIT:
             raise ValueError(
@@ -167,6 +182,19 @@ def _energy_bound(m, k, c, t_end, dt, x0, v0, amplitude):  # floats or arrays al
     return parts, quantities
 
 
+def _force_scale(quantities: dict):  # floats or arrays alike
+    """The largest spring or external force of the run: the energy's bound on ``|F_s|``, and the load.
+
+    When it is below ``TINY`` they are all subnormal and Algorithm 1's ``F_s``
+    (hence ``x = F_s/k``) keeps only its leading bits, whatever the threshold
+    (a mass held in the band keeps ``x = F_s/k``, not ``x0``): with ``m = k = 2^-996``,
+    ``x0 = 1e-10``, the displacements differed from the same run in units
+    ``2^996`` times larger by 3.4e-13 of ``x0``, where an exact rescaling gives
+    the same bits.  A force scale of 0 (nothing loaded, nothing moves) is exact.
+    """
+    return np.maximum(quantities["spring force |F_s|"], quantities["external force |F|"])
+
+
 def _blamed(quantity: str, parts: dict, quantities: dict, m_over_dt: float) -> str:
     """The argument named for an overflowing ``quantity``."""
     if quantity.startswith("momentum") and m_over_dt > 1e150:
@@ -185,6 +213,8 @@ def magnitude_failures(
     x0: np.ndarray,
     v0: np.ndarray,
     amplitude: np.ndarray,
+    *,
+    carries_force: bool = True,
 ) -> np.ndarray:
     """Elementwise: where :func:`check_magnitudes` would refuse the Bingham run with these parameters.
 
@@ -198,6 +228,9 @@ def magnitude_failures(
         bad = ~(m / dt >= TINY) | ~(k * dt >= TINY)
         c = np.where(np.isinf(g), 0.0, 1 / g)
     _, quantities = _energy_bound(m, k, c, t_end, dt, x, v, p)
+    if carries_force:
+        scale = _force_scale(quantities)
+        bad |= (scale > 0) & (scale < TINY)
     for value in quantities.values():
         bad |= ~(value <= MAGNITUDE_LIMIT)
     return bad
