@@ -49,10 +49,8 @@ C1, C2, C3 = _h("0x1.555555555554cp-5"), _h("-0x1.6c16c16c15177p-10"), _h("0x1.a
 C4, C5, C6 = _h("-0x1.27e4f809c52adp-22"), _h("0x1.1ee9ebdb4b1c4p-29"), _h("-0x1.8fae9be8838d4p-37")
 
 
-def sin(x: float) -> float:
-    """``sin(x)`` for a float, bit-identical to ``_sine.h`` (see the module's Notes)."""
-    if not abs(x) <= MAX_ARGUMENT:
-        return math.nan
+def _reduce(x):  # a float or an array alike: the same IEEE operations
+    """``x = k pi/2 + r + rr``: ``(big, k, r, rr)``, ``big`` holding ``k`` in its low bits."""
     big = x * INV_PIO2 + SHIFT
     k = big - SHIFT
     a = x - k * P1
@@ -60,67 +58,49 @@ def sin(x: float) -> float:
     hi = a + c
     bb = hi - a
     lo = (a - (hi - bb)) + (c - bb)
-    h, c = hi, k * -P3
-    hi = h + c
-    bb = hi - h
-    lo = lo + ((h - (hi - bb)) + (c - bb))
-    h, c = hi, k * -P4
-    hi = h + c
-    bb = hi - h
-    lo = lo + ((h - (hi - bb)) + (c - bb))
+    for piece in (P3, P4):  # two more pieces, each added as a two-sum
+        h, c = hi, k * -piece
+        hi = h + c
+        bb = hi - h
+        lo = lo + ((h - (hi - bb)) + (c - bb))
     lo = lo - k * P5
     r = hi + lo
-    rr = lo - (r - hi)
+    return big, k, r, lo - (r - hi)
+
+
+def _kernel_sin(r, rr):  # fdlibm's __kernel_sin on [-pi/4, pi/4], with the tail rr
     z = r * r
     w = z * z
+    v = z * r
+    ps = S2 + z * (S3 + z * S4) + z * w * (S5 + z * S6)
+    return r - ((z * (0.5 * rr - v * ps) - rr) - v * S1)
+
+
+def _kernel_cos(r, rr):  # fdlibm's __kernel_cos on [-pi/4, pi/4], with the tail rr
+    z = r * r
+    w = z * z
+    pc = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6))
+    hz = 0.5 * z
+    one_hz = 1.0 - hz
+    return one_hz + (((1.0 - one_hz) - hz) + (z * pc - r * rr))
+
+
+def sin(x: float) -> float:
+    """``sin(x)`` for a float, bit-identical to ``_sine.h`` (see the module's Notes)."""
+    if not abs(x) <= MAX_ARGUMENT:
+        return math.nan
+    _, k, r, rr = _reduce(x)
     quadrant = int(k) & 3
-    if quadrant & 1:
-        pc = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6))
-        hz = 0.5 * z
-        one_hz = 1.0 - hz
-        value = one_hz + (((1.0 - one_hz) - hz) + (z * pc - r * rr))
-    else:
-        v = z * r
-        ps = S2 + z * (S3 + z * S4) + z * w * (S5 + z * S6)
-        value = r - ((z * (0.5 * rr - v * ps) - rr) - v * S1)
+    value = _kernel_cos(r, rr) if quadrant & 1 else _kernel_sin(r, rr)
     return -value if quadrant & 2 else value
 
 
 def sin_array(x: np.ndarray) -> np.ndarray:
     """``sin(x)`` elementwise for a float array, bit-identical to ``_sine.h``."""
     with np.errstate(invalid="ignore", over="ignore"):  # inf and nan give nan, as in C
-        return _sin_array(np.asarray(x, dtype=float))
-
-
-def _sin_array(x: np.ndarray) -> np.ndarray:
-    big = x * INV_PIO2 + SHIFT
-    k = big - SHIFT
-    a = x - k * P1
-    c = k * -P2
-    hi = a + c
-    bb = hi - a
-    lo = (a - (hi - bb)) + (c - bb)
-    h, c = hi, k * -P3
-    hi = h + c
-    bb = hi - h
-    lo = lo + ((h - (hi - bb)) + (c - bb))
-    h, c = hi, k * -P4
-    hi = h + c
-    bb = hi - h
-    lo = lo + ((h - (hi - bb)) + (c - bb))
-    lo = lo - k * P5
-    r = hi + lo
-    rr = lo - (r - hi)
-    z = r * r
-    w = z * z
-    v = z * r
-    ps = S2 + z * (S3 + z * S4) + z * w * (S5 + z * S6)
-    s = r - ((z * (0.5 * rr - v * ps) - rr) - v * S1)
-    pc = z * (C1 + z * (C2 + z * C3)) + w * w * (C4 + z * (C5 + z * C6))
-    hz = 0.5 * z
-    one_hz = 1.0 - hz
-    co = one_hz + (((1.0 - one_hz) - hz) + (z * pc - r * rr))
-    quadrant = big.view(np.int64) & 3
-    value = np.where(quadrant & 1, co, s)
-    value = np.where(quadrant & 2, -value, value)
-    return np.where(np.abs(x) <= MAX_ARGUMENT, value, np.nan)
+        x = np.asarray(x, dtype=float)
+        big, _, r, rr = _reduce(x)
+        quadrant = big.view(np.int64) & 3
+        value = np.where(quadrant & 1, _kernel_cos(r, rr), _kernel_sin(r, rr))
+        value = np.where(quadrant & 2, -value, value)
+        return np.where(np.abs(x) <= MAX_ARGUMENT, value, np.nan)
