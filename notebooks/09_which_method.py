@@ -176,7 +176,7 @@ for case in ("hb-n0.5", "hb-n2"):
 # the position at the end of the run, approaches the true one only as
 # $\varepsilon \to 0$, and it depends on how long one waits. LSODA's step
 # counts and the last digits of its errors follow round-off (another
-# machine took 845 steps where this one takes 853), so the errors are
+# machine took 853 steps where this one takes 845), so the errors are
 # printed to one digit and the counts not at all (figure acc02 has them;
 # `tests/test_accuracy.py` checks that each printed digit would hold if
 # the error moved by a tenth of LSODA's own error):
