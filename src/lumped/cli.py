@@ -28,51 +28,17 @@ import numpy as np
 
 from lumped import __version__, _validate
 from lumped.driver import METHODS
+from lumped.parameters import PARAMETERS, PER_ROW
 
 if TYPE_CHECKING:
     from lumped.results import Trajectory
 
 __all__ = ["main", "build_parser"]
 
-_OPTIONS = (  # (API name, default, help); the option is "--" + name with "-" for "_"
-    ("mass", "1", "mass m > 0 (kg)"),
-    ("stiffness", "100", "spring constant k > 0 (N/m)"),
-    ("gamma", "1", "Bingham slope gamma > 0 (m/(N s)); inf for Coulomb"),
-    ("threshold", "1", "static threshold mu_s N_f >= 0 (N)"),
-    ("x0", "0", "initial displacement (m)"),
-    ("v0", "0", "initial velocity (m/s)"),
-    ("force_amplitude", "0", "forcing amplitude P (N)"),
-    ("force_omega", "0", "forcing angular frequency (rad/s)"),
-    ("force_phase", "0", "forcing phase (rad)"),
-    ("force_until", "inf", "time after which the force is zero (s)"),
-    ("t_end", "2", "final time > 0 (s)"),
-    ("dt", "1e-4", "time step > 0 (s)"),
-    ("save_every", "1", "keep every K-th grid point (1 to 2e9)"),
-)
-
-_CHECKS = {  # API name -> validator (the API's own, so the messages are the API's)
-    "mass": _validate.positive,
-    "stiffness": _validate.positive,
-    "gamma": _validate.positive_or_inf,
-    "threshold": _validate.non_negative,
-    "x0": _validate.finite,
-    "v0": _validate.finite,
-    "force_amplitude": _validate.finite,
-    "force_omega": _validate.finite,
-    "force_phase": _validate.sine_phase,
-    "force_until": _validate.time_or_inf,
-    "t_end": _validate.positive,
-    "dt": _validate.positive,
-    "save_every": _validate.stride,
-}
-
-
-def _flag(name: str) -> str:
-    return "--" + name.replace("_", "-")
-
-
-#: The API's argument names (what its ``ValueError`` messages begin with) -> options.
-_API_TO_OPTION = {name: _flag(name) for name in _CHECKS} | {
+#: The API's argument names (what its ``ValueError`` messages begin with) -> options; the
+#: options that set the system, its motion and the grid (their defaults, help and checks)
+#: are those of :data:`lumped.parameters.PARAMETERS`.
+_API_TO_OPTION = {name: p.option for name, p in PARAMETERS.items()} | {
     "t_end/dt": "--t-end/--dt",
     "rtol": "--rtol",
     "vary": "--vary",
@@ -83,7 +49,7 @@ _LEADING_NAME = re.compile(r"^([a-z][a-z0-9_/]*)(?=:| must)")
 #: Options that take a value (the rest of the command line is names and values).
 _TAKES_VALUE = frozenset(_API_TO_OPTION.values()) - {"--t-end/--dt"} | {"--method", "--output", "--system"}
 #: Options that describe the single mass, refused with ``--system``.
-_SINGLE_MASS = frozenset(_flag(name) for name, _, _ in _OPTIONS) - {"--t-end", "--dt", "--save-every"}
+_SINGLE_MASS = frozenset(PARAMETERS[name].option for name in PER_ROW)
 #: Signals that unwind through the cleanup while a run is under way (SIGINT
 #: already does, as KeyboardInterrupt).
 _UNWIND_SIGNALS = tuple(getattr(signal, n) for n in ("SIGTERM", "SIGHUP") if hasattr(signal, n))
@@ -172,8 +138,8 @@ def build_parser() -> argparse.ArgumentParser:
         allow_abbrev=False,
         formatter_class=_HelpFormatter,
     )
-    for name, default, text in _OPTIONS:
-        sim.add_argument(_flag(name), default=default, help=f"{text} [default: {default}]")
+    for p in PARAMETERS.values():
+        sim.add_argument(p.option, default=p.default_text, help=f"{p.help} [default: {p.default_text}]")
     sim.add_argument(
         "--system",
         default=None,
@@ -235,9 +201,9 @@ def _add_sweep(sub: argparse._SubParsersAction) -> None:
         allow_abbrev=False,
         formatter_class=_SweepHelpFormatter,
     )
-    for name, default, text in _OPTIONS:
-        if name != "save_every":  # a sweep keeps summaries, not trajectories
-            sw.add_argument(_flag(name), default=None, help=f"{text} [default: {default}]")
+    for p in PARAMETERS.values():
+        if p.name != "save_every":  # a sweep keeps summaries, not trajectories
+            sw.add_argument(p.option, default=None, help=f"{p.help} [default: {p.default_text}]")
     sw.add_argument(
         "--vary",
         action="append",
@@ -350,9 +316,9 @@ def _check_output(path: str) -> str:
 def _clean(args: argparse.Namespace) -> dict[str, object]:
     """Parse and validate every option; the messages use the API's names."""
     values: dict[str, object] = {}
-    for name, check in _CHECKS.items():
-        parse = _validate.parse_int if check is _validate.stride else _validate.parse_float
-        values[name] = check(name, parse(name, getattr(args, name)))
+    for name, p in PARAMETERS.items():
+        parse = _validate.parse_int if p.integer else _validate.parse_float
+        values[name] = p.check(name, parse(name, getattr(args, name)))
     if args.method not in METHODS:
         raise ValueError(f"--method must be one of {', '.join(METHODS)}; got {args.method!r}")
     values["options"] = _method_options(args)
@@ -511,7 +477,7 @@ def _simulate_system(args: argparse.Namespace, output: _Output) -> str:
     from lumped.network.one_mass import simulate_one_mass
 
     values = {
-        name: _CHECKS[name](name, parse(name, getattr(args, name)))
+        name: PARAMETERS[name].check(name, parse(name, getattr(args, name)))
         for name, parse in (
             ("t_end", _validate.parse_float),
             ("dt", _validate.parse_float),
@@ -605,14 +571,13 @@ def _sweep_spec(args: argparse.Namespace):  # noqa: ANN202 (a lumped.sweep.Sweep
     from lumped.sweep import SWEEP_METHODS, SweepSpec, check_size, vary_text
 
     varies = [vary_text(text) for text in args.vary]
-    given = {name: getattr(args, name) for name in _CHECKS if getattr(args, name, None) is not None}
+    given = {name: getattr(args, name) for name in PARAMETERS if getattr(args, name, None) is not None}
     for v in varies:
         if v.name in given:
-            raise ValueError(f"{_flag(v.name)} is also varied by --vary {v.name}; give one of the two")
-    defaults = {name: default for name, default, _ in _OPTIONS}
+            raise ValueError(f"{PARAMETERS[v.name].option} is also varied by --vary {v.name}; give one of the two")
     values = {
-        name: _CHECKS[name](name, _validate.parse_float(name, given.get(name, defaults[name])))
-        for name in _CHECKS
+        name: p.check(name, _validate.parse_float(name, given.get(name, p.default_text)))
+        for name, p in PARAMETERS.items()
         if name != "save_every"
     }
     options = _method_options(args) if args.method in METHODS else {}

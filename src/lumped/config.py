@@ -17,6 +17,9 @@ the values or raises :class:`ValueError` with the first of those lines, e.g.::
 
 The accepted ranges are the JSON schema ``config_schema.yaml`` shipped with
 the package, plus two checks a schema cannot state (:func:`problems`).  The
+keys that are single-mass parameters (``mass``, ``x0_small``, ...) take their
+range and unit from :data:`lumped.parameters.PARAMETERS`, as the command line
+and the sweep do (:func:`schema`).  The
 schema is checked by :func:`_violates`, which implements the few keywords it
 uses (:data:`SCHEMA_KEYWORDS`) rather than importing ``jsonschema``: with the
 notebook environment's format extras installed, ``import jsonschema`` compiles
@@ -36,6 +39,8 @@ from importlib.resources.abc import Traversable
 from pathlib import Path
 from typing import Any
 
+from lumped.parameters import PARAMETERS
+
 __all__ = ["load", "default", "check", "problems", "schema"]
 
 #: End-time keys: dt must be below each of them.
@@ -49,6 +54,10 @@ MAX_STEPS = 10**7
 #: The JSON-schema keywords :func:`_violates` implements, each as the 2020-12 draft defines it for numbers
 #: and strings; a schema with another keyword is refused (:func:`schema`).
 SCHEMA_KEYWORDS = frozenset({"type", "enum", "minimum", "maximum", "exclusiveMinimum", "$ref", "description"})
+
+#: The keyword of ``config_schema.yaml`` (not JSON schema's) that makes a property the entry of
+#: :data:`lumped.parameters.PARAMETERS` it names; :func:`schema` replaces it by that entry's rule.
+TABLE_KEYWORD = "parameter"
 
 #: The copy of config/config.yaml that setup.py puts into the built package.
 PACKAGED_CONFIG = "paper_config.yaml"
@@ -141,19 +150,37 @@ def _source(chosen: str | os.PathLike[str] | None) -> Path | Traversable:
 def schema() -> dict[str, Any]:
     """The JSON schema (draft 2020-12) of the configuration, from the package data.
 
+    A property ``{parameter: NAME}`` of ``config_schema.yaml`` becomes the
+    rule and the description of :data:`lumped.parameters.PARAMETERS` ``[NAME]``
+    (its :class:`~lumped.parameters.Range` and unit); keywords written beside
+    ``parameter`` replace the entry's.  What is returned is JSON schema alone.
+
     Raises
     ------
     ValueError
-        If a property or definition uses a keyword outside :data:`SCHEMA_KEYWORDS`.
+        If a property or definition uses a keyword outside :data:`SCHEMA_KEYWORDS`
+        (and :data:`TABLE_KEYWORD`), or names no parameter of the table.
     """
     import yaml
 
     doc = yaml.safe_load(files("lumped").joinpath("config_schema.yaml").read_text("utf-8"))
     for name, rule in {**doc["$defs"], **doc["properties"]}.items():
-        extra = set(rule) - SCHEMA_KEYWORDS
+        extra = set(rule) - SCHEMA_KEYWORDS - {TABLE_KEYWORD}
         if extra:
             raise ValueError(f"config_schema.yaml: {name} uses {sorted(extra)}, which lumped.config does not check")
+    doc["properties"] = {key: _from_table(key, rule) for key, rule in doc["properties"].items()}
     return doc
+
+
+def _from_table(key: str, rule: dict[str, Any]) -> dict[str, Any]:
+    """``rule`` with its :data:`TABLE_KEYWORD` replaced by the parameter's rule and description."""
+    if TABLE_KEYWORD not in rule:
+        return rule
+    entry = PARAMETERS.get(rule[TABLE_KEYWORD])
+    if entry is None or entry.range is None:
+        raise ValueError(f"config_schema.yaml: {key} names {rule[TABLE_KEYWORD]!r}, not a parameter with a range")
+    own = {k: v for k, v in rule.items() if k != TABLE_KEYWORD}
+    return {**entry.range.rule(), "description": entry.describe(), **own}
 
 
 def _violates(value: Any, rule: dict[str, Any], defs: dict[str, Any]) -> bool:

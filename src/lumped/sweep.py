@@ -50,7 +50,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped import _validate
+from lumped import _validate, parameters
 from lumped.batched import BATCH_KERNEL, BatchParameters, batch_backward_euler
 from lumped.results import Trajectory
 
@@ -69,19 +69,9 @@ __all__ = [
 
 SUMMARY_COLUMNS = ("rest_time", "rest_position", "max_abs_x", "stops")
 FORCED_COLUMNS = ("steady_amplitude", "stops_per_period")
-#: The per-row parameters and their defaults (those of ``python -m lumped simulate``).
-PARAMETERS = {
-    "mass": 1.0,
-    "stiffness": 100.0,
-    "gamma": 1.0,
-    "threshold": 1.0,
-    "x0": 0.0,
-    "v0": 0.0,
-    "force_amplitude": 0.0,
-    "force_omega": 0.0,
-    "force_phase": 0.0,
-    "force_until": math.inf,
-}
+#: The per-row parameters and their defaults (those of ``python -m lumped simulate``),
+#: from :data:`lumped.parameters.PARAMETERS`.
+PARAMETERS = {name: parameters.PARAMETERS[name].default for name in parameters.PER_ROW}
 #: Methods a sweep runs; backward Euler goes through the batched kernel.
 SWEEP_METHODS = ("backward-euler", "exact", "event-driven")
 #: Largest number of rows of a grid: the product of the sizes of the axes,
@@ -158,9 +148,8 @@ class Axis(NamedTuple):
 
 
 def _check_value(name: str, value: float) -> float:
-    from lumped.cli import _CHECKS  # the command line's table: one home for the ranges
-
-    return _CHECKS[name](name, value)  # type: ignore[return-value]
+    """``value`` through the check of ``name`` in :data:`lumped.parameters.PARAMETERS`."""
+    return parameters.PARAMETERS[name].check(name, value)  # type: ignore[return-value]
 
 
 def _check_values(name: str, data: np.ndarray) -> None:

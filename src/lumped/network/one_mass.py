@@ -4,7 +4,7 @@ Such a network is an :class:`~lumped.system.Oscillator` (the springs in
 parallel add their stiffnesses) and can be handed to the single-mass
 methods of :data:`lumped.driver.METHODS`; :func:`simulate_one_mass` does
 that and writes the result back as the network's
-:class:`~lumped.network.integrate.NetworkTrajectory`.
+:class:`~lumped.network.trajectory.NetworkTrajectory`.
 """
 
 from __future__ import annotations
@@ -16,6 +16,7 @@ import numpy as np
 from lumped.laws import Dashpot, HerschelBulkleyDashpot, LinearSpring
 from lumped.network.elements import GROUND, Bingham, Element, HerschelBulkley, LinearDashpot, Spring
 from lumped.network.model import Network
+from lumped.network.trajectory import NetworkTrajectory
 from lumped.results import Trajectory
 from lumped.system import Oscillator
 
@@ -71,14 +72,12 @@ def _orientation(el: Element) -> float:
     return 1.0 if el.between[0] == GROUND else -1.0
 
 
-def network_trajectory(net: Network, form: OneMass, tr: Trajectory, solver: str):  # noqa: ANN201
-    """The :class:`~lumped.network.integrate.NetworkTrajectory` of a one-mass trajectory.
+def network_trajectory(net: Network, form: OneMass, tr: Trajectory, solver: str) -> NetworkTrajectory:
+    """The :class:`~lumped.network.trajectory.NetworkTrajectory` of a one-mass trajectory.
 
     Each spring carries the share ``k_i / k`` of ``F_s`` (all of it, exactly,
     for one spring); tensions take the sign of each element's orientation.
     """
-    from lumped.network.integrate import NetworkTrajectory
-
     k = form.oscillator.stiffness
     zeros = np.zeros_like(tr.t)
     forces = {s.name: _orientation(s) * (s.stiffness / k) * tr.F_s for s in form.springs}
@@ -96,7 +95,7 @@ def network_trajectory(net: Network, form: OneMass, tr: Trajectory, solver: str)
 
 def simulate_one_mass(
     net: Network, t_end: float, dt: float, *, save_every: int = 1, method: str = "event-driven", **options: object
-):  # noqa: ANN201
+) -> NetworkTrajectory:
     """Run a one-mass network by a single-mass ``method`` of :data:`lumped.driver.METHODS`.
 
     ``options`` are the method's (``rtol`` for ``event-driven``).  Raises a
