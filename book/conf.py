@@ -1,8 +1,8 @@
 """Sphinx configuration of the tutorial's website (``snakemake --cores all site``).
 
 The stack is Jupyter Book 1's engine, Sphinx with myst-nb and the book theme,
-configured here directly (README.md, "Website", says why not its ``jupyter-book``
-command). ``scripts/site_source.py`` copies this file into the generated source
+configured here directly (``book/guide/website.md``, the site's page "The
+website", says why not its ``jupyter-book`` command). ``scripts/site_source.py`` copies this file into the generated source
 folder ``results/site-src/`` with ``_static/`` (the site's icon and one script)
 beside the pages it writes; ``rules/site.smk`` runs
 ``sphinx-build -W --keep-going`` on that folder.

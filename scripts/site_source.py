@@ -21,6 +21,9 @@ The folder holds
   (``paper/metadata.yaml``) and the PDF to download;
 * ``readme.md``: the whole README, its links to repository files turned into
   links to the site's pages where there is one and into plain text otherwise;
+* ``guide/index.md`` and the pages it lists: the guide and reference pages,
+  written by hand in ``book/guide/`` (the README names each) and copied with
+  the rest of ``book/``;
 * a copy of ``book/`` (``conf.py``, ``_static/`` with the icon and a script) and ``_static/mathjax/``: MathJax 3
   from the ``django-static-mathjax`` package, so the pages render mathematics
   with no network.
@@ -37,6 +40,8 @@ import yaml
 
 #: Repository files that the site shows as one of its pages (README links to them).
 SITE_PAGE_OF = {"figures/README.md": "figures/index.md", "paper/README.md": "article.md"}
+#: The folder of the site's source in the repository: ``book/<page>.md`` is the site's ``<page>.md``.
+BOOK = "book/"
 #: A Markdown inline link: [text](target).
 LINK = re.compile(r"\[([^\]]+)\]\(([^)\s]+)\)")
 #: The end of a caption's sentence: a full stop and a space, not after "eq", "eqs" or "Fig".
@@ -69,8 +74,9 @@ def split_caption(text: str) -> Caption:
 def rewrite_links(markdown: str, source: str) -> str:
     """Point the relative links of ``markdown`` (a repository file at ``source``) at site pages.
 
-    A link to a page of the site (``SITE_PAGE_OF``) becomes a link to that page
-    (relative to the site's root, where the rewritten file is placed); another
+    A link to a page of the site (``SITE_PAGE_OF``, or a Markdown page in
+    ``book/``) becomes a link to that page (relative to the site's root, where
+    the rewritten file is placed); another
     relative link, to a file the site does not hold, keeps only its text; links
     with a scheme (``https:``) and anchors are left as they are.
     """
@@ -80,7 +86,7 @@ def rewrite_links(markdown: str, source: str) -> str:
         if ":" in target or target.startswith("#"):
             return match.group(0)
         path = posixpath.normpath(posixpath.join(posixpath.dirname(source), target.split("#")[0]))
-        page = SITE_PAGE_OF.get(path)
+        page = SITE_PAGE_OF.get(path) or (path[len(BOOK) :] if path.startswith(BOOK) and path.endswith(".md") else None)
         return f"[{text}]({page})" if page else text
 
     return LINK.sub(replace, markdown)
@@ -104,15 +110,18 @@ def toctree(entries: list[str], caption: str = "", hidden: bool = False) -> str:
 
 
 def index_page(readme: str, notebooks: list[str]) -> str:
-    """The home page: the README's overview, then the tutorial, the figures, the article, the README."""
+    """The home page: the README's overview, then the tutorial, the guide, the figures, the article, the README."""
     return "\n".join(
         [
             "# lumped\n",
             rewrite_links(readme_overview(readme), "README.md"),
-            "The tutorial is meant to be read in order; each figure of the paper and of the tutorial",
-            "has a page with its caption and the notebook that draws it; the article replicates the",
-            "paper with the package. Everything here was built from the repository by `snakemake --cores all site`.\n",
+            "The tutorial is meant to be read in order; the guide and reference pages take one subject",
+            "each (set-up, the command line, system files, which method when, studies, benchmarks, ...);",
+            "each figure of the paper and of the tutorial has a page with its caption and the notebook",
+            "that draws it; the article replicates the paper with the package. Everything here was built",
+            "from the repository by `snakemake --cores all site`.\n",
             toctree([f"tutorial/{name}" for name in notebooks], caption="Tutorial"),
+            toctree(["guide/index"], caption="Guide and reference"),
             toctree(["figures/index", "article", "readme"], caption="Figures, article and README"),
         ]
     )
@@ -222,7 +231,12 @@ def write_source(
     paper_stems = [s for stems in notebook_figures.values() for s in stems if s.startswith("fig")]
     (out / "article.md").write_text(article_page(metadata, paper_stems), encoding="utf-8")
     shutil.copy(root / "paper" / "paper.pdf", out / "paper.pdf")
-    return docs
+    return docs + guide_pages(root / "book")
+
+
+def guide_pages(book: Path) -> list[str]:
+    """The document names of the hand-written pages in ``book/guide/`` (copied with ``book/``)."""
+    return sorted(f"guide/{page.stem}" for page in (book / "guide").glob("*.md"))
 
 
 def write_figures(

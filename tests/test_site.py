@@ -203,12 +203,13 @@ def visits(site, server, browser) -> dict[str, Visit]:
 
 
 def test_the_site_has_every_page_the_pipeline_made(site):
-    """A page per executed notebook and per figure, with the index, article and README."""
+    """A page per executed notebook, per figure and per guide page (book/guide/), with the index, article and README."""
     pages = set(site_pages())
     notebooks = {f"tutorial/{p.stem}.html" for p in (ROOT / "results" / "notebooks").glob("*.ipynb")}
     figures = {f"figures/{p.stem}.html" for p in (ROOT / "figures").glob("*.png")}
-    assert notebooks and figures
-    missing = (notebooks | figures | {"index.html", "article.html", "readme.html", "search.html"}) - pages
+    guide = {f"guide/{p.stem}.html" for p in (ROOT / "book" / "guide").glob("*.md")}
+    assert notebooks and figures and guide
+    missing = (notebooks | figures | guide | {"index.html", "article.html", "readme.html", "search.html"}) - pages
     assert missing == set()
 
 

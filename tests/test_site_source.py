@@ -79,6 +79,8 @@ def test_a_sentence_does_not_end_at_an_equation_number():
         ("README.md", "[setup.py](setup.py) and [x](src/lumped/laws.py)", "setup.py and x"),
         ("README.md", "[home](https://example.org/lumped)", "[home](https://example.org/lumped)"),
         ("README.md", "[below](#the-package)", "[below](#the-package)"),
+        ("README.md", "[`book/guide/cli.md`](book/guide/cli.md)", "[`book/guide/cli.md`](guide/cli.md)"),
+        ("README.md", "[conf](book/conf.py)", "conf"),
     ],
 )
 def test_links_point_at_site_pages_or_become_text(source, markdown, expected):
@@ -138,3 +140,28 @@ def test_a_new_notebook_and_figure_get_pages_without_an_edit(tmp_path):
         out / "readme.md"
     ).read_text() == "# README\n\nThe overview.\n\n## Set-up\n\nSee [figures](figures/index.md).\n"
     assert (out / "_static" / "mathjax" / "tex-chtml.js").is_file() and (out / "conf.py").is_file()
+
+
+GUIDE = sorted((ROOT / "book" / "guide").glob("*.md"))
+
+
+def test_the_guide_index_lists_every_guide_page_once():
+    """book/guide/index.md's toctree names each page of book/guide/ (Sphinx -W refuses a page in no toctree)."""
+    index = (ROOT / "book" / "guide" / "index.md").read_text(encoding="utf-8")
+    listed = re.search(r"```\{toctree\}\n(?::.*\n)*\n(.*?)```", index, flags=re.DOTALL).group(1).split()
+    assert sorted(listed) == sorted(p.stem for p in GUIDE if p.stem != "index")
+
+
+def test_the_guide_pages_are_documents_of_the_site():
+    """write_source returns the guide's pages with the rest, and the home page's toctree reaches the guide."""
+    assert S.guide_pages(ROOT / "book") == sorted(f"guide/{p.stem}" for p in GUIDE)
+    assert "guide/index" in S.index_page("# lumped\n\nOverview.\n", ["01_first"])
+
+
+@pytest.mark.parametrize("page", GUIDE, ids=lambda p: p.stem)
+def test_a_guide_page_links_only_to_pages_of_the_site(page):
+    """A relative link of a guide page names a page of the guide, or a page the site writes (figures, article)."""
+    links = re.findall(r"\]\(([^)\s]+)\)", page.read_text(encoding="utf-8"))
+    written = {"../figures/index.md", "../article.md"}
+    relative = [link.split("#")[0] for link in links if ":" not in link and not link.startswith("#")]
+    assert [link for link in relative if link not in written and not (page.parent / link).is_file()] == []
