@@ -8,8 +8,7 @@ accuracy study's JSON, the text outputs of every executed notebook, and the
 rows of the sweep the benchmark times (``python -m lumped sweep --vary
 x0=-1:1:20001 --t-end 4 --dt 1e-4``, run here into a temporary file).
 
-The hashes hold on one machine and environment (README, *What is
-reproducible, and to what*): compare records made on the same machine.
+The hashes hold on one machine and environment (book/guide/reproducibility.md): compare records made on the same machine.
 
 Examples::
 

@@ -1,7 +1,7 @@
 """The cluster path (issue 12, part 4): profiles/cluster and scripts/slurm_local.sh.
 
 SLURM itself is not run here: scripts/slurm_local.sh does that on a machine
-where it may install and start daemons (README, "On a cluster").  These tests
+where it may install and start daemons (book/guide/cluster.md).  These tests
 check what can be checked without it: the profile's values and the claims its
 comments make, a dry run through the profile with the executor plugin (the
 jobs are the study's chunks, with the profile's resources), and the script's

@@ -144,8 +144,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--system",
         default=None,
         metavar="FILE.toml",
-        help="a network of masses and elements described in a TOML file (see the "
-        "README, Networks); only --t-end, --dt, --save-every, --method, --rtol, --output go with it "
+        help="a network of masses and elements described in a TOML file (see "
+        "book/guide/systems.md, example examples/figure3.toml); only --t-end, --dt, --save-every, --method, --rtol, --output go with it "
         "(a method other than backward-euler needs one mass)",
     )
     sim.add_argument("--method", default="backward-euler", metavar="{" + ",".join(METHODS) + "}", help=_method_help())
@@ -178,8 +178,8 @@ counts, checked before any value), more than {memory:.0f} GiB of memory by the
 estimate (some 300 to 500 bytes a row), an output file that could exceed
 {file:.0f} GiB ({csv} bytes a value in .csv, {npz} in .npz), or more than {seconds:.0f} s by
 the estimate (steps, runs and their events, writing the file); the message
-states the estimate.  Split a larger grid into several sweeps.  See the README,
-Sweeps, for the definitions."""
+states the estimate.  Split a larger grid into several sweeps.  See book/guide/sweeps.md
+(the website's Sweeps page) for the definitions."""
 
 
 def _add_sweep(sub: argparse._SubParsersAction) -> None:

@@ -1,6 +1,6 @@
 """System files: a network written in TOML (read with :mod:`tomllib`).
 
-The format (README, "Networks"): ``[[mass]]`` tables with ``name``, ``mass``,
+The format (book/guide/systems.md, the website's Systems page): ``[[mass]]`` tables with ``name``, ``mass``,
 ``x0``, ``v0``; ``[[element]]`` tables with ``name``, ``kind``, ``between``
 and the kind's parameters; ``[[force]]`` tables with ``on``, ``amplitude``,
 ``omega``, ``phase``, ``until``.  ``x0``, ``v0``, ``phase`` default to 0 and
@@ -33,7 +33,7 @@ from lumped.network.model import Load, Mass, Network, check_count
 __all__ = ["MAX_FILE_BYTES", "load_system", "parse_system"]
 
 #: Largest system file read (bytes of UTF-8, or characters of ``text``): a
-#: network of the largest size written as in the README takes about 7 MB.
+#: network of the largest size written as in book/guide/systems.md takes about 7 MB.
 MAX_FILE_BYTES = 16 * 1024**2
 _COUNTED = {"mass": "masses", "element": "elements", "force": "loads"}
 

@@ -64,7 +64,7 @@ class NetworkTrajectory:
     iterations: int
 
     def columns(self, suffix: str) -> dict[str, np.ndarray]:
-        """The output arrays: ``.npz`` names or ``.csv`` columns (see the README)."""
+        """The output arrays: ``.npz`` names or ``.csv`` columns (see book/guide/systems.md)."""
         net = self.network
         if suffix == ".npz":
             return {
