@@ -296,7 +296,7 @@ class BinghamDashpot(Dashpot):
         return StepBound(self.viscosity * force, "viscous term |c F~|", "gamma")
 
 
-def sticks(predictor: float, low: float, high: float) -> bool:
+def sticks(predictor: float | np.ndarray, low: float | np.ndarray, high: float | np.ndarray) -> bool | np.ndarray:
     """The stick test: does the closed band ``[low, high]`` hold the predictor?
 
     Algorithm 1's line 5 is this test on the band ``[-mu_s N_f, mu_s N_f]``,
@@ -316,22 +316,24 @@ def sticks(predictor: float, low: float, high: float) -> bool:
 
     Returns
     -------
-    bool
-        ``low <= predictor <= high`` (``False`` for a NaN predictor).
+    bool or ndarray of bool
+        ``low <= predictor <= high``, elementwise (``False`` for a NaN predictor).
 
     Notes
     -----
-    This is the one Python definition; the compiled loops repeat it in C:
-    ``fabs(predictor) <= tau`` in ``_kernel.c`` and (in vector lanes)
-    ``_batch_lanes.h``, ``np.abs(predictor) <= tau`` in the NumPy loop of
-    :mod:`lumped.batched` (all equal to ``-tau <= predictor <= tau``: negation
-    and ``abs`` are exact), and ``mode_of`` in ``_network_kernel.c``.
+    This is the one Python definition; the one C definition is ``sticks1``
+    (and its vector-lane form ``sticks<LANES>``) in ``_stick.h``, which
+    ``_kernel.c`` (through ``bingham_corrector1``, this module's
+    :func:`bingham_corrector` in C), ``_batch_lanes.h`` and ``mode_of`` in
+    ``_network_kernel.c`` include; the NumPy loop of :mod:`lumped.batched`
+    calls this function on arrays (elementwise; it equals ``|F~| <= tau`` on
+    the band ``[-tau, tau]``: negation and ``abs`` are exact).
     ``tests/test_band_edge.py`` releases a mass on both edges of the band
     through every one of these paths and requires each to stick;
     ``tests/test_algorithm1.py`` and ``tests/test_network_kernel.py`` keep
     the C loops equal to the Python ones.
     """
-    return low <= predictor <= high
+    return (low <= predictor) & (predictor <= high)
 
 
 def bingham_corrector(predictor: float, eta: float, threshold: float, viscosity: float) -> tuple[float, float]:
