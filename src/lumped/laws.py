@@ -293,7 +293,8 @@ class BinghamDashpot(Dashpot):
 
     def step_bound(self, force: float, speed: float, eta: float) -> StepBound:
         """``c |F~|``, the largest product of Algorithm 1's line 8 (:func:`bingham_corrector`)."""
-        return StepBound(self.viscosity * force, "viscous term |c F~|", "gamma")
+        with np.errstate(over="ignore", invalid="ignore"):  # c = 0 with force = inf: nan, refused as before
+            return StepBound(self.viscosity * force, "viscous term |c F~|", "gamma")
 
 
 def sticks(predictor: float | np.ndarray, low: float | np.ndarray, high: float | np.ndarray) -> bool | np.ndarray:

@@ -114,7 +114,8 @@ class PapanastasiouDashpot(Dashpot):
         Every other product of the step is at most ``|F~|``: ``(c + eta) w
         <= g(w) + |F~|`` on the iterates, which stay below the root.
         """
-        slope, viscous = self.yield_force / self.eps + self.viscosity + eta, self.viscosity * speed
+        with np.errstate(over="ignore"):
+            slope, viscous = self.yield_force / self.eps + self.viscosity + eta, self.viscosity * speed
         name = "eps" if slope >= viscous else "gamma"
         return StepBound(max(slope, viscous), "viscous term of the regularised Bingham step", name)
 
