@@ -51,8 +51,8 @@ setup(
             optional=True,
         )
         for name, depends in (
-            ("_kernel", ["src/lumped/_binding_checks.h", "src/lumped/_sine.h"]),
-            ("_network_kernel", ["src/lumped/_binding_checks.h"]),
+            ("_kernel", ["src/lumped/_binding_checks.h", "src/lumped/_sine.h", "src/lumped/_stick.h"]),
+            ("_network_kernel", ["src/lumped/_binding_checks.h", "src/lumped/_stick.h"]),
         )
     ]
     + [
@@ -61,7 +61,7 @@ setup(
         Extension(
             "lumped._batch_kernel",
             ["src/lumped/_batch_kernel.c"],
-            depends=["src/lumped/_batch_lanes.h", "src/lumped/_sine.h"],  # its vector loop (once per instruction set), the sine
+            depends=["src/lumped/_batch_lanes.h", "src/lumped/_sine.h", "src/lumped/_stick.h"],  # its vector loop (once per instruction set), the sine
             extra_compile_args=["-O3", "-fopenmp", "-ffp-contract=off", "-fno-fast-math", "-Wno-psabi"],
             extra_link_args=["-fopenmp"],
             optional=True,

@@ -146,3 +146,32 @@ def test_herschel_bulkley_in_a_network_of_several_masses_is_an_element_like_any_
     )
     tr = simulate_network(net, 0.5, 1e-3)
     assert tr.solver == "python" and np.isfinite(tr.x).all()  # not piecewise linear: the Python step
+
+
+# The step's own magnitudes (the law's contract, point 9).  With m = 1 kg,
+# k = 100 N/m, dt = 1e-3 s and v0 = 1e110 m/s the predictor reaches about
+# (m/dt) v0 = 1e113 N; with K = 1e200 the products K F~ (n = 1) and 4 K r
+# (n = 2) are about 1e313 and overflow.  Before the law had its own bound,
+# check_magnitudes read its viscosity as 0: the n = 2 run gave a wrong answer
+# without a word (sqrt(inf) made the speed 0 and the force the threshold), the
+# n = 1 run overflowed in its first step.
+@pytest.mark.parametrize("n", [1.0, 2.0, 0.5, 3.7])
+def test_a_run_whose_viscous_term_would_overflow_is_refused_up_front(n):
+    osc = L.Oscillator(1.0, L.LinearSpring(100.0), L.HerschelBulkleyDashpot(1.0, 1e200, n))
+    for run in (L.backward_euler, L.theta_method, L.event_capturing):
+        with pytest.raises(ValueError, match=r"^consistency: the run could reach viscous term"):
+            run(osc, 0.003, 1e-3, v0=1e110)
+
+
+@pytest.mark.parametrize("n", EXPONENTS)
+def test_the_bound_does_not_refuse_the_run_next_to_it(n):
+    # the same law with K = 1 and v0 = 1e90: every product is at most about
+    # 2^n 1e93 or K v^n = 1e(90 n) (n <= 3.7 gives 1e333 only for the slip force
+    # at n = 3.7, so that one is refused and the others pass)
+    osc = L.Oscillator(1.0, L.LinearSpring(100.0), L.HerschelBulkleyDashpot(1.0, 1.0, n))
+    if 90 * n > 300:
+        with pytest.raises(ValueError, match=r"^consistency: "):
+            L.backward_euler(osc, 0.003, 1e-3, v0=1e90)
+        return
+    run = L.backward_euler(osc, 0.003, 1e-3, v0=1e90)
+    assert np.all(np.isfinite(run.F_d)) and np.all(np.isfinite(run.v))

@@ -26,6 +26,7 @@ from lumped.laws import (
     MonotoneDashpot,
     coulomb,
 )
+from lumped.laws_regularised import PapanastasiouDashpot
 from lumped.results import COLUMNS, EnergyBalance, Trajectory
 from lumped.driver import METHODS, simulate
 from lumped.schemes import CapturedRun, event_capturing, theta_method
@@ -47,6 +48,7 @@ __all__ = [
     "METHODS",
     "MonotoneDashpot",
     "Oscillator",
+    "PapanastasiouDashpot",
     "Phase",
     "SwitchedSine",
     "Trajectory",

@@ -10,6 +10,9 @@
 #define SINE_LANES LANES
 #include "_sine.h"
 #undef SINE_LANES
+#define STICK_LANES LANES
+#include "_stick.h" /* sticks<LANES>: the stick test of every kernel */
+#undef STICK_LANES
 #define vd PASTE(vd, LANES)
 #define vl PASTE(vl, LANES)
 #define get PASTE(get, LANES)
@@ -76,7 +79,7 @@ INLINE void step(lane_state *q, const Block *b, Py_ssize_t i, double s, int forc
     predictor = predictor - q->fs;
     const vd signed_tau = (vd)(((vl)tau & ~SIGN) | ((vl)predictor & SIGN));
     const vd slip = (predictor - signed_tau) / get(b->eta_c + i); /* lines 8-9 */
-    const vd v = pick(vabs(predictor) <= tau, zero, slip);          /* lines 5-6: stick */
+    const vd v = pick(PASTE(sticks, LANES)(predictor, -tau, tau), zero, slip); /* lines 5-6: stick (_stick.h) */
     const vd fs = q->fs + get(b->dtk + i) * v;                       /* line 11, eq. (14) */
     const vl at_rest = v == zero, stop = at_rest & q->moving;
     const vd afs = vabs(fs);

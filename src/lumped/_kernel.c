@@ -24,6 +24,7 @@
 #include "_sine.h" /* the project's sine, one lane: project_sine1 */
 
 #include "_binding_checks.h"
+#include "_stick.h" /* the stick test and the corrector, shared by every kernel */
 
 /* The arguments' checks (see _binding_checks.h): -1 with ValueError if one is bad. */
 static int check_block(held_t *h, const double *p, Py_ssize_t n_first, Py_ssize_t n_last, Py_ssize_t n_steps,
@@ -81,15 +82,7 @@ static PyObject *bingham_block(PyObject *self, PyObject *args) {
         else if (t <= until) f = amp * project_sine1((sine_vd1){omega * t + phase})[0];
         else f = 0.0;
         const double predictor = (m / dt) * v + f - f_s;
-        /* corrector: the C copy of lumped.laws.bingham_corrector */
-        if (fabs(predictor) <= tau) {
-            v = 0.0;
-            f_d = predictor;
-        } else {
-            const double signed_tau = copysign(tau, predictor);
-            f_d = (eta * signed_tau + c * predictor) / (eta + c);
-            v = (predictor - signed_tau) / (eta + c);
-        }
+        bingham_corrector1(predictor, eta, tau, c, &f_d, &v); /* lines 5-10, _stick.h */
         f_s = f_s + dt * k * v;
         if (!(isfinite(v) && isfinite(f_d) && isfinite(f_s))) {
             cnt[2] = n;

@@ -30,6 +30,7 @@
 #include <string.h>
 
 #include "_binding_checks.h"
+#include "_stick.h" /* sticks1: the stick test of every kernel */
 
 #define MAX_PIECES 5
 enum { SPRING = 0, STRING = 1, BINGHAM = 2, MAXWELL = 3, DASHPOT = 4, LOCKING = 5 };
@@ -125,13 +126,13 @@ static double next_state(int64_t kind, const double *p, double s, double dt, dou
 }
 
 /* step._mode: the piece whose range of z = f + sigma w holds z.  A rigid
- * piece holds the closed band [lo + sigma a, hi + sigma a]: the C copy of
- * lumped.laws.sticks, Algorithm 1's |F~| <= tau, so a Bingham element sticks
+ * piece holds the closed band [lo + sigma a, hi + sigma a]: sticks1 of
+ * _stick.h (lumped.laws.sticks in C), Algorithm 1's test, so a Bingham element sticks
  * on both edges of its band (tests/test_band_edge.py runs both steps there);
  * a rigid piece of zero width (a threshold 0) is never taken. */
 static int mode_of(const piece *g, int n, double z, double sigma) {
     for (int k = 0; k < n; k++)
-        if (g[k].rigid && g[k].lo < g[k].hi && g[k].lo + sigma * g[k].a <= z && z <= g[k].hi + sigma * g[k].a)
+        if (g[k].rigid && g[k].lo < g[k].hi && sticks1(z, g[k].lo + sigma * g[k].a, g[k].hi + sigma * g[k].a))
             return k;
     for (int k = 0; k < n - 1; k++)
         if (!g[k].rigid && z <= g[k].a + (g[k].b + sigma) * g[k].hi) return k;

@@ -59,7 +59,7 @@ from lumped.driver import METHODS
 from lumped.event_driven import Event, ExactSolution, solve_exact
 from lumped.event_integration import RTOL_RANGE, solve_event_driven
 from lumped.forcing import SwitchedSine
-from lumped.laws import BinghamDashpot, HerschelBulkleyDashpot, LinearSpring
+from lumped.laws import HerschelBulkleyDashpot, LinearSpring
 from lumped.replication import clean
 from lumped.results import Trajectory
 from lumped.schemes import event_capturing
@@ -135,7 +135,7 @@ class Case:
     @property
     def closed_form(self) -> bool:
         """Whether ``exact`` applies (a Bingham or Coulomb law)."""
-        return isinstance(self.oscillator.dashpot, BinghamDashpot)
+        return self.oscillator.dashpot.bingham_form() is not None  # the law's contract, point 6
 
     def kwargs(self) -> dict[str, Any]:
         """``x0`` and ``force`` as the solvers take them."""

@@ -31,6 +31,7 @@ import numpy as np
 
 from lumped import _validate
 from lumped._sine import sin_array
+from lumped.laws import sticks
 
 __all__ = ["BatchParameters", "BatchSummary", "batch_backward_euler", "BATCH_KERNEL"]
 
@@ -124,7 +125,7 @@ def _numpy_batch(
         if forced.any():
             f = np.where(forced & (t <= until), amp * sin_array(omega * t + phase), 0.0)
         predictor = mdt * v + f - fs  # line 3, eq. (15b)
-        v_new = np.where(np.abs(predictor) <= tau, 0.0, (predictor - np.copysign(tau, predictor)) / eta_c)
+        v_new = np.where(sticks(predictor, -tau, tau), 0.0, (predictor - np.copysign(tau, predictor)) / eta_c)
         fs = fs + dtk * v_new  # line 11, eq. (14)
         stop = (v_new == 0.0) & (v != 0.0)
         stops = stops + stop

@@ -41,7 +41,7 @@ import numpy as np
 from lumped import _validate
 from lumped._sine import MAX_ARGUMENT
 from lumped.forcing import SwitchedSine
-from lumped.laws import BinghamDashpot, coulomb
+from lumped.laws import coulomb
 from lumped.results import COLUMNS, Trajectory
 from lumped.system import MAGNITUDE_LIMIT, Oscillator, check_magnitudes
 
@@ -621,7 +621,7 @@ class _Builder:
     def motion(self, t: float, x: float, v: float, direction: int, forcing: tuple[float, float, float]) -> SlipMotion:
         """The slip motion from ``(t, x, v)``: ``first_stop(t_lim, direction)``, ``state(t)``, ``s_tau``."""
         P, w, ph = forcing
-        c = self.osc.dashpot.viscosity
+        c = self.osc.dashpot.bingham_form().viscosity
         return SlipMotion(self.m, c, self.k, direction * self.tau, P, w, ph, t, x, v)
 
     def slip(
@@ -693,7 +693,7 @@ def _event_estimate(osc: Oscillator, force: SwitchedSine, t_end: float, x0: floa
     ``(t_end - t_on) q/pi + 1`` half-cycles fit before ``t_end``.
     """
     m, k = osc.mass, osc.stiffness
-    modes = _modes(m, osc.dashpot.viscosity, k)
+    modes = _modes(m, osc.dashpot.bingham_form().viscosity, k)
     P, w, _ = (0.0, 0.0, 0.0) if force.is_zero else force.canonical()
     t_on = min(t_end, force.until) if P else 0.0
     forced = t_on * (modes.q + 2 * w) / math.pi + 2 if P else 0.0
@@ -719,7 +719,7 @@ def _check_inputs(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float,
     |F| + |F_s| + tau``, so ``c|v|`` never exceeds ``max(c|v0|, max|G|)``.
     """
     check_scales(osc, force, t_end, x0, v0)
-    if not osc.dashpot.viscosity * abs(v0) <= MAGNITUDE_LIMIT:
+    if not osc.dashpot.bingham_form().viscosity * abs(v0) <= MAGNITUDE_LIMIT:
         raise ValueError(f"v0: the initial viscous force |v0|/gamma exceeds {MAGNITUDE_LIMIT:.0e} N; lower v0")
     estimate = _event_estimate(osc, force, t_end, x0, v0)
     if estimate > max_events:
@@ -786,7 +786,7 @@ def solve_exact(
     """
     if not isinstance(oscillator, Oscillator):
         raise ValueError(f"oscillator must be an Oscillator, got {type(oscillator).__name__}")
-    if not isinstance(oscillator.dashpot, BinghamDashpot):
+    if oscillator.dashpot.bingham_form() is None:  # the closed forms (the law's contract, point 6)
         raise ValueError("dashpot: the exact solver needs a BinghamDashpot (any gamma)")
     if force is not None and not isinstance(force, SwitchedSine):
         raise ValueError("force: the exact solver needs a SwitchedSine or None")

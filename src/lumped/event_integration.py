@@ -59,7 +59,7 @@ from lumped._brent import brentq
 from lumped._dop853 import Dop853, Piece, PiecewiseDense, piece_value
 from lumped.event_driven import ExactSolution, _Builder, check_scales
 from lumped.forcing import SwitchedSine
-from lumped.laws import BinghamDashpot, Dashpot, HerschelBulkleyDashpot
+from lumped.laws import Dashpot
 from lumped.system import MAGNITUDE_LIMIT, Oscillator
 
 __all__ = [
@@ -112,17 +112,8 @@ class _Budget:
 
 
 def viscous_part(law: Dashpot) -> Callable[[float], float]:
-    """``F_d(v) - sgn(v) tau`` (N) as a fast scalar function, continuous through ``v = 0``."""
-    if isinstance(law, BinghamDashpot):
-        c = law.viscosity
-        return lambda v: c * v
-    if isinstance(law, HerschelBulkleyDashpot):
-        K, n = law.consistency, law.exponent
-        if n == 1.0:
-            return lambda v: K * v  # the Bingham form, so that n = 1 gives its numbers
-        return lambda v: math.copysign(K * abs(v) ** n, v)
-    tau = law.threshold
-    return lambda v: float(law.slip_force(v)) - math.copysign(tau, v) if v != 0 else 0.0
+    """``F_d(v) - sgn(v) tau`` (N) as a fast scalar function, continuous through ``v = 0`` (the law's contract, point 7)."""
+    return law.viscous_part()
 
 
 @dataclass(frozen=True)

@@ -36,6 +36,8 @@ __all__ = [
     "MONOTONE_SAMPLE",
     "HerschelBulkleyDashpot",
     "DashpotState",
+    "BinghamForm",
+    "StepBound",
     "coulomb",
 ]
 
@@ -75,6 +77,26 @@ class DashpotState(NamedTuple):
     velocity: float
 
 
+class BinghamForm(NamedTuple):
+    """A law that *is* the Bingham graph of eq. (6): ``tau`` (N) and ``c = 1/gamma`` (N s/m, ``0`` for Coulomb)."""
+
+    threshold: float
+    viscosity: float
+
+
+class StepBound(NamedTuple):
+    """A bound on what a law's step forms (contract point 9).
+
+    ``value`` (``inf`` if it may overflow) is compared with
+    :data:`lumped.system.MAGNITUDE_LIMIT`; ``term`` names it in the message
+    and ``parameter`` is the law's argument blamed when it alone is too large.
+    """
+
+    value: float
+    term: str
+    parameter: str
+
+
 class Dashpot(ABC):
     """A dashpot given by its velocity-force graph ``v = phi(F_d)``.
 
@@ -96,6 +118,35 @@ class Dashpot(ABC):
        vectorised, ``0`` at ``v = 0``.  The default inverts the graph point by
        point through ``force_interval``; a law with a closed form should
        override it (the event-driven integrator calls it at every stage).
+
+    What a solver may ask of a law beyond its graph is a method here, with a
+    generic default that any law meeting points 1 to 4 satisfies; a law
+    overrides one only to be faster or more exact.  No solver asks a law for
+    its class.
+
+    6. ``bingham_form()``: the :class:`BinghamForm` ``(tau, c)`` if the law is
+       the Bingham graph of eq. (6), else ``None`` (the default).  Only such a
+       law has the closed forms: Algorithm 1's compiled loop
+       (:mod:`lumped.timestepping`), the exact solution
+       (:mod:`lumped.event_driven`) and the textbook ODE
+       (:mod:`lumped.textbook`).  Every other method needs only points 1 to 5.
+    7. ``viscous_part()``: ``v -> F_d(v) - sgn(v) tau``, the slip force
+       without its static part, as a scalar function continuous through
+       ``v = 0`` (the event-driven integrator's right-hand side).  The default
+       subtracts from :meth:`slip_force`.
+    8. ``band_free_resolvent()``: the resolvent ``(u, v)`` of the graph with
+       its band cut out, ``psi(u) = phi(u + sgn(u) tau)``, as a function of
+       ``(predictor, eta)`` (the event-capturing scheme's slip step).  The
+       default is the bracketed root of :class:`MonotoneDashpot` on ``psi``.
+    9. ``step_bound(force, speed, eta)``: a :class:`StepBound` on the
+       magnitudes the law's resolvent forms for predictors ``|F~| <= force``
+       and its slip force at speeds up to ``speed``, beyond those forces
+       themselves (:func:`lumped.system.check_magnitudes` refuses a run whose
+       bound passes :data:`lumped.system.MAGNITUDE_LIMIT`).  The default,
+       ``0``, says it forms none: true of a resolvent whose root lies between
+       ``0`` and ``F~`` and whose law is checked finite where it is called
+       (:class:`MonotoneDashpot`); a law that multiplies (``c F~``, ``K
+       |v|^n``) overrides it.
 
     The public :meth:`resolvent` checks its arguments and calls the hook.
     """
@@ -123,6 +174,39 @@ class Dashpot(ABC):
         if np.ndim(velocity) == 0:
             return one(float(velocity))
         return np.array([one(float(v)) for v in np.ravel(velocity)]).reshape(np.shape(velocity))
+
+    def bingham_form(self) -> BinghamForm | None:
+        """``(tau, c)`` if this law is the Bingham graph of eq. (6), else ``None`` (point 6)."""
+        return None
+
+    def viscous_part(self) -> Callable[[float], float]:
+        """``v -> F_d(v) - sgn(v) tau`` (N) as a scalar function, ``0`` at ``v = 0`` (point 7)."""
+        tau, slip = self.threshold, self.slip_force
+        return lambda v: float(slip(v)) - math.copysign(tau, v) if v != 0 else 0.0
+
+    def band_free_resolvent(self) -> Callable[[float, float], DashpotState]:
+        """Resolvent ``(u, v)`` of ``u + eta psi(u) = predictor``, ``psi`` the law without its band (point 8).
+
+        Notes
+        -----
+        In slip with direction ``s`` the dashpot force is ``F_d = s tau + u``
+        with ``v = psi(u) = phi(u + sgn(u) tau)`` (``psi(0) = 0``): the graph
+        with the band ``[-tau, tau]`` cut out.  ``psi`` is single valued,
+        continuous and monotone, and it continues the slip branch through
+        ``v = 0`` (the root search of a stop in :func:`lumped.schemes.event_capturing`
+        evaluates the step past it).  The default is the bracketed root of
+        :class:`MonotoneDashpot` on ``psi``.
+        """
+        tau, phi = self.threshold, self.velocity
+
+        def psi(u: float) -> float:
+            return float(phi(u + math.copysign(tau, u))) if u != 0 else 0.0
+
+        return MonotoneDashpot(psi)._resolvent_impl
+
+    def step_bound(self, force: float, speed: float, eta: float) -> StepBound:
+        """Bound on the magnitudes the law's step forms for ``|F~| <= force`` (N), ``|v| <= speed`` (m/s) (point 9)."""
+        return StepBound(0.0, "viscous term of the dashpot law", "dashpot")
 
     def resolvent(self, predictor: float, eta: float) -> DashpotState:
         """Implicit dashpot step: ``F_d = (I + eta*phi)^{-1}(predictor)``.
@@ -195,8 +279,25 @@ class BinghamDashpot(Dashpot):
     def _resolvent_impl(self, predictor: float, eta: float) -> DashpotState:
         return DashpotState(*bingham_corrector(predictor, eta, self.threshold, self.viscosity))
 
+    def bingham_form(self) -> BinghamForm:
+        return BinghamForm(self.threshold, self.viscosity)
 
-def sticks(predictor: float, low: float, high: float) -> bool:
+    def viscous_part(self) -> Callable[[float], float]:
+        c = self.viscosity
+        return lambda v: c * v
+
+    def band_free_resolvent(self) -> Callable[[float, float], DashpotState]:
+        """``psi(u) = gamma u``: the corrector with no band (closed form, finite at ``gamma = inf``)."""
+        c = self.viscosity
+        return lambda p, eta: DashpotState(*bingham_corrector(p, eta, 0.0, c))
+
+    def step_bound(self, force: float, speed: float, eta: float) -> StepBound:
+        """``c |F~|``, the largest product of Algorithm 1's line 8 (:func:`bingham_corrector`)."""
+        with np.errstate(over="ignore", invalid="ignore"):  # c = 0 with force = inf: nan, refused as before
+            return StepBound(self.viscosity * force, "viscous term |c F~|", "gamma")
+
+
+def sticks(predictor: float | np.ndarray, low: float | np.ndarray, high: float | np.ndarray) -> bool | np.ndarray:
     """The stick test: does the closed band ``[low, high]`` hold the predictor?
 
     Algorithm 1's line 5 is this test on the band ``[-mu_s N_f, mu_s N_f]``,
@@ -216,22 +317,24 @@ def sticks(predictor: float, low: float, high: float) -> bool:
 
     Returns
     -------
-    bool
-        ``low <= predictor <= high`` (``False`` for a NaN predictor).
+    bool or ndarray of bool
+        ``low <= predictor <= high``, elementwise (``False`` for a NaN predictor).
 
     Notes
     -----
-    This is the one Python definition; the compiled loops repeat it in C:
-    ``fabs(predictor) <= tau`` in ``_kernel.c`` and (in vector lanes)
-    ``_batch_lanes.h``, ``np.abs(predictor) <= tau`` in the NumPy loop of
-    :mod:`lumped.batched` (all equal to ``-tau <= predictor <= tau``: negation
-    and ``abs`` are exact), and ``mode_of`` in ``_network_kernel.c``.
+    This is the one Python definition; the one C definition is ``sticks1``
+    (and its vector-lane form ``sticks<LANES>``) in ``_stick.h``, which
+    ``_kernel.c`` (through ``bingham_corrector1``, this module's
+    :func:`bingham_corrector` in C), ``_batch_lanes.h`` and ``mode_of`` in
+    ``_network_kernel.c`` include; the NumPy loop of :mod:`lumped.batched`
+    calls this function on arrays (elementwise; it equals ``|F~| <= tau`` on
+    the band ``[-tau, tau]``: negation and ``abs`` are exact).
     ``tests/test_band_edge.py`` releases a mass on both edges of the band
     through every one of these paths and requires each to stick;
     ``tests/test_algorithm1.py`` and ``tests/test_network_kernel.py`` keep
     the C loops equal to the Python ones.
     """
-    return low <= predictor <= high
+    return (low <= predictor) & (predictor <= high)
 
 
 def bingham_corrector(predictor: float, eta: float, threshold: float, viscosity: float) -> tuple[float, float]:
@@ -475,6 +578,37 @@ class HerschelBulkleyDashpot(Dashpot):
         # the viscous part is small against F~, and the network's iteration
         # compares forces to a few ulps (lumped.network.step).
         return DashpotState(s * (tau + K * w**n), s * w)
+
+    def viscous_part(self) -> Callable[[float], float]:
+        K, n = self.consistency, self.exponent
+        if n == 1.0:
+            return lambda v: K * v  # the Bingham form, so that n = 1 gives its numbers
+        return lambda v: math.copysign(K * abs(v) ** n, v)
+
+    def band_free_resolvent(self) -> Callable[[float, float], DashpotState]:
+        """``psi`` is this law with ``tau = 0``: its own closed forms."""
+        return HerschelBulkleyDashpot(0.0, self.consistency, self.exponent)._resolvent_impl
+
+    def step_bound(self, force: float, speed: float, eta: float) -> StepBound:
+        """The largest product of the step: see Notes of :func:`_power_speed`; and ``K speed^n``.
+
+        With ``r <= |F~| <= force``: ``K F~`` at ``n = 1`` (the corrector);
+        ``eta^2`` and ``4 K r`` at ``n = 2``; ``K^2`` and ``4 eta r`` at ``n =
+        1/2``; else ``K w^n <= 2^n r`` and ``eta w <= 2 r`` on Brent's bracket.
+        The slip force's viscous part is at most ``K speed^n``.
+        """
+        K, n = self.consistency, self.exponent
+        with np.errstate(over="ignore"):
+            if n == 1.0:
+                step = K * force
+            elif n == 2.0:
+                step = max(eta * eta, 4 * K * force)
+            elif n == 0.5:
+                step = max(K * K, 4 * eta * force)
+            else:
+                step = float(np.float64(2.0) ** n) * force
+            slip = float(K * np.float64(speed) ** n)
+        return StepBound(max(step, slip), "viscous term of the Herschel-Bulkley step", "consistency")
 
 
 def _power_speed(r: float, eta: float, K: float, n: float) -> float:

@@ -44,7 +44,6 @@ import numpy as np
 from lumped import _sine, _validate
 from lumped.event_driven import Event
 from lumped.forcing import SwitchedSine, evaluate, validate_force
-from lumped.laws import BinghamDashpot, Dashpot, HerschelBulkleyDashpot, MonotoneDashpot, bingham_corrector
 from lumped.results import COLUMNS, Trajectory
 from lumped.system import Oscillator, check_magnitudes, initial_dashpot_force
 from lumped.timestepping import _seconds_per_step
@@ -261,42 +260,13 @@ class _State(NamedTuple):
     hold: float = -math.inf
 
 
-def _collapsed_resolvent(law: Dashpot) -> Callable[[float, float], tuple[float, float]]:
-    """Resolvent of the law with its static band removed: ``u + eta psi(u) = p``, ``(u, v)``.
-
-    Notes
-    -----
-    In slip with direction ``s`` the dashpot force is ``F_d = s tau + u`` with
-    ``v = psi(u) = phi(u + sgn(u) tau)`` (``psi(0) = 0``): the graph with the
-    band ``[-tau, tau]`` cut out.  ``psi`` is single valued, continuous and
-    monotone, and it continues the slip branch through ``v = 0`` (the root
-    search of a stop evaluates the step past it).  For Bingham it is
-    ``gamma u`` (closed form, finite at ``gamma = inf``); for Herschel-Bulkley
-    it is the same law with ``tau = 0`` (closed forms at ``n = 2`` and
-    ``n = 1/2``); for another law the bracketed root of
-    :class:`~lumped.laws.MonotoneDashpot`.
-    """
-    tau = law.threshold
-    if isinstance(law, BinghamDashpot):
-        c = law.viscosity
-        return lambda p, eta: bingham_corrector(p, eta, 0.0, c)
-    if isinstance(law, HerschelBulkleyDashpot):  # psi is the law without its band: its own closed forms
-        return HerschelBulkleyDashpot(0.0, law.consistency, law.exponent)._resolvent_impl
-    phi = law.velocity
-
-    def psi(u: float) -> float:
-        return float(phi(u + math.copysign(tau, u))) if u != 0 else 0.0
-
-    return MonotoneDashpot(psi)._resolvent_impl
-
-
 class _Capture:
     """The event-capturing march; :func:`event_capturing` is its only user."""
 
     def __init__(self, osc: Oscillator, force: SwitchedSine) -> None:
         self.m, self.k, self.tau = osc.mass, osc.spring.stiffness, osc.dashpot.threshold
         self.force = force
-        self.law, self.resolvent = osc.dashpot, _collapsed_resolvent(osc.dashpot)
+        self.law, self.resolvent = osc.dashpot, osc.dashpot.band_free_resolvent()  # contract point 8
         self.events: list[Event] = []
         self.stick_since = math.nan
         zero = force.is_zero

@@ -145,7 +145,11 @@ def check_magnitudes(
                 f"{name}: {product} = {value:.3g} is below the smallest normal double, {TINY:.3g}, "
                 "where fewer than 16 significant digits remain; choose units in which the parameters are nearer 1"
             )
-    parts, quantities = _energy_bound(m, k, getattr(osc.dashpot, "viscosity", 0.0), t_end, dt, x0, v0, amplitude)
+    parts, quantities = _energy_bound(m, k, 0.0, t_end, dt, x0, v0, amplitude)
+    del quantities[_VISCOUS]
+    speed = math.sqrt(2 / m) * (parts["x0"] + parts["v0"] + parts["force_amplitude"])
+    bound = osc.dashpot.step_bound(sum(quantities.values()), speed, m / dt + k * dt)  # contract point 9
+    quantities[bound.term] = bound.value
     scale = _force_scale(quantities)
     if carries_force and 0 < scale < TINY:
         raise ValueError(
@@ -156,10 +160,14 @@ def check_magnitudes(
     for quantity, value in quantities.items():
         if not value <= MAGNITUDE_LIMIT:
             raise ValueError(
-                f"{_blamed(quantity, parts, quantities, m / dt)}: the run could reach {quantity} = "
+                f"{_blamed(quantity, parts, quantities, m / dt, bound.parameter)}: the run could reach {quantity} = "
                 f"{f'{value:.3g}' if math.isfinite(value) else 'more than 1.8e308'} (bound from the energy), "
                 f"above the {MAGNITUDE_LIMIT:.0e} that double precision carries through a step"
             )
+
+
+#: The Bingham law's bound on its step's viscous product (:meth:`lumped.laws.BinghamDashpot.step_bound`).
+_VISCOUS = "viscous term |c F~|"
 
 
 def _energy_bound(m, k, c, t_end, dt, x0, v0, amplitude):  # floats or arrays alike
@@ -178,7 +186,7 @@ def _energy_bound(m, k, c, t_end, dt, x0, v0, amplitude):  # floats or arrays al
             "momentum term |m v/dt|": m / dt * v_max,
             "external force |F|": abs(amplitude) + 0 * root_energy,
         }
-        quantities["viscous term |c F~|"] = c * sum(quantities.values())
+        quantities[_VISCOUS] = c * sum(quantities.values())
     return parts, quantities
 
 
@@ -195,12 +203,12 @@ def _force_scale(quantities: dict):  # floats or arrays alike
     return np.maximum(quantities["spring force |F_s|"], quantities["external force |F|"])
 
 
-def _blamed(quantity: str, parts: dict, quantities: dict, m_over_dt: float) -> str:
-    """The argument named for an overflowing ``quantity``."""
+def _blamed(quantity: str, parts: dict, quantities: dict, m_over_dt: float, law_parameter: str) -> str:
+    """The argument named for an overflowing ``quantity`` (``law_parameter`` for the law's own bound)."""
     if quantity.startswith("momentum") and m_over_dt > 1e150:
         return "dt"
     if quantity.startswith("viscous") and all(v <= MAGNITUDE_LIMIT for q, v in quantities.items() if q != quantity):
-        return "gamma"
+        return law_parameter
     return max(parts, key=parts.get)  # type: ignore[arg-type]
 
 

@@ -23,7 +23,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from lumped import _validate
-from lumped.laws import BinghamDashpot
 from lumped.results import sign_changes
 from lumped.system import Oscillator
 
@@ -52,14 +51,14 @@ class TextbookModel:
     def __post_init__(self) -> None:
         if not isinstance(self.oscillator, Oscillator):
             raise ValueError(f"oscillator must be an Oscillator, got {type(self.oscillator).__name__}")
-        if not isinstance(self.oscillator.dashpot, BinghamDashpot):
+        if self.oscillator.dashpot.bingham_form() is None:  # the law's contract, point 6
             raise ValueError("dashpot: the textbook model needs a BinghamDashpot")
         if self.eps is not None:
             object.__setattr__(self, "eps", _validate.positive("eps", self.eps))
 
     def dashpot_force(self, v: float | np.ndarray) -> float | np.ndarray:
         """``sgn(v) mu_s N_f + v/gamma`` (or with ``tanh(v/eps)`` in place of sgn)."""
-        law = self.oscillator.dashpot
+        law = self.oscillator.dashpot.bingham_form()
         switch = np.sign(v) if self.eps is None else np.tanh(np.asarray(v) / self.eps)
         return switch * law.threshold + law.viscosity * v
 

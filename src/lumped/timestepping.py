@@ -34,7 +34,7 @@ import numpy as np
 
 from lumped import _sine, _validate
 from lumped.forcing import SwitchedSine, evaluate, validate_force
-from lumped.laws import BinghamDashpot, bingham_corrector
+from lumped.laws import bingham_corrector
 from lumped.results import COLUMNS, Trajectory
 from lumped.system import Oscillator, check_magnitudes, initial_dashpot_force
 
@@ -163,7 +163,7 @@ def _generic_block(
 def _seconds_per_step(osc: Oscillator, force: object, kernel: str, dt: float) -> float:
     """Estimated cost of one step (s): measured for a general law or forcing."""
     law = osc.dashpot
-    if isinstance(law, BinghamDashpot):
+    if law.bingham_form() is not None:  # Algorithm 1's own loop (contract point 6)
         cost = _SECONDS_PER_STEP[kernel]
     else:
         eta = osc.mass / dt + osc.spring.stiffness * dt
@@ -198,7 +198,7 @@ def _check_run(
     if isinstance(force, SwitchedSine):
         force.check_span(n_steps * dt)  # the sine's range, to the grid's last time
     check_magnitudes(osc, t_end, dt, x0, v0, amplitude)
-    what = "Algorithm 1" if isinstance(osc.dashpot, BinghamDashpot) else "the generic loop"
+    what = "Algorithm 1" if osc.dashpot.bingham_form() is not None else "the generic loop"
     _validate.run_time(n_steps, _seconds_per_step(osc, force, kernel, dt), what)
 
 
@@ -215,7 +215,8 @@ def _march(
 ) -> None:
     """Advance steps ``1..n_steps`` block by block; raise on a non-finite step."""
     law, m, k = osc.dashpot, osc.mass, osc.spring.stiffness
-    bingham = isinstance(law, BinghamDashpot)
+    form = law.bingham_form()  # (tau, c) of Algorithm 1's loops, or None: the law's resolvent
+    bingham = form is not None
     sine = force if isinstance(force, SwitchedSine) else SwitchedSine()
     tabulate = not (bingham and (force is None or isinstance(force, SwitchedSine)))
     block = BLOCK_TABLE if tabulate else BLOCK_SINE
@@ -230,8 +231,8 @@ def _march(
                 m,
                 k,
                 dt,
-                law.threshold,
-                law.viscosity,
+                form.threshold,
+                form.viscosity,
                 first,
                 last,
                 n_steps,
