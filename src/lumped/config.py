@@ -237,7 +237,7 @@ def problems(raw: Any, overrides: list[str] | None = None) -> list[str]:
     the time step: ``dt`` below each end time and at most :data:`MAX_STEPS`
     steps per run; then the runs themselves (:func:`_run_problems`): the
     checks every run makes before it starts, on the four runs of
-    :func:`lumped.examples.paper`, so that a value a run would refuse (``stiffness:
+    :func:`lumped.examples.paper` (built by :func:`lumped._paper_runs.runs`), so that a value a run would refuse (``stiffness:
     1e300``) is refused before any job.
     """
     if not isinstance(raw, dict):
@@ -338,7 +338,7 @@ def _hint(value: Any) -> str:
     return f" (YAML reads {value} as a string: its floats need a dot and a signed exponent; write {fixed})"
 
 
-#: The examples' run arguments -> the configuration's key, per run (:func:`lumped.examples.paper`).
+#: The examples' run arguments -> the configuration's key, per run (:func:`lumped._paper_runs.runs`).
 _RUN_KEYS = {
     "forced_small": {"t_end": "t_end_forced", "force_amplitude": "force_amplitude_small"},
     "forced_large": {"t_end": "t_end_forced", "force_amplitude": "force_amplitude_large"},
@@ -355,13 +355,13 @@ def _run_problems(values: dict[str, Any]) -> list[str]:
     key the run's argument comes from (``x0`` of the free large run is
     ``x0_large``, ``force_omega`` is ``force_omega_over_pi``).
     """
-    from lumped import examples
+    from lumped._paper_runs import runs as paper_runs
     from lumped.event_driven import _check_inputs
     from lumped.forcing import SwitchedSine
     from lumped.system import check_magnitudes
 
     try:
-        runs = examples.paper(values)
+        runs = paper_runs(values)
     except ValueError as err:  # a parameter an oscillator refuses (mass: 1e-320)
         return [f"config: {' '.join(str(err).split())}"]
     for name, run in runs.items():

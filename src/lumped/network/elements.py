@@ -11,12 +11,13 @@ feels ``-F_s - F_d``.
 One backward-Euler step fixes every state of the step's start and leaves the
 new rates ``w`` unknown; each element then relates ``f`` to ``w`` by a
 *step graph*, maximal monotone and piecewise linear for every kind here (a
-general monotone law is the exception: see :class:`Monotone`).  A step graph
-is a list of :class:`Piece` s in increasing order along the graph: a *free*
-piece ``f = a + b w`` (``b >= 0``) on ``lo <= w <= hi``, or a *rigid* piece
-``w = a`` with ``lo <= f <= hi``.  The one-step problem
-(:mod:`lumped.network.step`) only sees pieces; it never asks which kind an
-element is.
+general monotone law is the exception: see :class:`LawElement`).  A
+piecewise-linear step graph is a list of :class:`Piece` s in increasing order
+along the graph: a *free* piece ``f = a + b w`` (``b >= 0``) on ``lo <= w <=
+hi``, or a *rigid* piece ``w = a`` with ``lo <= f <= hi``.  The one-step
+problem (:mod:`lumped.network.step`) sees each graph through the graph
+contract of :class:`StepGraph` (:class:`Pieces`, or a law's
+:class:`LawGraph`); it never asks which kind an element or a graph is.
 """
 
 from __future__ import annotations
@@ -24,15 +25,20 @@ from __future__ import annotations
 import math
 import re
 from abc import ABC, abstractmethod
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import ClassVar, NamedTuple
 
 from lumped import _validate
-from lumped.laws import BinghamDashpot, Dashpot, HerschelBulkleyDashpot
+from lumped.laws import BinghamDashpot, Dashpot, HerschelBulkleyDashpot, sticks
 
 __all__ = [
     "Piece",
+    "StepGraph",
+    "Pieces",
+    "LawGraph",
+    "as_step_graph",
+    "KernelForm",
     "Element",
     "Spring",
     "SpringString",
@@ -53,6 +59,7 @@ __all__ = [
 #: The name of the fixed point at ``x = 0``.
 GROUND = "ground"
 _INF = math.inf
+_EPS = 2.0**-52  # numpy.finfo(float).eps
 #: Longest name of a mass or an element (characters).
 MAX_NAME_LENGTH = 64
 #: Names of masses and elements: a letter or ``_``, then ASCII letters, digits
@@ -93,6 +100,131 @@ def _free(a: float, b: float, lo: float = -_INF, hi: float = _INF) -> Piece:
 
 def _rigid(w: float, lo: float, hi: float) -> Piece:
     return Piece(True, w, 0.0, lo, hi)
+
+
+class StepGraph(ABC):
+    """The graph contract: what the one-step problem asks of a step graph.
+
+    A *mode* is where on the graph an element is taken to be in one
+    iteration of the active-set loop (:mod:`lumped.network.step`).  A step
+    graph must provide:
+
+    1. ``is_piecewise``: True if the graph is made of :class:`Piece` s
+       (indexable, its modes their indices), so that the iteration's modes can
+       cycle and the dual sweeps can step on it; False for a graph that is
+       linearised about a point in each iteration (:class:`LawGraph`).
+    2. ``initial_mode()``: the mode of the first iteration with no warm start.
+    3. ``piece(mode, sigma)``: the free or rigid :class:`Piece` that the
+       linear problem of an iteration uses in ``mode``.
+    4. ``mode(z, sigma)``: the new mode from the resolvent variable ``z = f +
+       sigma w`` of the iteration's solution.
+    5. ``same(old, new)``: True when the mode has settled.
+    """
+
+    __slots__ = ()
+    is_piecewise: ClassVar[bool] = True
+
+    @abstractmethod
+    def initial_mode(self) -> object:
+        """The mode of the first iteration (point 2)."""
+
+    @abstractmethod
+    def piece(self, mode: object, sigma: float) -> Piece:
+        """The piece used in ``mode`` (point 3)."""
+
+    @abstractmethod
+    def mode(self, z: float, sigma: float) -> object:
+        """The mode holding ``z = f + sigma w`` (point 4)."""
+
+    @abstractmethod
+    def same(self, old: object, new: object) -> bool:
+        """True if the mode has settled (point 5)."""
+
+
+class Pieces(tuple, StepGraph):
+    """A piecewise-linear step graph: its :class:`Piece` s in order; a mode is a piece's index."""
+
+    __slots__ = ()
+    is_piecewise: ClassVar[bool] = True
+
+    def initial_mode(self) -> int:
+        """The middle piece (a Bingham element's sticking piece)."""
+        return len(self) // 2
+
+    def piece(self, mode: object, sigma: float) -> Piece:
+        return self[mode]  # type: ignore[index]
+
+    def mode(self, z: float, sigma: float) -> int:
+        """The piece whose range of ``z = f + sigma w`` holds ``z``.
+
+        A rigid piece (``w = a``, ``f`` in ``[lo, hi]``) holds the closed band
+        ``[lo + sigma a, hi + sigma a]`` (:func:`lumped.laws.sticks`, Algorithm 1's
+        line 5), so at an edge it shares with a free piece, where both give the
+        same ``(w, f)``, the rigid piece is chosen: a Bingham element sticks on
+        both edges of its band, as in Algorithm 1.  A rigid piece of zero width
+        (a threshold 0) is never taken: its one point lies on the free pieces
+        beside it, and such an element is not ``rigid_capable``.  ``mode_of`` in
+        ``_network_kernel.c`` is the C copy (``tests/test_band_edge.py``).
+        """
+        for k, p in enumerate(self):
+            if p.rigid and p.lo < p.hi and sticks(z, p.lo + sigma * p.a, p.hi + sigma * p.a):
+                return k
+        last = len(self) - 1
+        for k, p in enumerate(self[:last]):
+            if not p.rigid and z <= p.a + (p.b + sigma) * p.hi:
+                return k
+        return last
+
+    def same(self, old: object, new: object) -> bool:
+        return old == new
+
+
+class LawGraph(StepGraph):
+    """The step graph of a :class:`LawElement`: its dashpot law, linearised in each iteration.
+
+    A mode is the point ``(w, f)`` of the graph last reached (``0`` before
+    the first): the piece is the line of slope ``sigma`` through it, and the
+    new point is the law's resolvent point of ``z``.  The mode has settled
+    when the force agrees to a relative 8 ulps.
+    """
+
+    __slots__ = ("law",)
+    is_piecewise: ClassVar[bool] = False
+
+    def __init__(self, law: Dashpot) -> None:
+        self.law = law
+
+    def initial_mode(self) -> int:
+        return 0
+
+    def piece(self, mode: object, sigma: float) -> Piece:
+        w0, f0 = mode if isinstance(mode, tuple) else (0.0, 0.0)
+        return Piece(False, f0 - sigma * w0, sigma, -_INF, _INF)
+
+    def mode(self, z: float, sigma: float) -> tuple[float, float]:
+        f = self.law._resolvent_impl(z, sigma).force
+        return ((z - f) / sigma, f)
+
+    def same(self, old: object, new: object) -> bool:
+        if not isinstance(old, tuple):
+            return False
+        scale = abs(new[1]) + abs(old[1]) + 1e-300  # type: ignore[index]
+        return abs(new[1] - old[1]) <= 8 * _EPS * scale  # type: ignore[index]
+
+
+def as_step_graph(graph: StepGraph | Sequence[Piece]) -> StepGraph:
+    """``graph`` itself if it is a :class:`StepGraph`, else its pieces as :class:`Pieces`."""
+    return graph if isinstance(graph, StepGraph) else Pieces(graph)
+
+
+class KernelForm(NamedTuple):
+    """An element as ``_network_kernel.c`` reads it: its kind ``code``, its
+    ``parameters`` (at most 4, in the C file's order) and whether its step
+    graph has a rigid piece, of any width, for some state (``rigid_pieces``)."""
+
+    code: int
+    parameters: tuple[float, ...]
+    rigid_pieces: bool
 
 
 def _band(threshold: float, c: float, lo: float = -_INF, hi: float = _INF) -> tuple[Piece, ...]:
@@ -144,9 +276,33 @@ class Element(ABC):
        that matters).
 
     The graph itself, for plots and tests, is :meth:`force_interval`.
+
+    What an integrator may ask of an element beyond its graph is a property
+    or method here, with a generic default that an element meeting points 1
+    to 6 satisfies; no solver asks an element for its class.
+
+    7. ``step_stiffness``: the stiffness (N/m) of the spring the element puts
+       between its points, which scales the mode test of the one-step problem
+       (``0.0`` by default: none).
+    8. The one-mass form (:func:`lumped.network.one_mass.one_mass_form`):
+       ``linear_stiffness``, ``k`` if the element is the linear spring ``f =
+       k e`` and nothing more (``None`` by default); ``one_mass_law()``, the
+       :class:`lumped.laws.Dashpot` a single-mass method runs if the element
+       is a dashpot without state (``None`` by default); ``auto_one_mass``,
+       True if ``solver="auto"`` hands one mass with one spring and this
+       dashpot to :func:`lumped.backward_euler` rather than to the active-set
+       step (False by default).
+    9. ``kernel_form()``: the element as the compiled step reads it, a
+       :class:`KernelForm`, or ``None`` (the default: the Python step runs
+       it).  A kind with a C copy of its step graph declares ``kernel_code``
+       and implements ``_kernel_form()``; a subclass that does not declare
+       its own ``kernel_code`` gets ``None``, since it may have changed the
+       graph the C copy repeats.
     """
 
     kind: ClassVar[str] = ""
+    #: The kind code of ``_network_kernel.c`` (point 9), ``None`` if it has none.
+    kernel_code: ClassVar[int | None] = None
     name: str
     between: tuple[str, str]
 
@@ -195,6 +351,38 @@ class Element(ABC):
         motion; ``(nan, nan)`` if the motion is not admissible.
         """
 
+    @property
+    def step_stiffness(self) -> float:
+        """Stiffness (N/m) of the element's spring for the mode-test scale (point 7); none by default."""
+        return 0.0
+
+    @property
+    def linear_stiffness(self) -> float | None:
+        """``k`` (N/m) if the element is the linear spring ``f = k e`` (point 8), else ``None``."""
+        return None
+
+    def one_mass_law(self) -> Dashpot | None:
+        """The dashpot law a single-mass method runs for this element (point 8), else ``None``."""
+        return None
+
+    @property
+    def auto_one_mass(self) -> bool:
+        """True if ``solver="auto"`` runs one mass, one spring and this dashpot by
+        :func:`lumped.backward_euler` (point 8); False by default."""
+        return False
+
+    def kernel_form(self) -> KernelForm | None:
+        """The element as ``_network_kernel.c`` reads it, or ``None`` (point 9)."""
+        code = type(self).__dict__.get("kernel_code")
+        if code is None:
+            return None
+        parameters, rigid_pieces = self._kernel_form()
+        return KernelForm(code, tuple(parameters), rigid_pieces)
+
+    def _kernel_form(self) -> tuple[list[float], bool]:
+        """Parameters in the C file's order and ``rigid_pieces`` (point 9)."""
+        raise NotImplementedError(f"{type(self).__name__} declares kernel_code but not _kernel_form")
+
 
 class _ForceState:
     """Elements whose state is the force ``f`` of a spring of ``stiffness``."""
@@ -210,6 +398,10 @@ class _ForceState:
     def stored_energy(self, state: float) -> float:
         return 0.5 * state * state / self.stiffness
 
+    @property
+    def step_stiffness(self) -> float:
+        return self.stiffness
+
 
 @dataclass(frozen=True)
 class Spring(_ForceState, Element):
@@ -220,6 +412,7 @@ class Spring(_ForceState, Element):
     """
 
     kind: ClassVar[str] = "spring"
+    kernel_code: ClassVar[int | None] = 0
     stiffness: float = 1.0
 
     def _check(self) -> None:
@@ -233,6 +426,13 @@ class Spring(_ForceState, Element):
 
     def force_interval(self, e: float, w: float) -> tuple[float, float]:
         return (self.stiffness * e, self.stiffness * e)
+
+    @property
+    def linear_stiffness(self) -> float:
+        return self.stiffness
+
+    def _kernel_form(self) -> tuple[list[float], bool]:
+        return [self.stiffness], False
 
 
 @dataclass(frozen=True)
@@ -259,6 +459,7 @@ class SpringString(Element):
     """
 
     kind: ClassVar[str] = "spring-string"
+    kernel_code: ClassVar[int | None] = 1
     stiffness: float = 1.0
     length: float = 1.0
 
@@ -298,6 +499,13 @@ class SpringString(Element):
         k = self.stiffness
         return (k * e, k * e) if e < self.length else (k * e, _INF)
 
+    @property
+    def step_stiffness(self) -> float:
+        return self.stiffness
+
+    def _kernel_form(self) -> tuple[list[float], bool]:
+        return [self.stiffness, self.length], True
+
 
 @dataclass(frozen=True)
 class Bingham(Element):
@@ -309,6 +517,7 @@ class Bingham(Element):
     """
 
     kind: ClassVar[str] = "bingham"
+    kernel_code: ClassVar[int | None] = 2
     threshold: float = 1.0
     gamma: float = 1.0
 
@@ -342,12 +551,25 @@ class Bingham(Element):
     def force_interval(self, e: float, w: float) -> tuple[float, float]:
         return self.law.force_interval(w)
 
+    def one_mass_law(self) -> BinghamDashpot:
+        return self.law
+
+    @property
+    def auto_one_mass(self) -> bool:
+        """True: Algorithm 1 itself, the same numbers bit for bit at the compiled kernel's speed."""
+        return True
+
+    def _kernel_form(self) -> tuple[list[float], bool]:
+        c = BinghamDashpot(self.threshold, self.gamma).viscosity
+        return [self.threshold, c], True  # a threshold 0 included: the graph keeps its rigid piece
+
 
 @dataclass(frozen=True)
 class LinearDashpot(Element):
     """Linear viscous dashpot, ``f = damping * w``."""
 
     kind: ClassVar[str] = "dashpot"
+    kernel_code: ClassVar[int | None] = 4
     damping: float = 1.0
 
     def _check(self) -> None:
@@ -361,6 +583,13 @@ class LinearDashpot(Element):
 
     def force_interval(self, e: float, w: float) -> tuple[float, float]:
         return (self.damping * w, self.damping * w)
+
+    def one_mass_law(self) -> HerschelBulkleyDashpot:
+        """``f = damping * w`` as the Herschel-Bulkley law with no threshold and exponent 1."""
+        return HerschelBulkleyDashpot(0.0, self.damping, 1.0)
+
+    def _kernel_form(self) -> tuple[list[float], bool]:
+        return [self.damping], False
 
 
 @dataclass(frozen=True)
@@ -389,6 +618,7 @@ class MaxwellBingham(_ForceState, Element):
     """
 
     kind: ClassVar[str] = "maxwell-bingham"
+    kernel_code: ClassVar[int | None] = 3
     stiffness: float = 1.0
     threshold: float = 1.0
     gamma: float = 1.0
@@ -427,6 +657,10 @@ class MaxwellBingham(_ForceState, Element):
     def force_interval(self, e: float, w: float) -> tuple[float, float]:
         return (-_INF, _INF)  # a state variable: the force is not fixed by (e, w)
 
+    def _kernel_form(self) -> tuple[list[float], bool]:
+        c = BinghamDashpot(self.threshold, self.gamma).viscosity
+        return [self.stiffness, self.threshold, c], False
+
 
 @dataclass(frozen=True)
 class LockingBingham(Element):
@@ -447,6 +681,7 @@ class LockingBingham(Element):
     """
 
     kind: ClassVar[str] = "locking-bingham"
+    kernel_code: ClassVar[int | None] = 5
     threshold: float = 1.0
     gamma: float = 1.0
     v_lock: float = 1.0
@@ -491,20 +726,25 @@ class LockingBingham(Element):
             return (-_INF, hi)
         return (lo, hi)
 
+    def _kernel_form(self) -> tuple[list[float], bool]:
+        c = BinghamDashpot(self.threshold, self.gamma).viscosity
+        return [self.threshold, c, self.v_lock], True
+
 
 class LawElement:
     """A dashpot element given by a :class:`lumped.laws.Dashpot` law (its ``law``).
 
-    Its step graph is not piecewise linear: each step linearises it about
-    the previous step's force (a free piece through that point, with the
-    secant slope), so the step problem is solved to within the iteration's
-    tolerance, not exactly; see :mod:`lumped.network.step`.
+    Its step graph, the law's :class:`LawGraph`, is not piecewise linear:
+    each iteration of the step linearises it about the point last reached (a
+    free piece through that point, of slope ``sigma``), so the step problem
+    is solved to within the iteration's tolerance, not exactly; see
+    :mod:`lumped.network.step`.
     """
 
     law: Dashpot
 
-    def step_graph(self, state: float, dt: float) -> tuple[Piece, ...]:
-        raise NotImplementedError  # handled by the step's outer loop (see step.py)
+    def step_graph(self, state: float, dt: float) -> LawGraph:  # type: ignore[override]
+        return LawGraph(self.law)
 
     def rate_graph(self, state: float, w0: float) -> tuple[Piece, ...]:
         lo, hi = self.law.force_interval(w0)
@@ -552,6 +792,14 @@ class HerschelBulkley(LawElement, Element):
     def law(self) -> HerschelBulkleyDashpot:  # type: ignore[override]
         """The dashpot law of :mod:`lumped.laws`."""
         return HerschelBulkleyDashpot(self.threshold, self.consistency, self.exponent)
+
+    def one_mass_law(self) -> HerschelBulkleyDashpot:
+        return self.law
+
+    @property
+    def auto_one_mass(self) -> bool:
+        """True: the law's resolvent solves the one-mass step, which the active-set step only linearises."""
+        return True
 
 
 #: Element kinds by their name in system files.

@@ -25,7 +25,6 @@ import numpy as np
 from lumped import _validate
 from lumped.forcing import SwitchedSine
 from lumped.network import kernel
-from lumped.network.elements import Bingham, HerschelBulkley, LawElement, Spring
 from lumped.network.model import Network
 from lumped.network.one_mass import OneMass, network_trajectory, one_mass_form
 from lumped.network.step import StepError, default_bound, solve_step, unsettled
@@ -46,13 +45,14 @@ _COST = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7)}
 
 
 def _paper_form(net: Network) -> OneMass | None:
-    """The oscillator if ``net`` is the paper's system: one spring and one Bingham or
-    Herschel-Bulkley element to the ground, at most one load."""
+    """The oscillator if ``net`` is the paper's system: one spring and one dashpot that
+    :func:`lumped.backward_euler` runs (a Bingham or Herschel-Bulkley element, its
+    ``auto_one_mass``) to the ground, at most one load."""
     if len(net.masses) != 1 or len(net.elements) != 2 or len(net.loads) > 1:
         return None
-    if sum(isinstance(e, Spring) for e in net.elements) != 1:
+    if sum(e.linear_stiffness is not None for e in net.elements) != 1:
         return None
-    if sum(isinstance(e, (Bingham, HerschelBulkley)) for e in net.elements) != 1:
+    if sum(e.auto_one_mass for e in net.elements) != 1:
         return None
     try:
         return one_mass_form(net)
@@ -67,7 +67,7 @@ def _via_algorithm1(net: Network, form: OneMass, t_end: float, dt: float, save_e
     m = net.masses[0]
     force = net.loads[0].force if net.loads else None
     tr = backward_euler(form.oscillator, t_end, dt, x0=m.x0, v0=m.v0, force=force, save_every=save_every)
-    solver = "algorithm1" if isinstance(form.dashpot, Bingham) else "resolvent"
+    solver = "algorithm1" if form.oscillator.dashpot.bingham_form() is not None else "resolvent"  # as backward_euler
     return network_trajectory(net, form, tr, solver)
 
 
@@ -76,7 +76,7 @@ def _sigma(net: Network, inertia: np.ndarray, dt: float) -> np.ndarray:
     first, second = net.incidence()
     seen = np.append(inertia, np.inf)
     for e, el in enumerate(net.elements):
-        k = getattr(el, "stiffness", 0.0)
+        k = el.step_stiffness
         seen[first[e]] += dt * k
         seen[second[e]] += dt * k
     pairs = zip(seen[first], seen[second])
@@ -86,15 +86,10 @@ def _sigma(net: Network, inertia: np.ndarray, dt: float) -> np.ndarray:
 
 
 def _graphs(net: Network, state: list[float], dt: float | None, w0: np.ndarray | None) -> list:
-    out = []
-    for e, el in enumerate(net.elements):
-        if isinstance(el, LawElement) and dt is not None:
-            out.append(el.law)
-        elif dt is not None:
-            out.append(el.step_graph(state[e], dt))
-        else:
-            out.append(el.rate_graph(state[e], float(w0[e])))  # type: ignore[index]
-    return out
+    """Each element's step graph (``dt`` given) or its rate graph at ``t = 0`` (``w0`` given)."""
+    if dt is not None:
+        return [el.step_graph(s, dt) for el, s in zip(net.elements, state)]
+    return [el.rate_graph(s, float(w)) for el, s, w in zip(net.elements, state, w0)]  # type: ignore[arg-type]
 
 
 def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str):

@@ -2,8 +2,10 @@
 
 The *link graph* has the masses and the ground as points and one link per
 pair of points joined by at least one element (parallel elements share a
-link).  When it is a forest and every element is piecewise linear (every
-kind but :class:`~lumped.network.elements.Monotone`), the one-step problem
+link).  When it is a forest and every element is piecewise linear with a C
+copy of its step graph (a ``kernel_form``, point 9 of
+:class:`~lumped.network.elements.Element`: every kind but the law elements,
+:class:`~lumped.network.elements.Monotone` and Herschel-Bulkley), the one-step problem
 with its modes fixed is solved by elimination along the forest, leaf to
 root, and back-substitution: a free link adds its conductance to its parent,
 a rigid link merges its child into the parent with a fixed rate offset.
@@ -29,17 +31,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.laws import BinghamDashpot
-from lumped.network.elements import (
-    Bingham,
-    Element,
-    LinearDashpot,
-    LockingBingham,
-    MaxwellBingham,
-    Piece,
-    Spring,
-    SpringString,
-)
+from lumped.network.elements import Piece
 from lumped.network.model import Network, listed, rigid_loop
 from lumped.network.step import StepError, StepSolution, default_bound, unsettled
 
@@ -56,18 +48,6 @@ if os.environ.get("LUMPED_PURE_PYTHON", "") in ("", "0"):
         KERNEL = "compiled"
     except ImportError:  # no C compiler at install: the Python step, as before
         pass
-
-#: Kind codes of ``_network_kernel.c``, by element class.
-_CODES: dict[type, int] = {
-    Spring: 0,
-    SpringString: 1,
-    Bingham: 2,
-    MaxwellBingham: 3,
-    LinearDashpot: 4,
-    LockingBingham: 5,
-}
-#: Kinds whose step graph has a rigid piece for some state (a threshold 0 included).
-_RIGID_KINDS = (SpringString, Bingham, LockingBingham)
 
 
 class Plan(NamedTuple):
@@ -91,25 +71,12 @@ class Plan(NamedTuple):
     sign: np.ndarray
 
 
-def _parameters(el: Element) -> list[float]:
-    """The element's parameters in the order ``_network_kernel.c`` reads them."""
-    if isinstance(el, (Spring, LinearDashpot)):
-        return [el.stiffness if isinstance(el, Spring) else el.damping]
-    if isinstance(el, SpringString):
-        return [el.stiffness, el.length]
-    c = BinghamDashpot(el.threshold, el.gamma).viscosity  # type: ignore[attr-defined]
-    if isinstance(el, MaxwellBingham):
-        return [el.stiffness, el.threshold, c]
-    if isinstance(el, LockingBingham):
-        return [el.threshold, c, el.v_lock]
-    return [el.threshold, c]  # type: ignore[attr-defined]
-
-
 def ineligible(net: Network) -> str | None:
     """Why the compiled step cannot run ``net``, or ``None`` if it can."""
     if KERNEL != "compiled":
         return "the compiled network kernel was not built"
-    odd = [el.name for el in net.elements if type(el) not in _CODES]
+    forms = [el.kernel_form() for el in net.elements]  # the element contract, point 9
+    odd = [el.name for el, form in zip(net.elements, forms) if form is None]
     if odd:
         return f"element {odd[0]!r} is not piecewise linear"
     index, links = net.point_index(), _links(net)
@@ -117,7 +84,7 @@ def ineligible(net: Network) -> str | None:
     if loop:
         return f"the links of {listed([el.name for el in loop])} close a loop"
     for els in links.values():
-        if sum(isinstance(net.elements[e], _RIGID_KINDS) for e in els) > 1:
+        if sum(forms[e].rigid_pieces for e in els) > 1:  # type: ignore[union-attr]
             return f"elements {listed([net.elements[e].name for e in els])} are in parallel and more than one has rigid pieces"
     return None
 
@@ -166,12 +133,12 @@ def plan(net: Network) -> Plan:
     for p, els in enumerate(via):
         for e in els:
             sign[e] = 1.0 if second[e] == p else -1.0
+    forms = [el.kernel_form() for el in net.elements]
     par = np.zeros((len(net.elements), 4))
-    for e, el in enumerate(net.elements):
-        values = _parameters(el)
-        par[e, : len(values)] = values
+    for e, form in enumerate(forms):
+        par[e, : len(form.parameters)] = form.parameters  # type: ignore[union-attr]
     return Plan(
-        _int64([_CODES[type(el)] for el in net.elements]),
+        _int64([form.code for form in forms]),  # type: ignore[union-attr]
         par,
         _int64(first),
         _int64(second),

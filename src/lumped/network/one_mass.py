@@ -13,8 +13,8 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.laws import Dashpot, HerschelBulkleyDashpot, LinearSpring
-from lumped.network.elements import GROUND, Bingham, Element, HerschelBulkley, LinearDashpot, Spring
+from lumped.laws import LinearSpring
+from lumped.network.elements import GROUND, Element
 from lumped.network.model import Network
 from lumped.network.trajectory import NetworkTrajectory
 from lumped.results import Trajectory
@@ -22,23 +22,13 @@ from lumped.system import Oscillator
 
 __all__ = ["OneMass", "one_mass_form", "network_trajectory", "simulate_one_mass"]
 
-#: Element kinds that can be the one dashpot.
-_DASHPOTS = (Bingham, HerschelBulkley, LinearDashpot)
-
 
 class OneMass(NamedTuple):
     """A one-mass network as an oscillator: its ``springs`` and its ``dashpot`` element."""
 
     oscillator: Oscillator
-    springs: tuple[Spring, ...]
+    springs: tuple[Element, ...]
     dashpot: Element
-
-
-def _law(el: Element) -> Dashpot:
-    """The dashpot law of a Bingham, Herschel-Bulkley or linear dashpot element."""
-    if isinstance(el, LinearDashpot):
-        return HerschelBulkleyDashpot(0.0, el.damping, 1.0)  # f = damping * w
-    return el.law  # type: ignore[attr-defined]
 
 
 def one_mass_form(net: Network) -> OneMass:
@@ -46,7 +36,9 @@ def one_mass_form(net: Network) -> OneMass:
 
     The network must have one mass, at most one load, and elements that all
     join the mass to the ground: one or more ``spring`` s and exactly one
-    ``bingham``, ``herschel-bulkley`` or ``dashpot``.  The message completes
+    ``bingham``, ``herschel-bulkley`` or ``dashpot`` (the elements with a
+    ``linear_stiffness`` and those with a ``one_mass_law``: point 8 of
+    :class:`~lumped.network.elements.Element`).  The message completes
     "the network ..." (``"has 3 masses"``, ``"element 'x' ..."``).
     """
     if len(net.masses) != 1:
@@ -56,14 +48,14 @@ def one_mass_form(net: Network) -> OneMass:
     for el in net.elements:
         if GROUND not in el.between:
             raise ValueError(f"element {el.name!r} does not join the mass to the ground")
-        if not isinstance(el, (Spring, *_DASHPOTS)):
+        if el.linear_stiffness is None and el.one_mass_law() is None:
             raise ValueError(f"element {el.name!r} of kind {el.kind!r} is not a spring or a dashpot")
-    springs = tuple(el for el in net.elements if isinstance(el, Spring))
-    dashpots = [el for el in net.elements if isinstance(el, _DASHPOTS)]
+    springs = tuple(el for el in net.elements if el.linear_stiffness is not None)
+    dashpots = [el for el in net.elements if el.one_mass_law() is not None]
     if not springs or len(dashpots) != 1:
         raise ValueError(f"has {len(springs)} springs and {len(dashpots)} dashpots; it needs springs and one dashpot")
-    stiffness = sum(s.stiffness for s in springs)
-    osc = Oscillator(net.masses[0].mass, LinearSpring(stiffness), _law(dashpots[0]))
+    stiffness = sum(s.linear_stiffness for s in springs)
+    osc = Oscillator(net.masses[0].mass, LinearSpring(stiffness), dashpots[0].one_mass_law())
     return OneMass(osc, springs, dashpots[0])
 
 
@@ -80,7 +72,7 @@ def network_trajectory(net: Network, form: OneMass, tr: Trajectory, solver: str)
     """
     k = form.oscillator.stiffness
     zeros = np.zeros_like(tr.t)
-    forces = {s.name: _orientation(s) * (s.stiffness / k) * tr.F_s for s in form.springs}
+    forces = {s.name: _orientation(s) * (s.linear_stiffness / k) * tr.F_s for s in form.springs}
     forces[form.dashpot.name] = _orientation(form.dashpot) * tr.F_d
     stick = (tr.v == 0) & (tr.t > 0)
     springs = {s.name for s in form.springs}

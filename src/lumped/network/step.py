@@ -31,9 +31,14 @@ scales ``sigma``; if none settles, or the bound on iterations is reached, a
 ``sigma = m/dt + k dt`` makes ``z`` the predictor ``F~`` of eq. 15b and the
 mode test Algorithm 1's ``|F~| <= mu_s N_f``.)
 
-A :class:`~lumped.network.elements.Monotone` element is given instead the
-line of slope ``sigma`` through its resolvent point of ``z``; the fixed
-point of that iteration lies on its graph, reached to a relative 8 ulps.
+A graph that is not piecewise linear (a
+:class:`~lumped.network.elements.LawGraph`, the step graph of a
+:class:`~lumped.network.elements.Monotone` or Herschel-Bulkley element) is
+given instead the line of slope ``sigma`` through its resolvent point of
+``z``; the fixed point of that iteration lies on its graph, reached to a
+relative 8 ulps.  The step asks each graph through the graph contract of
+:class:`~lumped.network.elements.StepGraph` (its pieces, its modes), never
+for its class.
 """
 
 from __future__ import annotations
@@ -43,8 +48,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.laws import Dashpot, sticks
-from lumped.network.elements import Piece
+from lumped.network.elements import Piece, StepGraph, as_step_graph
 
 __all__ = ["StepError", "StepSolution", "solve_step", "SIGMA_SCALES", "default_bound", "unsettled"]
 
@@ -52,9 +56,8 @@ __all__ = ["StepError", "StepSolution", "solve_step", "SIGMA_SCALES", "default_b
 SIGMA_SCALES = (1.0, 0.25, 4.0, 1 / 16, 16.0)
 #: Largest unknown count solved as a dense matrix.
 _DENSE = 48
-_EPS = float(np.finfo(float).eps)
 
-Graph = Sequence[Piece] | Dashpot
+Graph = Sequence[Piece] | StepGraph
 
 
 class StepError(ArithmeticError):
@@ -99,7 +102,9 @@ def solve_step(
         ``d_i > 0``.
     rhs : ndarray, (masses,)
     graphs : sequence
-        Each element's step graph (pieces), or a :class:`~lumped.laws.Dashpot`.
+        Each element's step graph: its pieces, or a
+        :class:`~lumped.network.elements.StepGraph` (a law's
+        :class:`~lumped.network.elements.LawGraph`).
     sigma : ndarray, (elements,)
         Scale of each element's mode test (> 0).
     modes : sequence of int, optional
@@ -113,7 +118,8 @@ def solve_step(
         If no scale settles within the bound.
     """
     topo = _Topology(list(first), list(second), inertia.size)
-    guess = [len(g) // 2 if not isinstance(g, Dashpot) else 0 for g in graphs] if modes is None else list(modes)
+    graphs = [as_step_graph(g) for g in graphs]
+    guess = [g.initial_mode() for g in graphs] if modes is None else list(modes)
     bound = default_bound(len(graphs)) if max_iterations is None else max_iterations
     for scale in SIGMA_SCALES:
         out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound)
@@ -141,30 +147,32 @@ def _iterate(
     topo: _Topology,
     inertia: np.ndarray,
     rhs: np.ndarray,
-    graphs: Sequence[Graph],
+    graphs: Sequence[StepGraph],
     sigma: np.ndarray,
     modes: list,
     bound: int,
 ) -> StepSolution | None:
     """The active-set loop at one scale; ``None`` if it cycles or hits the bound."""
     seen: set[tuple] = set()
-    points = [None] * len(graphs)  # a Monotone element's current (w, f)
+    piecewise = all(g.is_piecewise for g in graphs)
     for it in range(1, bound + 1):
-        pieces = [_piece(g, m, p, s) for g, m, p, s in zip(graphs, modes, points, sigma)]
+        pieces = [g.piece(m, s) for g, m, s in zip(graphs, modes, sigma)]
         v, w, f = _linear(topo, inertia, rhs, pieces)
-        new = [_mode(g, fe + s * we, s) for g, fe, we, s in zip(graphs, f, w, sigma)]
-        settled = all(_same(a, b, g) for a, b, g in zip(modes, new, graphs))
+        new = [g.mode(fe + s * we, s) for g, fe, we, s in zip(graphs, f, w, sigma)]
+        settled = all(g.same(a, b) for a, b, g in zip(modes, new, graphs))
         if settled:
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it)
-        key = tuple(m if isinstance(m, int) else None for m in new)
-        if key in seen and not any(isinstance(g, Dashpot) for g in graphs):
+        key = tuple(m if g.is_piecewise else None for m, g in zip(new, graphs))
+        if key in seen and piecewise:
             return None  # a cycle: this scale will never settle
         seen.add(key)
         modes = new
     return None
 
 
-def _dual_sweeps(topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, graphs: Sequence[Graph], sweeps: int) -> list:
+def _dual_sweeps(
+    topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, graphs: Sequence[StepGraph], sweeps: int
+) -> list:
     """Modes from Gauss-Seidel on the dual problem, a fallback when the active set cycles.
 
     The dual of the step, minimise ``|r - B^T f|^2_{D^-1}/2 + sum_e psi_e*(f_e)``
@@ -178,63 +186,22 @@ def _dual_sweeps(topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, graphs: 
     inv = [1.0 / d for d in inertia] + [0.0]
     v = [r * s for r, s in zip(rhs, inv)] + [0.0]
     f = [0.0] * len(graphs)
-    modes: list = [0 if isinstance(g, Dashpot) else len(g) // 2 for g in graphs]
+    modes: list = [g.initial_mode() for g in graphs]
     for _ in range(sweeps):
         for e, g in enumerate(graphs):
-            if isinstance(g, Dashpot):
+            if not g.is_piecewise:
                 continue
             i, j = topo.first[e], topo.second[e]
             sigma = 1.0 / (inv[i] + inv[j])
             z = f[e] + sigma * (v[j] - v[i])
-            k = modes[e] = _mode(g, z, sigma)
-            p = g[k]
+            k = modes[e] = g.mode(z, sigma)
+            p = g.piece(k, sigma)
             new = z - sigma * p.a if p.rigid else p.a + p.b * (z - p.a) / (p.b + sigma)
             delta, f[e] = new - f[e], new
             v[j] -= delta * inv[j]
             v[i] += delta * inv[i]
             v[-1] = 0.0
     return modes
-
-
-def _piece(graph: Graph, mode: object, point: object, sigma: float) -> Piece:
-    if not isinstance(graph, Dashpot):
-        return graph[mode]  # type: ignore[index]
-    w0, f0 = mode if isinstance(mode, tuple) else (0.0, 0.0)
-    return Piece(False, f0 - sigma * w0, sigma, -np.inf, np.inf)
-
-
-def _mode(graph: Graph, z: float, sigma: float) -> object:
-    """The piece of ``graph`` whose range of ``z = f + sigma w`` holds ``z``.
-
-    A rigid piece (``w = a``, ``f`` in ``[lo, hi]``) holds the closed band
-    ``[lo + sigma a, hi + sigma a]`` (:func:`lumped.laws.sticks`, Algorithm 1's
-    line 5), so at an edge it shares with a free piece, where both give the
-    same ``(w, f)``, the rigid piece is chosen: a Bingham element sticks on
-    both edges of its band, as in Algorithm 1.  A rigid piece of zero width
-    (a threshold 0) is never taken: its one point lies on the free pieces
-    beside it, and such an element is not ``rigid_capable``.  ``mode_of`` in
-    ``_network_kernel.c`` is the C copy (``tests/test_band_edge.py``).
-    """
-    if isinstance(graph, Dashpot):
-        f = graph._resolvent_impl(z, sigma).force
-        return ((z - f) / sigma, f)
-    for k, p in enumerate(graph):
-        if p.rigid and p.lo < p.hi and sticks(z, p.lo + sigma * p.a, p.hi + sigma * p.a):
-            return k
-    last = len(graph) - 1
-    for k, p in enumerate(graph[:last]):
-        if not p.rigid and z <= p.a + (p.b + sigma) * p.hi:
-            return k
-    return last
-
-
-def _same(old: object, new: object, graph: Graph) -> bool:
-    if not isinstance(graph, Dashpot):
-        return old == new
-    if not isinstance(old, tuple):
-        return False
-    scale = abs(new[1]) + abs(old[1]) + 1e-300  # type: ignore[index]
-    return abs(new[1] - old[1]) <= 8 * _EPS * scale  # type: ignore[index]
 
 
 def _clusters(topo: _Topology, pieces: list[Piece]) -> tuple[list[int], list[float]]:
