@@ -164,3 +164,21 @@ def load_system_text(text: str):
         path = Path(folder) / "s.toml"
         path.write_text(text)
         return load_system(str(path))
+
+
+# --------------------------------------------------------------------------- backward Euler's loops, named once
+
+
+@pytest.mark.parametrize("name", ["fortran", None, 1])
+def test_both_kernel_arguments_are_checked_in_one_place(name):
+    from lumped import _validate, batched
+
+    message = f"^kernel must be 'auto', 'compiled' or 'python', got {name!r}$"
+    with pytest.raises(ValueError, match=message):
+        L.backward_euler(L.Oscillator.bingham(), 0.1, 1e-3, kernel=name)
+    with pytest.raises(ValueError, match=message):
+        batched._kernel_name(name)
+    assert _validate.KERNELS == ("auto", "compiled", "python")
+    assert _validate.kernel("python", "compiled", "the C kernel") == "python"
+    with pytest.raises(ValueError, match="^kernel: 'compiled' requested but the C kernel was not built$"):
+        _validate.kernel("compiled", "python", "the C kernel")
