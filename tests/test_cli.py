@@ -214,8 +214,8 @@ def test_top_help_is_plain_text_with_an_example(capsys):
 def test_simulate_help_lists_the_registered_methods_and_requires_output(capsys):
     text = " ".join(_help(["simulate", "--help"], capsys).split())  # unwrap the lines
     assert "--method {" + ",".join(L.METHODS) + "}" in text
-    for name, run in L.METHODS.items():
-        assert f"{name}: {run.__doc__.splitlines()[0].rstrip('.')}" in text
+    for name, method in L.METHODS.items():
+        assert f"{name}: {method.description}" in text
     usage = text[: text.index("options:")]
     assert "--output OUTPUT" in usage and "[--output" not in usage  # not optional
     assert "required arguments: --output OUTPUT" in text

@@ -35,6 +35,25 @@ MAX_SECONDS = 600.0
 TINY = sys.float_info.min
 
 
+#: The loops of backward Euler (the ``kernel`` of :func:`lumped.backward_euler` and
+#: :func:`lumped.batched.batch_backward_euler`): ``"auto"`` is the compiled one if built.
+KERNELS = ("auto", "compiled", "python")
+
+
+def kernel(value: object, built: str, what: str) -> str:
+    """The loop ``value`` names, ``"compiled"`` or ``"python"``; ``built`` is the one ``"auto"`` takes.
+
+    Raises a ``ValueError`` for a name not in :data:`KERNELS`, or for
+    ``"compiled"`` when ``what`` (the C kernel) was not built.
+    """
+    if not isinstance(value, str) or value not in KERNELS:
+        names = f"{', '.join(map(repr, KERNELS[:-1]))} or {KERNELS[-1]!r}"
+        raise ValueError(f"kernel must be {names}, got {value!r}")
+    if value == "compiled" and built != "compiled":
+        raise ValueError(f"kernel: 'compiled' requested but {what} was not built")
+    return built if value == "auto" else value
+
+
 def _show(value: object) -> str:
     """``repr`` shortened to one readable line (a 400-digit integer included)."""
     text = repr(value)

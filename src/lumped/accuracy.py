@@ -418,7 +418,8 @@ def _validated(case: Case | str, method: str, resolution: float, eps: float | No
     if method not in STUDY_METHODS:
         raise ValueError(f"method must be one of {', '.join(STUDY_METHODS)}; got {method!r}")
     resolution = _validate.positive("resolution", resolution)
-    if method in ("exact", "tanh") and not case.closed_form:
+    closed_form_only = method == "tanh" or (method in METHODS and METHODS[method].bingham_only)
+    if closed_form_only and not case.closed_form:
         raise ValueError(f"method: {method!r} needs a Bingham or Coulomb law; case {case.name!r} has another")
     if (method == "tanh") != (eps is not None):
         raise ValueError("eps: give it for method 'tanh' (the velocity scale, m/s), and only for it")

@@ -186,11 +186,7 @@ def _spans(n: int, n_steps: int) -> list[tuple[slice, range]]:
 
 
 def _kernel_name(kernel: str) -> str:
-    if kernel not in ("auto", "compiled", "python"):
-        raise ValueError(f"kernel must be 'auto', 'compiled' or 'python', got {kernel!r}")
-    if kernel == "compiled" and BATCH_KERNEL != "compiled":
-        raise ValueError("kernel: 'compiled' requested but the batched C kernel was not built")
-    return BATCH_KERNEL if kernel == "auto" else kernel
+    return _validate.kernel(kernel, BATCH_KERNEL, "the batched C kernel")
 
 
 def batch_backward_euler(

@@ -27,7 +27,7 @@ from typing import TYPE_CHECKING, BinaryIO
 import numpy as np
 
 from lumped import __version__, _validate
-from lumped.driver import METHODS
+from lumped.methods import METHODS, OPTIONS, SWEEP_METHODS
 from lumped.parameters import PARAMETERS, PER_ROW
 
 if TYPE_CHECKING:
@@ -38,13 +38,16 @@ __all__ = ["main", "build_parser"]
 #: The API's argument names (what its ``ValueError`` messages begin with) -> options; the
 #: options that set the system, its motion and the grid (their defaults, help and checks)
 #: are those of :data:`lumped.parameters.PARAMETERS`.
-_API_TO_OPTION = {name: p.option for name, p in PARAMETERS.items()} | {
-    "t_end/dt": "--t-end/--dt",
-    "rtol": "--rtol",
-    "vary": "--vary",
-    "periods": "--periods",
-    "method": "--method",
-}
+_API_TO_OPTION = (
+    {name: p.option for name, p in PARAMETERS.items()}
+    | {
+        "t_end/dt": "--t-end/--dt",
+        "vary": "--vary",
+        "periods": "--periods",
+        "method": "--method",
+    }
+    | {name: option.flag for name, (option, _) in OPTIONS.items()}
+)
 _LEADING_NAME = re.compile(r"^([a-z][a-z0-9_/]*)(?=:| must)")
 #: Options that take a value (the rest of the command line is names and values).
 _TAKES_VALUE = frozenset(_API_TO_OPTION.values()) - {"--t-end/--dt"} | {"--method", "--output", "--system"}
@@ -87,9 +90,28 @@ Run "python -m lumped simulate --help" or "python -m lumped sweep --help" for th
 
 
 def _method_help() -> str:
-    """One line per registered method: its name and the first line of its docstring."""
-    lines = (f"{name}: {(run.__doc__ or '').strip().splitlines()[0].rstrip('.')}" for name, run in METHODS.items())
+    """One line per registered method (:data:`lumped.methods.METHODS`): its name and its description."""
+    lines = (f"{name}: {m.description}" for name, m in METHODS.items())
     return "; ".join(lines) + " [default: backward-euler]"
+
+
+def _add_method_options(parser: argparse.ArgumentParser, sweep: bool = False) -> None:
+    """``--method`` and the methods' options (``--rtol``), from the registry; a sweep's lists its methods."""
+    names = SWEEP_METHODS if sweep else tuple(METHODS)
+    metavar = "{" + ",".join(names) + "}"
+    parser.add_argument(
+        "--method", default="backward-euler", metavar=metavar, **({} if sweep else {"help": _method_help()})
+    )
+    for option, users in OPTIONS.values():
+        takers = f"of --method {', '.join(users)}"
+        text = (
+            f"{option.help} {takers} [default: {option.default:g}]"
+            if sweep
+            else (
+                f"{option.help} {takers}, {option.accepted} [default: {option.default:g}]; refused with other methods"
+            )
+        )
+        parser.add_argument(option.flag, default=None, help=text)
 
 
 class _HelpFormatter(argparse.HelpFormatter):
@@ -119,7 +141,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     Abbreviated option names are not accepted: ``--x0`` and ``--x00`` must not
     silently mean the same thing, and every option's value is checked by name.
-    ``--method`` lists the names of :data:`lumped.driver.METHODS`; a bad one is
+    ``--method`` lists the names of :data:`lumped.methods.METHODS`; a bad one is
     refused by :func:`_clean` with the API's message.
     """
     parser = _Parser(
@@ -145,16 +167,11 @@ def build_parser() -> argparse.ArgumentParser:
         default=None,
         metavar="FILE.toml",
         help="a network of masses and elements described in a TOML file (see "
-        "book/guide/systems.md, example examples/figure3.toml); only --t-end, --dt, --save-every, --method, --rtol, --output go with it "
-        "(a method other than backward-euler needs one mass)",
+        "book/guide/systems.md, example examples/figure3.toml); only --t-end, --dt, --save-every, --method, "
+        f"{', '.join(o.flag for o, _ in OPTIONS.values())}, --output go with it "
+        f"(a method other than {', '.join(n for n, m in METHODS.items() if m.runs_networks)} needs one mass)",
     )
-    sim.add_argument("--method", default="backward-euler", metavar="{" + ",".join(METHODS) + "}", help=_method_help())
-    sim.add_argument(
-        "--rtol",
-        default=None,
-        help="relative tolerance of --method event-driven, in [2.2e-14, 1e-2] [default: 1e-10]; "
-        "refused with other methods",
-    )
+    _add_method_options(sim)
     required = sim.add_argument_group("required arguments")
     required.add_argument("--output", required=True, help="output file, .csv or .npz")
     _add_sweep(sub)
@@ -215,8 +232,7 @@ def _add_sweep(sub: argparse._SubParsersAction) -> None:
     sw.add_argument(
         "--periods", default="10", help="K, the final forcing periods of the forced summaries [default: 10]"
     )
-    sw.add_argument("--method", default="backward-euler", metavar="{backward-euler,exact,event-driven}")
-    sw.add_argument("--rtol", default=None, help="relative tolerance of --method event-driven [default: 1e-10]")
+    _add_method_options(sw, sweep=True)
     sw.add_argument("--output", required=True, help="output file, .csv or .npz")
 
 
@@ -329,13 +345,11 @@ def _clean(args: argparse.Namespace) -> dict[str, object]:
 
 
 def _method_options(args: argparse.Namespace) -> dict[str, object]:
-    """The options of ``--method`` given on the command line (``--rtol``), checked."""
-    from lumped.driver import method_options
-    from lumped.event_integration import validate_rtol
-
-    given = {} if args.rtol is None else {"rtol": args.rtol}
-    method_options(args.method, given)  # refuses an option the method does not take
-    return {name: validate_rtol(_validate.parse_float(name, text)) for name, text in given.items()}
+    """The options of ``--method`` given on the command line (``--rtol``), checked by the registry."""
+    method = METHODS[args.method]
+    given = {name: getattr(args, name) for name in OPTIONS if getattr(args, name) is not None}
+    method.takes(given)  # refuses an option the method does not take, before its value is read
+    return method.check_options({name: _validate.parse_float(name, text) for name, text in given.items()})
 
 
 def _new_file_mode(path: str) -> int:
@@ -489,11 +503,12 @@ def _simulate_system(args: argparse.Namespace, output: _Output) -> str:
     options = _method_options(args)
     _check_output(args.output)
     network = load_system(args.system)
-    if args.method != "backward-euler":
+    any_network = METHODS[args.method].runs_networks
+    if not any_network:
         _one_mass(network, args)
     output.create()
     try:
-        if args.method == "backward-euler":
+        if any_network:
             traj = simulate_network(network, values["t_end"], values["dt"], save_every=values["save_every"])
         else:
             traj = simulate_one_mass(
@@ -541,14 +556,18 @@ def _system_message(message: str, path: str, network: object) -> str:
 
 
 def _one_mass(network: object, args: argparse.Namespace) -> None:
-    """Refuse a network that the single-mass ``--method`` cannot run, naming the file."""
+    """Refuse a network that the single-mass ``--method`` cannot run (not one mass, or a law
+    the method does not take), naming the file."""
     from lumped.network.one_mass import one_mass_form
 
     try:
-        one_mass_form(network)  # type: ignore[arg-type]
+        form = one_mass_form(network)  # type: ignore[arg-type]
     except ValueError as err:
         where = f"{args.system} {err}" if str(err).startswith("has ") else f"{args.system}: {err}"
         raise ValueError(f"--method {args.method} needs a one-mass system; {where}") from None
+    reason = METHODS[args.method].refusal(form.oscillator)
+    if reason is not None:
+        raise ValueError(f"{reason} ({args.system})")
 
 
 def _simulate(args: argparse.Namespace, output: _Output) -> str:

@@ -50,7 +50,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped import _validate, parameters
+from lumped import _validate, methods, parameters
 from lumped.batched import BATCH_KERNEL, BatchParameters, batch_backward_euler
 from lumped.results import Trajectory
 
@@ -72,8 +72,9 @@ FORCED_COLUMNS = ("steady_amplitude", "stops_per_period")
 #: The per-row parameters and their defaults (those of ``python -m lumped simulate``),
 #: from :data:`lumped.parameters.PARAMETERS`.
 PARAMETERS = {name: parameters.PARAMETERS[name].default for name in parameters.PER_ROW}
-#: Methods a sweep runs; backward Euler goes through the batched kernel.
-SWEEP_METHODS = ("backward-euler", "exact", "event-driven")
+#: Methods a sweep runs, those of the registry that run a batch (:data:`lumped.methods.SWEEP_METHODS`);
+#: backward Euler goes through the batched kernel.
+SWEEP_METHODS = methods.SWEEP_METHODS
 #: Largest number of rows of a grid: the product of the sizes of the axes,
 #: checked before any value is built.  At about 330 bytes a row
 #: (:data:`MEMORY_BYTES_PER_VALUE`) it is some 3.3 GB of memory.
@@ -435,8 +436,7 @@ class SweepSpec:
             if name not in PARAMETERS:
                 raise ValueError(f"{name}: not a parameter of a sweep; one of {', '.join(PARAMETERS)}")
         values = {n: _check_value(n, v) for n, v in (PARAMETERS | dict(fixed)).items()}
-        if method not in SWEEP_METHODS:
-            raise ValueError(f"method: a sweep runs {', '.join(SWEEP_METHODS)}; got {method!r}")
+        methods.refuse_sweep(method)
         spec = cls(
             tuple(axes),
             values,

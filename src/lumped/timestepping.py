@@ -307,11 +307,7 @@ def backward_euler(
     x0, v0 = _validate.finite("x0", x0), _validate.finite("v0", v0)
     save_every = _validate.stride("save_every", save_every)
     force = validate_force(force)
-    if kernel not in ("auto", "compiled", "python"):
-        raise ValueError(f"kernel must be 'auto', 'compiled' or 'python', got {kernel!r}")
-    if kernel == "compiled" and KERNEL != "compiled":
-        raise ValueError("kernel: 'compiled' requested but the C kernel was not built")
-    kernel = KERNEL if kernel == "auto" else kernel
+    kernel = _validate.kernel(kernel, KERNEL, "the C kernel")
     n_steps = _validate.step_count(t_end, dt)
     out = np.empty((_validate.output_size(n_steps, save_every), len(COLUMNS)))
     _check_run(oscillator, t_end, dt, x0, v0, force, kernel, n_steps)

@@ -24,6 +24,7 @@ import numpy as np
 
 from lumped import _validate
 from lumped.forcing import SwitchedSine
+from lumped.methods import NETWORK_SOLVERS
 from lumped.network import kernel
 from lumped.network.model import Network
 from lumped.network.one_mass import OneMass, network_trajectory, one_mass_form
@@ -32,8 +33,9 @@ from lumped.network.trajectory import NetworkTrajectory
 
 __all__ = ["NetworkTrajectory", "simulate_network", "SOLVERS"]
 
-#: Step solvers by name (see :func:`simulate_network`).
-SOLVERS = ("auto", "active-set", "compiled", "python")
+#: Step solvers by name (see :func:`simulate_network`): a view of the registry
+#: (:data:`lumped.methods.NETWORK_SOLVERS`, those of the method that runs any network).
+SOLVERS = NETWORK_SOLVERS
 #: Steps whose forcing is tabulated at once (at most ``_TABLE_VALUES`` values).
 _BLOCK = 1 << 14
 _TABLE_VALUES = 1 << 20
