@@ -2,7 +2,7 @@
 
 Such a network is an :class:`~lumped.system.Oscillator` (the springs in
 parallel add their stiffnesses) and can be handed to the single-mass
-methods of :data:`lumped.driver.METHODS`; :func:`simulate_one_mass` does
+methods of :data:`lumped.methods.METHODS`; :func:`simulate_one_mass` does
 that and writes the result back as the network's
 :class:`~lumped.network.trajectory.NetworkTrajectory`.
 """
@@ -88,7 +88,7 @@ def network_trajectory(net: Network, form: OneMass, tr: Trajectory, solver: str)
 def simulate_one_mass(
     net: Network, t_end: float, dt: float, *, save_every: int = 1, method: str = "event-driven", **options: object
 ) -> NetworkTrajectory:
-    """Run a one-mass network by a single-mass ``method`` of :data:`lumped.driver.METHODS`.
+    """Run a one-mass network by a single-mass ``method`` of :data:`lumped.methods.METHODS`.
 
     ``options`` are the method's (``rtol`` for ``event-driven``).  Raises a
     ``ValueError`` beginning with ``method`` if the network is not of the
