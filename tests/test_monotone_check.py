@@ -7,7 +7,6 @@ and the event-driven method wandered for minutes.
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pytest
@@ -38,12 +37,16 @@ def test_a_decreasing_law_is_refused_naming_where(case: str) -> None:
     assert lo < hi and phi(lo) > phi(hi)  # the two forces named do show the decrease
 
 
-def test_the_issue_law_is_refused_before_any_run() -> None:
-    start = time.perf_counter()
+def test_the_issue_law_is_refused_before_any_run(monkeypatch) -> None:
+    """The law is refused when it is built: the solver (which ran past 300 s) is never reached."""
+
+    def never(*args, **kwargs):  # noqa: ANN002, ANN003, ANN202
+        raise AssertionError("the solver was called")
+
+    monkeypatch.setattr(L, "solve_event_driven", never)
     with pytest.raises(ValueError, match="velocity_of_force"):
         osc = L.Oscillator(1.0, L.LinearSpring(100.0), L.MonotoneDashpot(math.sin))
         L.solve_event_driven(osc, 2.0, x0=0.5)
-    assert time.perf_counter() - start < 1.0
 
 
 MONOTONE = {

@@ -9,7 +9,6 @@ The time estimate of the single-run methods is compared with a measured run.
 from __future__ import annotations
 
 import math
-import time
 
 import numpy as np
 import pytest
@@ -18,7 +17,7 @@ import lumped as L
 
 from lumped import sweep as sweep_module
 from lumped.cli import main
-from lumped.sweep import MAX_ROWS, SweepSpec, axis, chunk_slice, parse_vary, run_sweep, sweep
+from lumped.sweep import MAX_ROWS, SweepSpec, axis, chunk_slice, parse_vary, sweep
 
 
 @pytest.fixture
