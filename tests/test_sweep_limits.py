@@ -3,7 +3,8 @@
 The size of a grid (rows, memory, file, time) is checked from the sizes of
 its axes before any value is built or checked: the tests replace the value
 check by one that fails the test if called, rather than timing the refusal.
-The time estimate of the single-run methods is compared with a measured run.
+The time estimate of the single-run methods is checked to count every event of
+the runs (benchmarks/bench_sweep_estimate.py compares it with measured time).
 """
 
 from __future__ import annotations
