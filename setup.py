@@ -10,7 +10,7 @@ rounding of its linear solve.
 
 ``config/config.yaml`` stays the one file holding the paper's values (the
 Snakefile and the users edit it); :class:`build_py` copies it into the built
-package as ``lumped/paper_config.yaml``, which ``lumped.config.load()`` reads
+package as ``lumped/paper_config.yaml``, which ``lumped.studies.config.load()`` reads
 when the package is installed without its checkout.  MANIFEST.in puts the file
 into the sdist, so a wheel built from the sdist carries it too.
 """
@@ -21,7 +21,7 @@ from setuptools import Extension, setup
 from setuptools.command.build_py import build_py as _build_py
 
 CONFIG = os.path.join("config", "config.yaml")
-PACKAGED = os.path.join("lumped", "paper_config.yaml")
+PACKAGED = os.path.join("lumped", "studies", "paper_config.yaml")
 
 
 class build_py(_build_py):
@@ -44,24 +44,24 @@ setup(
     cmdclass={"build_py": build_py},
     ext_modules=[
         Extension(
-            f"lumped.{name}",
-            [f"src/lumped/{name}.c"],
+            f"lumped.kernels.{name}",
+            [f"src/lumped/kernels/{name}.c"],
             depends=depends,
             extra_compile_args=["-O2", "-ffp-contract=off", "-fno-fast-math"],
             optional=True,
         )
         for name, depends in (
-            ("_kernel", ["src/lumped/_binding_checks.h", "src/lumped/_sine.h", "src/lumped/_stick.h"]),
-            ("_network_kernel", ["src/lumped/_binding_checks.h", "src/lumped/_stick.h"]),
+            ("_kernel", ["src/lumped/kernels/_binding_checks.h", "src/lumped/kernels/_sine.h", "src/lumped/kernels/_stick.h"]),
+            ("_network_kernel", ["src/lumped/kernels/_binding_checks.h", "src/lumped/kernels/_stick.h"]),
         )
     ]
     + [
         # the batched Algorithm 1: both cores through OpenMP, and -O3 for the
         # vectorised loop over trajectories; still no contraction (bit-identity)
         Extension(
-            "lumped._batch_kernel",
-            ["src/lumped/_batch_kernel.c"],
-            depends=["src/lumped/_batch_lanes.h", "src/lumped/_sine.h", "src/lumped/_stick.h"],  # its vector loop (once per instruction set), the sine
+            "lumped.kernels._batch_kernel",
+            ["src/lumped/kernels/_batch_kernel.c"],
+            depends=["src/lumped/kernels/_batch_lanes.h", "src/lumped/kernels/_sine.h", "src/lumped/kernels/_stick.h"],  # its vector loop (once per instruction set), the sine
             extra_compile_args=["-O3", "-fopenmp", "-ffp-contract=off", "-fno-fast-math", "-Wno-psabi"],
             extra_link_args=["-fopenmp"],
             optional=True,

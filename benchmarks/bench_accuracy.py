@@ -24,7 +24,7 @@ Run from the repository root:  python benchmarks/bench_accuracy.py [--quick] [--
    and rtol of the study, with steps and wall time, and the cheapest
    setting that reaches 1e-3, if any.
 
-``--table`` adds the work-precision study of ``lumped.accuracy`` with wall
+``--table`` adds the work-precision study of ``lumped.studies.accuracy`` with wall
 times (best of 3): the data of the wall-time work-precision diagram, which
 the pipeline draws against a deterministic work count instead
 (figures/README.md says why).
@@ -43,8 +43,8 @@ import time
 import numpy as np
 
 import lumped as L
-from lumped import accuracy as A
-from lumped.event_integration import RTOL_RANGE
+from lumped.solvers.event_driven import RTOL_RANGE
+from lumped.studies import accuracy as A
 
 HB_CASES = {  # label -> (consistency K, exponent n)
     "n = 1/2, K = 1": (1.0, 0.5),

@@ -26,7 +26,8 @@ import time
 import numpy as np
 
 import lumped as L
-from lumped import batched, timestepping
+from lumped.kernels import batched
+from lumped.solvers import backward_euler
 
 
 def best(run, repeats: int = 3) -> float:
@@ -79,11 +80,11 @@ def sweep_wall() -> float:
 
 def main() -> None:
     compiled = batched.BATCH_KERNEL == "compiled"
-    kernel = __import__("lumped._batch_kernel", fromlist=["threads"]) if compiled else None
+    kernel = __import__("lumped.kernels._batch_kernel", fromlist=["threads"]) if compiled else None
     threads, path = (kernel.threads(), kernel.best_path()) if kernel else (1, "numpy")
     print(
         f"kernels: batched {batched.BATCH_KERNEL} ({path} loop by default, {threads} threads), "
-        f"single-run {timestepping.KERNEL}; "
+        f"single-run {backward_euler.KERNEL}; "
         f"load average {os.getloadavg()[0]:.2f}"
     )
     print(f"single-run kernel:          {single_ns():7.2f} ns per step")

@@ -4,7 +4,7 @@ Run from the repository root:  python benchmarks/bench_sweep_estimate.py
 
 For each sweep of ``tests/test_sweep_limits.py``'s RUNS (exact and
 event-driven, free and forced), prints the estimate of
-:meth:`lumped.sweep.SweepSpec.seconds`, the measured wall time (after one row
+:meth:`lumped.drivers.sweep.SweepSpec.seconds`, the measured wall time (after one row
 to take imports and first calls out) and their ratio.  The estimate is meant
 to stay within a factor 4 of the measurement on this project's 2-core
 machine; the machine may be shared, so the figures are what this run saw.
@@ -21,7 +21,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent.parent / "tests"))
 
 from test_sweep_limits import RUNS, spec_of  # noqa: E402
 
-from lumped.sweep import run_sweep  # noqa: E402
+from lumped.drivers.sweep import run_sweep  # noqa: E402
 
 
 def main() -> None:

@@ -38,14 +38,14 @@ import numpy as np
 import sympy as sp
 
 import lumped as L
-import lumped.config
-import lumped.examples
+import lumped.studies.config
+import lumped.studies.examples
 from lumped.laws import bingham_corrector
 import lumped.plotting as P
-from lumped.system import initial_dashpot_force
+from lumped.model.oscillator import initial_dashpot_force
 
-cfg = lumped.config.load()
-osc = lumped.examples.oscillator(cfg)
+cfg = lumped.studies.config.load()
+osc = lumped.studies.examples.oscillator(cfg)
 m, k, tau, gamma, dt = cfg["mass"], cfg["stiffness"], cfg["threshold"], cfg["gamma"], cfg["dt"]
 print(f"m = {m} kg, k = {k} N/m, mu_s N_f = {tau} N, gamma = {gamma} m/(N s), dt = {dt} s")
 
@@ -359,12 +359,12 @@ print(f"eta = {eta:.8g} kg/s, c = {c:g} N s/m:  -(eta + 50 c)/(eta + c) = "
 # ## Step 8: eq. (16) and the stick condition on a full run
 #
 # Take the paper's forced run of eq. (17b), the one of its Figures 6 to 9
-# (`lumped.examples.paper()["forced_large"]`): from rest at $x = 0$, pushed by
+# (`lumped.studies.examples.paper()["forced_large"]`): from rest at $x = 0$, pushed by
 # $F(t) = P \sin(5\pi t)$ until the force is switched off. Run Algorithm 1 and
 # rebuild, from the stored trajectory, the predictor (15b) of every step.
 
 # %%
-forced = lumped.examples.paper(cfg)["forced_large"]
+forced = lumped.studies.examples.paper(cfg)["forced_large"]
 run = forced.algorithm1()
 Ft = m / dt * run.v[:-1] + run.F[1:] - run.F_s[:-1]  # eq. (15b) for steps 1..N
 Fd, v = run.F_d[1:], run.v[1:]

@@ -43,13 +43,13 @@ import numpy as np
 from scipy.optimize import brentq
 
 import lumped as L
-import lumped.config
-import lumped.examples
-from lumped import textbook as T
+import lumped.studies.config
+import lumped.studies.examples
+from lumped.solvers import textbook as T
 from lumped.plotting.textbook import acceleration_graph, chatter, creep
 
-cfg = lumped.config.load()
-osc = lumped.examples.oscillator(cfg)
+cfg = lumped.studies.config.load()
+osc = lumped.studies.examples.oscillator(cfg)
 m, k, tau, dt = cfg["mass"], cfg["stiffness"], cfg["threshold"], cfg["dt"]
 x0 = osc.static_band / 2  # halfway into the band: the paper's Figure 10 case
 model = T.TextbookModel(osc)  # sgn(0) = 0

@@ -26,12 +26,12 @@
 
 # %%
 import lumped as L
-import lumped.config
-import lumped.examples
+import lumped.studies.config
+import lumped.studies.examples
 import lumped.plotting as P
 import numpy as np
 
-cfg = lumped.config.load()
+cfg = lumped.studies.config.load()
 law = L.BinghamDashpot(cfg["threshold"], cfg["gamma"])
 print(f"threshold mu_s N_f = {law.threshold:.3f} N, slope gamma = {law.gamma:.3f} m/(N s)")
 
@@ -91,7 +91,7 @@ _ = P.save_figure(fig, "fig02_spring_with_string")
 # $m\ddot x = F - F_s - F_d$.
 
 # %%
-osc = lumped.examples.oscillator(cfg)
+osc = lumped.studies.examples.oscillator(cfg)
 print(f"m = {osc.mass:.3f} kg, k = {osc.stiffness:.3f} N/m")
 print(f"largest |x| at which the unforced mass can rest: mu_s N_f / k = {osc.static_band:.4f} m")
 fig = P.oscillator_schematic()

@@ -24,13 +24,13 @@
 # deviations are printed.
 
 # %%
-import lumped.config
-import lumped.examples
+import lumped.studies.config
+import lumped.studies.examples
 import lumped.plotting as P
 import numpy as np
 
-cfg = lumped.config.load()
-runs = lumped.examples.paper(cfg)  # the paper's four runs; here the two forced ones
+cfg = lumped.studies.config.load()
+runs = lumped.studies.examples.paper(cfg)  # the paper's four runs; here the two forced ones
 osc, dt, t_end = (runs["forced_large"].oscillator, runs["forced_large"].dt,
                   runs["forced_large"].t_end)
 print(f"m = {osc.mass:.3f} kg, k = {osc.stiffness:.3f} N/m, mu_s N_f = {osc.threshold:.3f} N, "

@@ -23,13 +23,13 @@
 # solution throughout, and the numbers behind each statement are printed.
 
 # %%
-import lumped.config
-import lumped.examples
+import lumped.studies.config
+import lumped.studies.examples
 import lumped.plotting as P
 import numpy as np
 
-cfg = lumped.config.load()
-runs = lumped.examples.paper(cfg)  # the paper's four runs; here the two free ones
+cfg = lumped.studies.config.load()
+runs = lumped.studies.examples.paper(cfg)  # the paper's four runs; here the two free ones
 osc, dt = runs["free_large"].oscillator, runs["free_large"].dt
 k, tau, band = osc.stiffness, osc.threshold, osc.static_band
 print(f"m = {osc.mass:.3f} kg, k = {k:.3f} N/m, mu_s N_f = {tau:.3f} N, "

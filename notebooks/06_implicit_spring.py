@@ -19,8 +19,8 @@
 # will see why its displacement is a function of its force but not the
 # reverse, what happens when the string goes taut (an impact: the velocity
 # drops to zero within two steps, and the kinetic energy is lost), and how that
-# impact moves the position where the mass finally comes to rest. The networks
-# of `lumped.network` integrate it with backward Euler; every claim is checked
+# impact moves the position where the mass finally comes to rest.
+# `lumped.simulate_network` integrates it with backward Euler; every claim is checked
 # against a closed form or the exact event-driven solver, and printed.
 #
 # This notebook and the next two extend the replication (notebooks 01 to 05)
@@ -32,7 +32,7 @@ import math
 import lumped as L
 import lumped.plotting as P
 import numpy as np
-from lumped.network import Bingham, Mass, MaxwellBingham, Network, Spring, SpringString, simulate_network
+from lumped import Bingham, Mass, MaxwellBingham, Network, Spring, SpringString, simulate_network
 from scipy.optimize import brentq
 
 m, k, length = 1.0, 100.0, 0.2  # kg, N/m, m: the mass, the spring and the string's length L

@@ -30,7 +30,7 @@ import math
 import lumped as L
 import lumped.plotting as P
 import numpy as np
-from lumped.network import Bingham, LockingBingham, Mass, MaxwellBingham, Network, Spring, simulate_network
+from lumped import Bingham, LockingBingham, Mass, MaxwellBingham, Network, Spring, simulate_network
 
 print("elements:", ", ".join(cls.__name__ for cls in (MaxwellBingham, LockingBingham)))
 

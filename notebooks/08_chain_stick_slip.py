@@ -29,7 +29,7 @@ import math
 import lumped as L
 import lumped.plotting as P
 import numpy as np
-from lumped.network import Bingham, Load, Mass, Network, Spring, simulate_network
+from lumped import Bingham, Load, Mass, Network, Spring, simulate_network
 
 n_mass, m, k, tau = 12, 1.0, 100.0, 1.0  # masses; kg, N/m, N (each mass's friction threshold mu_s N_f)
 dt, t_end = 1e-3, 2.5  # s

@@ -20,7 +20,7 @@
 # original's choice), the θ-method at θ = 1/2, the event-capturing scheme,
 # the event-driven method at several tolerances, `exact` where it applies, and
 # SciPy's LSODA on the textbook model with `sgn` replaced by `tanh(v/ε)`. The
-# study lives in `lumped.accuracy`; the pipeline runs it once
+# study lives in `lumped.studies.accuracy`; the pipeline runs it once
 # (`rules/accuracy.smk`) into `results/accuracy/study.json`, which this
 # notebook and the article read (opened without a build, the notebook runs it
 # itself, in about 10 s).
@@ -30,11 +30,11 @@ import json
 import math
 from pathlib import Path
 
-import lumped.accuracy as A
-import lumped.config
+import lumped.studies.accuracy as A
+import lumped.studies.config
 import lumped.plotting as P
 
-cfg = lumped.config.default()  # the paper's values, whatever --config overrides (see below)
+cfg = lumped.studies.config.default()  # the paper's values, whatever --config overrides (see below)
 path = Path("..", "results", "accuracy", "study.json")
 if path.is_file():  # written by the pipeline's accuracy_study job
     study = A.from_json(json.loads(path.read_text(encoding="utf-8")))
@@ -58,7 +58,7 @@ print(f"{len(study.results)} runs on {len(study.references)} cases; steps {A.STE
 # rest position.
 #
 # The study always runs on the paper's values as `config/config.yaml` holds
-# them (`lumped.config.default()`), whatever a `--config` override asks of the
+# them (`lumped.studies.config.default()`), whatever a `--config` override asks of the
 # other notebooks: it compares methods on fixed cases, and what it says about
 # those cases holds in every build.
 
@@ -95,7 +95,7 @@ for r in study.select("free-decay", "event-driven")[-2:]:
 # one zero is a *reversal*, dated where the line through the two velocities
 # crosses zero, and the forcing's switch-off is compared by the displacement
 # there. The $i$-th event of each kind is paired with the reference's $i$-th,
-# provided every kind has as many as the reference (`lumped.accuracy.grid_events`
+# provided every kind has as many as the reference (`lumped.studies.accuracy.grid_events`
 # and `match_events`). The event-capturing scheme locates its own.
 
 # %%
@@ -200,7 +200,7 @@ print("reaches 1e-3:", f"eps {best.eps:.0e}, rtol {best.resolution:.0e}" if best
 #   Its error falls fastest with work (acc02), and `rtol` sets it.
 # * **A fixed grid, e.g. to compare with sampled data**: `event-capturing`,
 #   of order two through every switch.
-# * **Networks of several masses**: backward Euler (`lumped.network`) is the
+# * **Networks of several masses**: backward Euler (`lumped.simulate_network`) is the
 #   one the package has; expect first order.
 # * **Not** the θ-method through switches: its final position happens to
 #   converge fast on these cases (printed above), but its largest error is of

@@ -22,7 +22,7 @@
 # zero or stops a half-cycle early. The data are computed by the pipeline in
 # chunks (`rules/studies.smk`, `lumped.studies.rest`) and read here from
 # `results/studies/rest.csv`. The study always takes the paper's values from
-# `config/config.yaml` as committed (`lumped.config.default()`): a `--config`
+# `config/config.yaml` as committed (`lumped.studies.config.default()`): a `--config`
 # override changes the other notebooks, and here only the resolution
 # (`studies`).
 
@@ -31,14 +31,14 @@ from pathlib import Path
 
 import numpy as np
 
-import lumped.config
+import lumped.studies.config
 import lumped.plotting as P
 from lumped import studies
 from lumped.studies import rest
-from lumped.driver import simulate
-from lumped.system import Oscillator
+from lumped.drivers.simulation import simulate
+from lumped.model.oscillator import Oscillator
 
-cfg = lumped.config.default()  # the paper's values as committed, whatever --config overrides
+cfg = lumped.studies.config.default()  # the paper's values as committed, whatever --config overrides
 band = cfg["threshold"] / cfg["stiffness"]  # tau/k (m)
 osc = Oscillator.bingham(cfg["mass"], cfg["stiffness"], cfg["threshold"], cfg["gamma"])
 print(
@@ -99,7 +99,7 @@ print(f"Coulomb's would be 2 tau/k = {2 * band:g} m; rest at x = {run.rest_posit
 # | `alg1_rest_position`, `exact_rest_position` | displacement at rest (m) |
 # | `alg1_stops`, `exact_stops` | steps with $v_n = 0$ after $v_{n-1} \ne 0$ (grid steps entering the stick branch from motion) |
 #
-# The definitions are `lumped.sweep`'s. $N$ is even so that the grid misses
+# The definitions are `lumped.drivers.sweep`'s. $N$ is even so that the grid misses
 # $x_0 = 0$ and the band edges $\pm\tau/k$; the last section shows why.
 
 # %%

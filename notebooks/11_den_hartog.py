@@ -25,7 +25,7 @@
 # `lumped.studies.den_hartog`) and read here from
 # `results/studies/den_hartog.csv`. Like notebook 10, the study always takes
 # $m$, $k$, $F = \tau$ and $\gamma$ from `config/config.yaml` as committed
-# (`lumped.config.default()`): a `--config` override changes only the
+# (`lumped.studies.config.default()`): a `--config` override changes only the
 # resolution (`studies`).
 #
 # Source: J. P. Den Hartog, "Forced vibrations with combined Coulomb and
@@ -38,15 +38,15 @@ from pathlib import Path
 
 import numpy as np
 
-import lumped.config
+import lumped.studies.config
 import lumped.plotting as P
 from lumped import studies
-from lumped.event_driven import solve_exact
-from lumped.forcing import SwitchedSine
+from lumped.solvers.exact import solve_exact
+from lumped.model.forcing import SwitchedSine
 from lumped.studies import den_hartog as dh
-from lumped.system import Oscillator
+from lumped.model.oscillator import Oscillator
 
-cfg = lumped.config.default()  # the committed values, whatever --config overrides
+cfg = lumped.studies.config.default()  # the committed values, whatever --config overrides
 m, k, F = cfg["mass"], cfg["stiffness"], cfg["threshold"]
 wn, c = math.sqrt(k / m), 1.0 / cfg["gamma"]
 zeta = c / (2 * math.sqrt(k * m))
@@ -142,7 +142,7 @@ print(f"pi/4 = {math.pi / 4:.4f}")
 # `dh.TRANSIENT` = 30 s and then two windows of $K$ = 5 forcing periods. The
 # viscous part decays like $e^{-\zeta\omega_n t}$, 2 s per e-fold here, so
 # 30 s is 15 e-folds; Coulomb friction alone has no such rate and settles
-# more slowly near resonance. The summary is the sweep's (`lumped.sweep`:
+# more slowly near resonance. The summary is the sweep's (`lumped.drivers.sweep`:
 # `steady_amplitude`, `stops_per_period`) read from the events instead of a
 # sampled grid: $|x|$ is largest where $\dot x = 0$, which is an event, or at
 # an end of the window, so it is exact (the tests check it against the

@@ -20,11 +20,11 @@
 # and the frequency ratio $r = \omega/\omega_n$; where it never stops
 # (Den Hartog's nonstop motion), where it stops twice, four or six times,
 # and where it never moves at all. Every count comes from the *events* of
-# the exact solution (`lumped.event_driven.solve_exact`), not from samples.
+# the exact solution (`lumped.solvers.exact.solve_exact`), not from samples.
 # The data are computed by the pipeline in chunks (`rules/studies.smk`,
 # `lumped.studies.stops`) and read here from `results/studies/stops.csv`.
 # The study takes $m$, $k$ and the friction force $F$ from
-# `config/config.yaml` as committed (`lumped.config.default()`): a
+# `config/config.yaml` as committed (`lumped.studies.config.default()`): a
 # `--config` override changes the other notebooks, and here only the
 # resolution (`studies`).
 
@@ -34,13 +34,13 @@ from pathlib import Path
 
 import numpy as np
 
-import lumped.config
+import lumped.studies.config
 import lumped.plotting as P
 from lumped import studies
 from lumped.studies import den_hartog as dh
 from lumped.studies import stops
 
-cfg = lumped.config.default()  # the committed values, whatever --config overrides
+cfg = lumped.studies.config.default()  # the committed values, whatever --config overrides
 omega_n = math.sqrt(cfg["stiffness"] / cfg["mass"])
 print(
     f"m = {cfg['mass']:g} kg, k = {cfg['stiffness']:g} N/m, F = tau = {cfg['threshold']:g} N, gamma = inf "

@@ -1,11 +1,11 @@
-# The work-precision study (lumped.accuracy): every method on five cases, written
+# The work-precision study (lumped.studies.accuracy): every method on five cases, written
 # as strict JSON without wall times (results/accuracy/study.json, the same bytes
 # from build to build), and the article's accuracy figure drawn from it.
 #   snakemake --cores 1 results/accuracy/study.json
 # Included by the Snakefile after rules/common.smk and rules/figures.smk.
 # `snakemake --lint` waiver (conda/container per rule): see rules/figures.smk.
 rule accuracy_study:
-    """Run lumped.accuracy.study at its default resolutions (about 15 s on one core).
+    """Run lumped.studies.accuracy.study at its default resolutions (about 15 s on one core).
 
     On config/config.yaml as committed, whatever --config overrides: the study
     compares methods on fixed cases, so it takes no configuration input and

@@ -5,22 +5,22 @@ from glob import glob
 
 import yaml
 
-import lumped.config
+import lumped.studies.config
 
 
 def checked_config(raw):
     """The configuration with values coerced, or exit 2 with one line per problem.
 
-    The check is lumped.config's, the same the notebooks run when they read the
+    The check is lumped.studies.config's, the same the notebooks run when they read the
     configuration. Exiting from the Snakefile prints only our lines; a
     WorkflowError would add the file, line and a traceback frame.
     """
     # The --config texts too: Snakemake reads gamma=1e400 as inf, which the values cannot tell from gamma=inf.
-    problems = lumped.config.problems(raw, list(workflow.config_settings.config_args or []))
+    problems = lumped.studies.config.problems(raw, list(workflow.config_settings.config_args or []))
     if problems:
         print("\n".join(problems), file=sys.stderr)
         sys.exit(2)
-    return lumped.config.check(raw)
+    return lumped.studies.config.check(raw)
 
 
 config.update(checked_config(config))

@@ -6,7 +6,7 @@
 # rules/accuracy.smk (the accuracy study and its figure).
 # `snakemake --lint` waiver (conda/container per rule): see rules/figures.smk.
 rule paper_numbers:
-    """Every number and verdict of the article (lumped.replication, via scripts/paper_numbers.py)."""
+    """Every number and verdict of the article (lumped.studies.replication, via scripts/paper_numbers.py)."""
     input:
         script="scripts/paper_numbers.py",
         config=rules.effective_config.output[0],

@@ -4,11 +4,11 @@ Usage::
 
     python scripts/accuracy_study.py results/accuracy/study.json
 
-A command-line wrapper of :func:`lumped.accuracy.study` at its default
+A command-line wrapper of :func:`lumped.studies.accuracy.study` at its default
 resolutions (about 20 s on one core), on the repository's parameter file
-without ``--config`` overrides (:func:`lumped.accuracy.cases`: the study
+without ``--config`` overrides (:func:`lumped.studies.accuracy.cases`: the study
 compares methods on fixed cases); the layout is
-:func:`lumped.accuracy.to_json`'s.  No wall time is written, so two
+:func:`lumped.studies.accuracy.to_json`'s.  No wall time is written, so two
 runs write the same bytes.
 """
 
@@ -18,7 +18,7 @@ import json
 import sys
 from pathlib import Path
 
-from lumped import accuracy
+from lumped.studies import accuracy
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -4,8 +4,8 @@ Usage::
 
     python scripts/paper_numbers.py paper/build/numbers.json
 
-A command-line wrapper of :func:`lumped.replication.compute` (the layout of
-the JSON is described there), with the configuration :func:`lumped.config.load`
+A command-line wrapper of :func:`lumped.studies.replication.compute` (the layout of
+the JSON is described there), with the configuration :func:`lumped.studies.config.load`
 finds (``$LUMPED_CONFIG`` in the pipeline).  The article
 (``paper/paper.typ``) reads the JSON with Typst's ``json()``;
 ``tests/test_paper_numbers.py`` checks the values against independent
@@ -18,7 +18,7 @@ import json
 import sys
 from pathlib import Path
 
-from lumped.replication import compute
+from lumped.studies.replication import compute
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import sys
 
-import lumped.config
+import lumped.studies.config
 from lumped import studies
 
 
@@ -24,7 +24,7 @@ def _chunk(name: str, config: str, resolution: str, index: str, count: str, outp
     module = studies.study(name)
     if resolution not in studies.RESOLUTIONS:
         raise ValueError(f"resolution must be one of {', '.join(studies.RESOLUTIONS)}, not {resolution!r}")
-    table = module.chunk_table(lumped.config.load(config), resolution, (int(index), int(count)))
+    table = module.chunk_table(lumped.studies.config.load(config), resolution, (int(index), int(count)))
     studies.write_csv(table, output, module.COLUMNS)
 
 

@@ -12,8 +12,8 @@ import pytest
 from hypothesis import settings
 
 import lumped as L
-import lumped.examples
-from lumped import timestepping
+from lumped.solvers import backward_euler
+from lumped.studies import examples
 
 # In CI the property tests draw the same examples on every run (a red CI then
 # means a change broke something, never that a new random draw was unlucky);
@@ -25,12 +25,12 @@ if os.environ.get("CI"):
 #: Machine epsilon of float64; tolerances below are written in units of it.
 EPS = float(np.finfo(float).eps)
 #: The paper's time step (section 3).
-PAPER_DT = L.examples.ORIGINAL_DT
-#: The forcings of eqs. (17a) and (17b), as lumped.examples defines them.
-F17A = L.examples.paper()["forced_small"].force
-F17B = L.examples.paper()["forced_large"].force
+PAPER_DT = examples.ORIGINAL_DT
+#: The forcings of eqs. (17a) and (17b), as lumped.studies.examples defines them.
+F17A = examples.paper()["forced_small"].force
+F17B = examples.paper()["forced_large"].force
 #: The kernels of Algorithm 1 to test: the Python loop always, the C kernel too when built.
-KERNELS = ["python"] + (["compiled"] if timestepping.KERNEL == "compiled" else [])
+KERNELS = ["python"] + (["compiled"] if backward_euler.KERNEL == "compiled" else [])
 
 
 def energy_scale(eb: L.EnergyBalance) -> float:

@@ -1,4 +1,4 @@
-"""The work-precision study (lumped.accuracy): event matching, observed orders, the references, bad inputs.
+"""The work-precision study (lumped.studies.accuracy): event matching, observed orders, the references, bad inputs.
 
 The orders are measured against the closed-form event-driven solver
 (``solve_exact``), which shares no code with the fixed-step schemes; the
@@ -18,9 +18,9 @@ import pytest
 from scipy.integrate import solve_ivp
 
 import lumped as L
-from lumped import accuracy as A
-from lumped.event_driven import Event
-from lumped.event_integration import RTOL_RANGE
+from lumped.solvers.event_driven import RTOL_RANGE
+from lumped.solvers.exact import Event
+from lumped.studies import accuracy as A
 
 # Three halvings from 1e-3: enough for a slope, ~1 s for the three schemes on one case.
 STEPS = (1e-3, 5e-4, 2.5e-4)
@@ -238,13 +238,13 @@ def test_the_cases_ignore_configuration_overrides(tmp_path, monkeypatch):
     pipeline points $LUMPED_CONFIG at an override (here gamma = inf, x0 = 0.9)."""
     import yaml
 
-    import lumped.config
+    import lumped.studies.config
 
-    cfg = lumped.config.default()
+    cfg = lumped.studies.config.default()
     override = tmp_path / "config.yaml"
     override.write_text(yaml.safe_dump({**cfg, "gamma": float("inf"), "x0_large": 0.9}), encoding="utf-8")
     monkeypatch.setenv("LUMPED_CONFIG", str(override))
-    assert lumped.config.load()["gamma"] == float("inf")  # the override is what load() sees
+    assert lumped.studies.config.load()["gamma"] == float("inf")  # the override is what load() sees
     free = A.cases()["free-decay"]
     assert free.oscillator.dashpot.gamma == cfg["gamma"] and free.x0 == cfg["x0_large"]
 

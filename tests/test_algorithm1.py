@@ -8,12 +8,14 @@ import types
 
 import numpy as np
 import pytest
+import references
+from conftest import EPS, F17A, F17B, KERNELS, PAPER_DT, case_table, energy_scale
+from references import line3, switched_sine
 
 import lumped as L
-from lumped import _sine, laws, timestepping
-from conftest import EPS, F17A, F17B, KERNELS, PAPER_DT, case_table, energy_scale
-import references
-from references import line3, switched_sine
+from lumped import laws
+from lumped.numerics import sine as _sine
+from lumped.solvers import backward_euler as timestepping
 
 # Cases for the invariants: (gamma, keyword arguments of backward_euler).
 CASES = {
@@ -45,7 +47,7 @@ def test_figure5_is_equation_19_exactly(paper_oscillator):
     n = np.arange(len(tr.t))
     assert np.array_equal(tr.t, n * PAPER_DT)
     assert np.all(tr.x == 0.0) and np.all(tr.v == 0.0) and np.all(tr.F_s == 0.0)
-    # F_1 is the project's sine (lumped._sine, the kernels' own) of the double
+    # F_1 is the project's sine (lumped.numerics.sine, the kernels' own) of the double
     # 5*pi*t_n, exactly; recomputed independently with libm's sin it agrees to
     # 1.5 P EPS: ours is within 1 ulp of the true value, a C library's within 2
     # (even one moved by an ulp, as scripts/perturbed_check.py's libm-ulp does),
@@ -226,7 +228,7 @@ def test_initial_row_is_consistent(paper_oscillator):
 def test_generic_force_callable_equals_switched_sine(paper_oscillator):
     # A callable is tabulated (SwitchedSine.__call__, NumPy), the SwitchedSine is
     # evaluated inside the loop (the compiled or Python kernel): both use the
-    # project's sine (lumped._sine), so the forcing has one definition and the
+    # project's sine (lumped.numerics.sine), so the forcing has one definition and the
     # two runs agree bit for bit.
     sine = F17B
     a = L.backward_euler(paper_oscillator, 2.0, 1e-3, force=sine)
@@ -272,9 +274,9 @@ def test_algorithm1_alias_and_simulate_dispatch(paper_oscillator):
 
 def test_the_driver_is_a_module_and_simulate_a_function():
     # lumped.simulate is the function (exported by __init__); the module that
-    # holds it and the method registry is lumped.driver, so importing it by
+    # holds it and the method registry is lumped.drivers.simulation, so importing it by
     # name gives a module whose simulate is that same function.
-    driver = importlib.import_module("lumped.driver")
+    driver = importlib.import_module("lumped.drivers.simulation")
     assert driver.simulate is L.simulate and driver.METHODS is L.METHODS
     assert callable(L.simulate) and not isinstance(L.simulate, types.ModuleType)
     with pytest.raises(ModuleNotFoundError):

@@ -24,14 +24,15 @@ import time
 
 import numpy as np
 import pytest
+from conftest import F17B
 
 import lumped as L
-from conftest import F17B
-from lumped import cli, timestepping
-from lumped.network import kernel as network_kernel
-from lumped._validate import MAX_STEPS
+from lumped import cli
 from lumped.cli import main, option_message
-from lumped.textbook import TextbookModel, integrate_adaptive, integrate_fixed
+from lumped.numerics.validate import MAX_STEPS
+from lumped.solvers import backward_euler as timestepping
+from lumped.solvers import network_compiled as network_kernel
+from lumped.solvers.textbook import TextbookModel, integrate_adaptive, integrate_fixed
 
 # ---------------------------------------------------------------------------
 # The API
@@ -122,15 +123,15 @@ def test_numpy_integers_and_the_largest_stride_are_valid():
 
 
 def _network(solver: str):  # noqa: ANN202
-    from lumped.network import Bingham, Mass, Network, Spring, simulate_network
+    from lumped import Bingham, Mass, Network, Spring, simulate_network
 
     net = Network([Mass("m", 1.0, 0.5)], [Spring("k", ("ground", "m"), 100.0), Bingham("d", ("ground", "m"), 1.0, 1.0)])
     return lambda s: simulate_network(net, 1.0, 1e-3, save_every=s, solver=solver)
 
 
 def _one_mass(s: int):  # noqa: ANN202
-    from lumped.network import Bingham, Mass, Network, Spring
-    from lumped.network.one_mass import simulate_one_mass
+    from lumped import Bingham, Mass, Network, Spring
+    from lumped.drivers.one_mass import simulate_one_mass
 
     net = Network([Mass("m", 1.0, 0.5)], [Spring("k", ("ground", "m"), 100.0), Bingham("d", ("ground", "m"), 1.0, 1.0)])
     return simulate_one_mass(net, 1.0, 1e-3, save_every=s)
@@ -227,12 +228,12 @@ def test_a_callable_forcing_is_never_tabulated_whole(monkeypatch):
 LONG_RUN = ["--t-end", "1000", "--dt", "1e-6", "--save-every", "1000000"]
 TIME_BOUND = 5.0
 BIG = str(2**63)
-#: The largest --save-every: the most steps of a run (lumped._validate.MAX_STEPS).
+#: The largest --save-every: the most steps of a run (lumped.numerics.validate.MAX_STEPS).
 LARGEST = str(MAX_STEPS)
 #: The driver's module, where the command line looks ``simulate`` up at run time.
-DRIVER = importlib.import_module("lumped.driver")
+DRIVER = importlib.import_module("lumped.drivers.simulation")
 #: The registry's module, where the one-mass solvers are called.
-METHODS_MODULE = importlib.import_module("lumped.methods")
+METHODS_MODULE = importlib.import_module("lumped.drivers.methods")
 
 
 def _one_line(err: str) -> str:

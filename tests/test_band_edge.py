@@ -31,8 +31,10 @@ import numpy as np
 import pytest
 
 import lumped as L
-from lumped import batched, timestepping
-from lumped.network import Bingham, Mass, Network, Spring, kernel, simulate_network
+from lumped import Bingham, Mass, Network, Spring, simulate_network
+from lumped.kernels import batched
+from lumped.solvers import backward_euler
+from lumped.solvers import network_compiled as kernel
 
 M, K, TAU, DT, T_END = 1.0, 4.0, 1.0, 1e-3, 0.05
 EDGE = TAU / K
@@ -43,7 +45,7 @@ assert K * OUTSIDE == TAU + 2.0**-52  # exact: one ulp of tau beyond the edge
 STARTS = {"upper-edge": EDGE, "lower-edge": -EDGE}
 LAWS = {"bingham": 1.0, "coulomb": math.inf}
 
-SINGLE = ["python"] + (["compiled"] if timestepping.KERNEL == "compiled" else [])
+SINGLE = ["python"] + (["compiled"] if backward_euler.KERNEL == "compiled" else [])
 BATCHED = ["python"] + (["compiled"] if batched.BATCH_KERNEL == "compiled" else [])
 NETWORK = ["python", "auto"] + (["compiled"] if kernel.KERNEL == "compiled" else [])
 
@@ -53,7 +55,7 @@ def oscillator(gamma: float) -> L.Oscillator:
 
 
 def single(x0: float, gamma: float, loop: str) -> L.Trajectory:
-    return timestepping.backward_euler(oscillator(gamma), T_END, DT, x0=x0, kernel=loop)
+    return backward_euler.backward_euler(oscillator(gamma), T_END, DT, x0=x0, kernel=loop)
 
 
 def batch(x0: float, gamma: float, loop: str) -> batched.BatchSummary:

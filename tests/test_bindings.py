@@ -20,15 +20,14 @@ import signal
 
 import numpy as np
 import pytest
-
-from lumped import timestepping
-from lumped.network import kernel
-from lumped.network.integrate import _graphs, _sigma
-
 from test_network_kernel import tree
 
-_kernel = pytest.importorskip("lumped._kernel")
-_network_kernel = pytest.importorskip("lumped._network_kernel")
+from lumped.drivers.network import _graphs, _sigma
+from lumped.solvers import backward_euler
+from lumped.solvers import network_compiled as kernel
+
+_kernel = pytest.importorskip("lumped.kernels._kernel")
+_network_kernel = pytest.importorskip("lumped.kernels._network_kernel")
 
 #: How long a child may take (the valid calls take milliseconds).
 TIMEOUT = 60.0
@@ -131,7 +130,7 @@ def test_the_valid_block_runs_as_the_python_loop() -> None:
     compiled, python = block_args(), block_args()
     assert outcome(lambda: _kernel.bingham_block(*compiled.values())) == ("ok", "")
     _kernel.bingham_block(*compiled.values())
-    timestepping._python_block(*python.values())
+    backward_euler._python_block(*python.values())
     assert np.array_equal(compiled["out"], python["out"]) and compiled["counters"][0] == 11
 
 

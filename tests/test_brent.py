@@ -1,4 +1,4 @@
-"""Brent's method in Python floats (lumped._brent) against SciPy's ``brentq``, the same algorithm in C."""
+"""Brent's method in Python floats (lumped.numerics.roots) against SciPy's ``brentq``, the same algorithm in C."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import pytest
 from conftest import EPS
 from scipy.optimize import brentq as scipy_brentq
 
-from lumped._brent import brentq
+from lumped.numerics.roots import brentq
 
 CASES = {  # name -> (f, a, b)
     "cubic": (lambda x: x**3 - 2 * x - 5, 2.0, 3.0),

@@ -12,9 +12,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import F17B
 
 import lumped as L
-from conftest import F17B
 from lumped.cli import build_parser, main
 
 HEADER = "t,x,v,F_s,F_d,F"

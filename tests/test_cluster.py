@@ -15,10 +15,10 @@ import subprocess
 
 import pytest
 import yaml
-
 from conftest import ROOT
-from lumped.studies import rest
 from test_pipeline import SNAKEMAKE, _jobs
+
+from lumped.studies import rest
 
 PROFILE = ROOT / "profiles" / "cluster" / "config.yaml"
 SCRIPT = ROOT / "scripts" / "slurm_local.sh"

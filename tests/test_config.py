@@ -1,4 +1,4 @@
-"""The configuration check of ``lumped.config``, in-process (milliseconds a case).
+"""The configuration check of ``lumped.studies.config``, in-process (milliseconds a case).
 
 The pipeline runs the same check on ``config/config.yaml`` after ``--config``
 overrides (tests/test_config_pipeline.py runs a few cases end to end). Here an
@@ -13,7 +13,7 @@ from pathlib import Path
 import pytest
 import yaml
 
-import lumped.config
+import lumped.studies.config
 
 ROOT = Path(__file__).resolve().parent.parent
 DEFAULTS = yaml.safe_load((ROOT / "config" / "config.yaml").read_text(encoding="utf-8"))
@@ -70,43 +70,43 @@ BAD = [
 @pytest.mark.parametrize(("overrides", "expected"), BAD, ids=[" ".join(c) for c, _ in BAD])
 def test_bad_override_is_one_line(overrides, expected):
     raw = _overridden(*overrides)
-    assert lumped.config.problems(raw) == [expected]
+    assert lumped.studies.config.problems(raw) == [expected]
     with pytest.raises(ValueError) as caught:
-        lumped.config.check(raw)
+        lumped.studies.config.check(raw)
     assert str(caught.value) == expected
 
 
 def test_every_problem_has_its_line_and_the_first_is_raised():
     raw = _overridden("dt=-1", "dtt=1", "mass=0")
-    assert lumped.config.problems(raw) == [
+    assert lumped.studies.config.problems(raw) == [
         "config: unknown key dtt; did you mean dt?",
         "config: mass must be a finite number > 0 (kg); got 0",
         "config: dt must be a finite number > 0 (s); got -1",
     ]
     with pytest.raises(ValueError, match="^config: unknown key dtt; did you mean dt[?]$"):
-        lumped.config.check(raw)
+        lumped.studies.config.check(raw)
 
 
 def test_unknown_key_without_a_close_one_lists_the_keys():
-    (line,) = lumped.config.problems(DEFAULTS | {"zzz": 1})
+    (line,) = lumped.studies.config.problems(DEFAULTS | {"zzz": 1})
     assert line == f"config: unknown key zzz (keys: {', '.join(DEFAULTS)})"
 
 
 @pytest.mark.parametrize("key", sorted(DEFAULTS))
 def test_missing_key_is_named_with_its_range(key):
-    rule = lumped.config.schema()["properties"][key]
+    rule = lumped.studies.config.schema()["properties"][key]
     raw = {k: v for k, v in DEFAULTS.items() if k != key}
-    assert lumped.config.problems(raw) == [f"config: {key} is missing; it must be {rule['description']}"]
+    assert lumped.studies.config.problems(raw) == [f"config: {key} is missing; it must be {rule['description']}"]
 
 
 @pytest.mark.parametrize("raw", [None, [], "dt: 1"], ids=repr)
 def test_a_file_that_is_not_a_mapping_is_one_line(raw):
-    (line,) = lumped.config.problems(raw)
+    (line,) = lumped.studies.config.problems(raw)
     assert line.startswith("config: the configuration must be a mapping of keys to values; got ")
 
 
 def test_an_integer_beyond_double_range_is_refused():
-    (line,) = lumped.config.problems(DEFAULTS | {"mass": 10**400})
+    (line,) = lumped.studies.config.problems(DEFAULTS | {"mass": 10**400})
     assert line.startswith("config: mass must be a finite number > 0 (kg); got 1000")
 
 
@@ -133,7 +133,7 @@ VALID = [
 
 @pytest.mark.parametrize("overrides", VALID, ids=" ".join)
 def test_valid_override_is_checked_to_floats(overrides):
-    values = lumped.config.check(_overridden(*overrides))
+    values = lumped.studies.config.check(_overridden(*overrides))
     assert values.keys() == DEFAULTS.keys()
     assert all(type(v) is float for k, v in values.items() if k != "studies"), values
     for key, text in (o.split("=") for o in overrides):
@@ -141,7 +141,7 @@ def test_valid_override_is_checked_to_floats(overrides):
 
 
 def test_the_defaults_are_valid_and_unchanged():
-    assert lumped.config.check(DEFAULTS) == DEFAULTS
+    assert lumped.studies.config.check(DEFAULTS) == DEFAULTS
 
 
 def test_load_checks_what_it_reads(tmp_path, monkeypatch):
@@ -149,26 +149,26 @@ def test_load_checks_what_it_reads(tmp_path, monkeypatch):
     bad.write_text(yaml.safe_dump(DEFAULTS | {"dt": -1}), encoding="utf-8")
     monkeypatch.setenv("LUMPED_CONFIG", str(bad))
     with pytest.raises(ValueError, match=r"^config: dt must be a finite number > 0 \(s\); got -1$"):
-        lumped.config.load()
+        lumped.studies.config.load()
 
 
 def test_load_reads_inf_from_yaml(tmp_path):
     path = tmp_path / "config.yaml"
     path.write_text(yaml.safe_dump(DEFAULTS).replace("gamma: 1.0", "gamma: .inf"), encoding="utf-8")
-    assert lumped.config.load(path)["gamma"] == math.inf
+    assert lumped.studies.config.load(path)["gamma"] == math.inf
 
 
 def test_the_schema_is_package_data_and_its_only_copy():
     """Found by importlib.resources wherever the package is installed; no second copy."""
     shipped = tomllib.loads((ROOT / "pyproject.toml").read_text())["tool"]["setuptools"]["package-data"]
-    assert "config_schema.yaml" in shipped["lumped"]
-    assert lumped.config.schema()["properties"].keys() == DEFAULTS.keys()
+    assert "studies/config_schema.yaml" in shipped["lumped"]
+    assert lumped.studies.config.schema()["properties"].keys() == DEFAULTS.keys()
     assert not (ROOT / "config" / "schema.yaml").exists()
 
 
 @pytest.mark.parametrize("value", ["fast", 1, None])
 def test_studies_other_than_default_or_full_is_refused_with_one_line(value):
-    (line,) = lumped.config.problems(DEFAULTS | {"studies": value})
+    (line,) = lumped.studies.config.problems(DEFAULTS | {"studies": value})
     shown = repr(value) if isinstance(value, str) else ("an empty value" if value is None else "1")
     assert line == (
         "config: studies must be default or full (the resolution of the studies in results/studies/); got " + shown
@@ -177,7 +177,7 @@ def test_studies_other_than_default_or_full_is_refused_with_one_line(value):
 
 @pytest.mark.parametrize("value", ["default", "full"])
 def test_studies_default_and_full_are_accepted(value):
-    assert lumped.config.check(DEFAULTS | {"studies": value})["studies"] == value
+    assert lumped.studies.config.check(DEFAULTS | {"studies": value})["studies"] == value
 
 
 #: Values of every JSON kind around every bound of the schema (numbers at, just inside and just outside them).
@@ -209,32 +209,32 @@ PROBES = [
 ]
 
 
-@pytest.mark.parametrize("key", list(lumped.config.schema()["properties"]))
+@pytest.mark.parametrize("key", list(lumped.studies.config.schema()["properties"]))
 def test_the_schema_check_agrees_with_jsonschema(key):
-    """lumped.config checks the schema itself (import jsonschema costs a second); jsonschema is the reference."""
+    """lumped.studies.config checks the schema itself (import jsonschema costs a second); jsonschema is the reference."""
     from jsonschema import Draft202012Validator
 
-    doc = lumped.config.schema()
+    doc = lumped.studies.config.schema()
     reference = Draft202012Validator({**doc, "required": [], "additionalProperties": True})
     for value in PROBES:
         expected = any(e.path and e.path[0] == key for e in reference.iter_errors({key: value}))
-        assert lumped.config._violates(value, doc["properties"][key], doc["$defs"]) == expected, (key, value)
+        assert lumped.studies.config._violates(value, doc["properties"][key], doc["$defs"]) == expected, (key, value)
 
 
 def test_a_schema_keyword_the_check_does_not_implement_is_refused(monkeypatch):
     import yaml
 
-    text = lumped.config.files("lumped").joinpath("config_schema.yaml").read_text("utf-8")
+    text = lumped.studies.config.files("lumped.studies").joinpath("config_schema.yaml").read_text("utf-8")
     doc = yaml.safe_load(text)
     doc["properties"]["mass"]["multipleOf"] = 2
-    monkeypatch.setattr(lumped.config, "files", lambda _: _Text(yaml.safe_dump(doc)))
-    lumped.config.schema.cache_clear()
+    monkeypatch.setattr(lumped.studies.config, "files", lambda _: _Text(yaml.safe_dump(doc)))
+    lumped.studies.config.schema.cache_clear()
     try:
         with pytest.raises(ValueError, match=r"^config_schema.yaml: mass uses \['multipleOf'\], which lumped"):
-            lumped.config.schema()
+            lumped.studies.config.schema()
     finally:
         monkeypatch.undo()
-        lumped.config.schema.cache_clear()
+        lumped.studies.config.schema.cache_clear()
 
 
 class _Text:
@@ -263,7 +263,7 @@ RUN_REFUSED = [
 
 @pytest.mark.parametrize(("change", "expected"), RUN_REFUSED, ids=[next(iter(c)) for c, _ in RUN_REFUSED])
 def test_values_the_runs_refuse_are_refused_by_the_check(change, expected):
-    found = lumped.config.problems(DEFAULTS | change)
+    found = lumped.studies.config.problems(DEFAULTS | change)
     assert len(found) == 1 and found[0].startswith(expected), found
 
 
@@ -280,7 +280,7 @@ def test_a_number_yaml_reads_as_a_string_says_why(tmp_path, text, expected):
     path = tmp_path / "config.yaml"
     path.write_text((ROOT / "config" / "config.yaml").read_text().replace("dt: 1.0e-4", f"dt: {text}"))
     with pytest.raises(ValueError) as info:
-        lumped.config.load(path)
+        lumped.studies.config.load(path)
     message = str(info.value)
     assert message.startswith(f"config: dt must be a finite number > 0 (s); got '{text}' (") and message.endswith(
         expected
@@ -290,25 +290,25 @@ def test_a_number_yaml_reads_as_a_string_says_why(tmp_path, text, expected):
 def test_gamma_1e400_on_the_command_line_is_not_coulomb():
     """Snakemake reads gamma=1e400 as inf; with the --config texts it is refused, gamma=inf and .inf are not."""
     raw = _overridden("gamma=1e400")
-    assert raw["gamma"] == math.inf and lumped.config.problems(raw) == []  # the values alone cannot tell
-    found = lumped.config.problems(raw, ["gamma=1e400"])
+    assert raw["gamma"] == math.inf and lumped.studies.config.problems(raw) == []  # the values alone cannot tell
+    found = lumped.studies.config.problems(raw, ["gamma=1e400"])
     assert found == ["config: gamma=1e400 is beyond double precision (about 1.8e308); write .inf for infinity"]
     for text in ("gamma=inf", "gamma=.inf", "gamma=-inf"):
-        assert not any("beyond double precision" in line for line in lumped.config.problems(raw, [text]))
+        assert not any("beyond double precision" in line for line in lumped.studies.config.problems(raw, [text]))
 
 
 def test_an_overflowing_float_in_the_file_names_its_line(tmp_path):
     path = tmp_path / "config.yaml"
     path.write_text((ROOT / "config" / "config.yaml").read_text().replace("gamma: 1.0 ", "gamma: 1.0e+400 "))
     with pytest.raises(ValueError, match=rf"^config: {path}, line 8: 1\.0e\+400 is beyond double precision"):
-        lumped.config.load(path)
+        lumped.studies.config.load(path)
     path.write_text((ROOT / "config" / "config.yaml").read_text().replace("gamma: 1.0 ", "gamma: .inf "))
-    assert lumped.config.load(path)["gamma"] == math.inf
+    assert lumped.studies.config.load(path)["gamma"] == math.inf
 
 
 def test_malformed_yaml_names_the_file_and_line(tmp_path):
     path = tmp_path / "config.yaml"
     path.write_text("mass: 1.0\nstiffness: [1\n")
     with pytest.raises(ValueError, match=rf"^config: {path}, line 3: not valid YAML: expected ',' or ']'") as info:
-        lumped.config.load(path)
+        lumped.studies.config.load(path)
     assert "\n" not in str(info.value)

@@ -16,11 +16,11 @@ import math
 
 import numpy as np
 import pytest
+import references
+from conftest import case_table
+from references import order
 
 import lumped as L
-from conftest import case_table
-import references
-from references import order
 
 #: m, k and mu_s N_f of the paper (section 3), as Oscillator.bingham keywords.
 PAPER = dict(mass=references.PAPER["m"], stiffness=references.PAPER["k"], threshold=references.PAPER["tau"])

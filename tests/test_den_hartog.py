@@ -13,13 +13,13 @@ import pytest
 from conftest import EPS
 from references import den_hartog_amplitude, den_hartog_boundary, shoot_steady_slip
 
-import lumped.config
+import lumped.studies.config
 from lumped import studies
+from lumped.drivers.sweep import sweep
+from lumped.model.oscillator import Oscillator
 from lumped.studies import den_hartog as dh
-from lumped.sweep import sweep
-from lumped.system import Oscillator
 
-CFG = lumped.config.default()
+CFG = lumped.studies.config.default()
 M, K, F = CFG["mass"], CFG["stiffness"], CFG["threshold"]
 WN = math.sqrt(K / M)
 #: The paper's viscous coefficient c = 1/gamma (damping ratio 0.05).

@@ -1,4 +1,4 @@
-"""The pure-Python DOP853 (lumped._dop853) against SciPy's ``DOP853`` and closed forms.
+"""The pure-Python DOP853 (lumped.numerics.dop853) against SciPy's ``DOP853`` and closed forms.
 
 SciPy's stepper is the reference: the same tableau, error norm, controller and
 initial step must give the same steps.  The two differ only in the order of
@@ -22,8 +22,8 @@ from conftest import EPS
 from scipy.integrate import DOP853, OdeSolution, solve_ivp
 from scipy.integrate._ivp import dop853_coefficients as ref
 
-from lumped import _dop853
-from lumped import _dop853_tableau as tab
+from lumped.numerics import dop853
+from lumped.numerics import dop853_tableau as tab
 
 W = 3.0  # angular frequency of the harmonic oscillator (rad/s)
 
@@ -48,9 +48,9 @@ def _scipy(case: str) -> DOP853:
     return DOP853(lambda t, y: np.array(fun(t, y)), 0.0, np.array(y0), t_end, rtol=rtol, atol=np.array(atol))
 
 
-def _ours(case: str) -> _dop853.Dop853:
+def _ours(case: str) -> dop853.Dop853:
     fun, y0, t_end, rtol, atol = CASES[case]
-    return _dop853.Dop853(fun, 0.0, y0, t_end, rtol, atol)
+    return dop853.Dop853(fun, 0.0, y0, t_end, rtol, atol)
 
 
 def test_tableau_is_scipys_bit_for_bit():
@@ -109,7 +109,7 @@ def test_each_step_is_scipys_from_the_same_state(case):
         assert ours.h_abs == pytest.approx(sp.h_abs, rel=2 * 16 * EPS * kappa / 8 + 4 * EPS), (h_try, kappa)
         t = sp.t_old + theta * min(h, ours.t - ours.t_old)
         dense, piece = sp.dense_output()(t), ours.dense_output()
-        mine = np.array([[_dop853.piece_value(piece, ti, c) for ti in t] for c in range(2)])
+        mine = np.array([[dop853.piece_value(piece, ti, c) for ti in t] for c in range(2)])
         assert np.abs(mine - dense).max() <= 64 * EPS * size
     assert case == "harmonic" or rejections > 0  # the pendulum's run does exercise the rejection branch
 
@@ -191,7 +191,7 @@ def test_a_whole_run_takes_scipys_steps_and_values(case):
     fun, y0, t_end, rtol, atol = CASES[case]
     grid = np.linspace(0.0, t_end, 2001)
     ref = _reference(case, grid)
-    for run in (OdeSolution(ts, ds)(grid), _dop853.PiecewiseDense(to, do)(grid)):
+    for run in (OdeSolution(ts, ds)(grid), dop853.PiecewiseDense(to, do)(grid)):
         scale = np.abs(ref).max(axis=1)  # max |y| of each component
         bound = AMPLIFICATION[case] * math.sqrt(2) * len(ts) * (np.array(atol) + rtol * scale).max()
         assert np.abs(run - ref).max() <= bound
@@ -206,7 +206,7 @@ def test_harmonic_oscillator_against_its_closed_form():
         ts.append(ours.t)
         pieces.append(ours.dense_output())
     grid = np.linspace(0.0, 10.0, 1001)
-    x, v = _dop853.PiecewiseDense(ts, pieces)(grid)
+    x, v = dop853.PiecewiseDense(ts, pieces)(grid)
     bound = len(pieces) * 1e-10 * W
     assert np.abs(x - np.cos(W * grid)).max() <= bound
     assert np.abs(v + W * np.sin(W * grid)).max() <= bound * W
@@ -220,16 +220,16 @@ def test_piecewise_dense_shapes_and_breakpoints():
         ours.step()
         ts.append(ours.t)
         pieces.append(ours.dense_output())
-    dense = _dop853.PiecewiseDense(ts, pieces)
+    dense = dop853.PiecewiseDense(ts, pieces)
     assert dense(ts[1]).shape == (2,)
     assert dense(np.array(ts)).shape == (2, 4)
-    assert dense(ts[1])[0] == _dop853.piece_value(pieces[0], ts[1], 0)
+    assert dense(ts[1])[0] == dop853.piece_value(pieces[0], ts[1], 0)
 
 
 def test_overflow_is_a_rejected_step_then_a_failure():
     """``y' = y^2`` from ``1e150`` blows up at ``t = 1e-150``: its power overflows (an ``OverflowError``
     in Python, an infinity in numpy), every trial step is rejected, and the step fails instead of raising."""
-    ours = _dop853.Dop853(lambda t, y: (y[0] ** 2.0,), 0.0, [1e150], 1.0, 1e-6, [1e-9])
+    ours = dop853.Dop853(lambda t, y: (y[0] ** 2.0,), 0.0, [1e150], 1.0, 1e-6, [1e-9])
     steps = 0
     while ours.status == "running" and ours.step():
         steps += 1

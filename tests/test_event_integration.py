@@ -1,4 +1,4 @@
-"""The event-driven method (lumped.event_integration) against the exact solver and closed forms."""
+"""The event-driven method (lumped.solvers.event_driven) against the exact solver and closed forms."""
 
 from __future__ import annotations
 
@@ -6,13 +6,14 @@ import math
 
 import numpy as np
 import pytest
+import references
 from scipy.integrate import solve_ivp
 
 import lumped as L
-import references
 from lumped.cli import main
+from lumped.studies import examples
 
-PAPER = L.examples.paper()
+PAPER = examples.paper()
 
 
 def _hb(n: float, K: float = 1.0, tau: float = 1.0) -> L.Oscillator:

@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 import pytest
-
-import lumped as L
 import references
 from conftest import EPS, F17A, F17B, case_table
+
+import lumped as L
 
 
 @pytest.mark.parametrize(

@@ -9,20 +9,18 @@ phases must be solved, not searched for.
 from __future__ import annotations
 
 import dataclasses
-
 import math
 import time
 
 import mpmath
 import numpy as np
 import pytest
+from conftest import EPS, F17B
+from references import FREE_DECAY
 from scipy.integrate import solve_ivp
 
 import lumped as L
-from conftest import EPS, F17B
-from references import FREE_DECAY
-from lumped.event_driven import _event_estimate
-
+from lumped.solvers.exact import _event_estimate
 
 # (t_end, dt, keyword arguments): grids whose last point t_N = N dt lies past
 # t_end (by 5e-5 s, 0.4 s, round-off, 0.2 s).

@@ -20,8 +20,15 @@ import pytest  # noqa: E402
 from matplotlib.text import Text  # noqa: E402
 
 import lumped as L  # noqa: E402
-from lumped import plotting  # noqa: E402
-from lumped.network import Bingham, LockingBingham, Mass, Network, Spring, simulate_network  # noqa: E402
+from lumped import (  # noqa: E402
+    Bingham,
+    LockingBingham,
+    Mass,
+    Network,
+    Spring,
+    plotting,  # noqa: E402
+    simulate_network,
+)
 from lumped.plotting import histories  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent

@@ -6,11 +6,11 @@ import math
 
 import numpy as np
 import pytest
+import references
+from conftest import EPS, F17A, F17B
+from references import switched_sine
 
 import lumped as L
-from conftest import EPS, F17A, F17B
-import references
-from references import switched_sine
 
 #: (amplitude, omega, phase): every sign of P and omega, phases on both sides of 0.
 SIGNS = [(2.0, 3.0, 0.4), (-2.0, 3.0, 0.4), (2.0, -3.0, 0.4), (-2.0, -3.0, -2.9), (1.5, -7.0, 3.0), (-0.5, -0.25, -1.0)]
@@ -37,7 +37,7 @@ def test_canonical_form_is_non_negative_and_the_same_function(amplitude, omega, 
 
 @pytest.mark.parametrize(("force", "paper"), [(F17A, references.F17A), (F17B, references.F17B)], ids=["17a", "17b"])
 def test_the_examples_forcings_are_equations_17(force, paper):
-    # lumped.examples builds them from config/config.yaml (the tests use
+    # lumped.studies.examples builds them from config/config.yaml (the tests use
     # those); eq. (17): P sin(5 pi t) for 0 <= t <= 1, P = 0.5 and 10.
     # numpy's sin and libm's may differ by an ulp: 2 eps P.
     assert (force.amplitude, force.omega, force.phase, force.until) == paper

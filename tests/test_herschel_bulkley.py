@@ -6,12 +6,12 @@ import math
 
 import numpy as np
 import pytest
+from conftest import EPS
 
 import lumped as L
-from conftest import EPS
+from lumped import HerschelBulkley, Mass, Network, Spring, simulate_network
 from lumped.laws import bingham_corrector
-from lumped.network import HerschelBulkley, Mass, Network, Spring, simulate_network
-from lumped.network.files import parse_system
+from lumped.model.files import parse_system
 
 EXPONENTS = [0.3, 0.5, 1.0, 2.0, 3.7]
 
@@ -112,7 +112,7 @@ def test_system_file_kind_and_backward_euler_through_the_resolvent():
 
 def test_active_set_step_agrees_with_the_resolvent():
     # The network's Monotone-style iteration stops when the force settles to 8 ulps
-    # (lumped.network.step); the resolvent solves the same step to a few ulps.
+    # (lumped.solvers.network_step); the resolvent solves the same step to a few ulps.
     # Over 1000 non-expansive steps the difference stays at round-off scale.
     net = parse_system(_system(exponent=0.5))
     a = simulate_network(net, 1.0, 1e-3, solver="active-set")

@@ -18,7 +18,10 @@ HEAVY = ("scipy.integrate", "scipy.optimize", "scipy.linalg")
 
 @pytest.mark.parametrize(
     "modules",
-    ["lumped", "lumped.cli, lumped.driver, lumped.network.files, lumped.network.integrate, lumped.event_integration"],
+    [
+        "lumped",
+        "lumped.cli, lumped.drivers.simulation, lumped.model.files, lumped.drivers.network, lumped.solvers.event_driven",
+    ],
 )
 def test_importing_loads_no_scipy_solver(modules):
     code = f"import sys, {modules}; print(' '.join(m for m in {HEAVY!r} if m in sys.modules))"

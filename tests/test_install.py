@@ -1,4 +1,4 @@
-"""Installing the package: where ``lumped.config.load()`` finds the paper's values.
+"""Installing the package: where ``lumped.studies.config.load()`` finds the paper's values.
 
 ``config/config.yaml`` is the one file holding them; ``setup.py`` copies it into
 the built package (``lumped/paper_config.yaml``), so that a plain ``pip install
@@ -21,10 +21,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 import yaml
+from conftest import copy_tracked_files
 
 import lumped as L
-import lumped.config
-from conftest import copy_tracked_files
+import lumped.studies.config
 
 ROOT = Path(__file__).resolve().parent.parent
 PAPER = ROOT / "config" / "config.yaml"
@@ -48,29 +48,29 @@ def test_the_checkout_file_is_read_whatever_the_current_folder(tmp_path, monkeyp
     # another project's config/config.yaml in the current folder must not be read
     _decoy(tmp_path, mass=7.0)
     monkeypatch.chdir(tmp_path)
-    assert lumped.config.load() == lumped.config.load(PAPER)
-    assert lumped.config.load()["mass"] == 1.0
+    assert lumped.studies.config.load() == lumped.studies.config.load(PAPER)
+    assert lumped.studies.config.load()["mass"] == 1.0
 
 
 def test_an_explicit_path_beats_the_environment_which_beats_the_checkout(tmp_path, monkeypatch, no_env):
     monkeypatch.setenv("LUMPED_CONFIG", str(_decoy(tmp_path / "env", mass=2.0)))
-    assert lumped.config.load()["mass"] == 2.0
-    assert lumped.config.load(_decoy(tmp_path / "arg", mass=3.0))["mass"] == 3.0
+    assert lumped.studies.config.load()["mass"] == 2.0
+    assert lumped.studies.config.load(_decoy(tmp_path / "arg", mass=3.0))["mass"] == 3.0
 
 
 def test_a_named_file_that_is_missing_is_an_error_not_a_fallback(tmp_path, monkeypatch, no_env):
     monkeypatch.setenv("LUMPED_CONFIG", str(tmp_path / "absent.yaml"))
     with pytest.raises(FileNotFoundError):
-        lumped.config.load()
+        lumped.studies.config.load()
 
 
 def test_no_configuration_anywhere_is_one_line(tmp_path, monkeypatch, no_env):
     # the package seen as installed outside any src/ folder, without its packaged copy
     # (an editable install imports from src/lumped, which holds no paper_config.yaml)
-    assert not (ROOT / "src" / "lumped" / lumped.config.PACKAGED_CONFIG).exists()
-    monkeypatch.setattr(lumped.config, "__file__", str(tmp_path / "site" / "lumped" / "config.py"))
+    assert not (ROOT / "src" / "lumped" / lumped.studies.config.PACKAGED_CONFIG).exists()
+    monkeypatch.setattr(lumped.studies.config, "__file__", str(tmp_path / "site" / "lumped" / "config.py"))
     with pytest.raises(ValueError, match=r"^config: no configuration found \(.*\); pass a path or set LUMPED_CONFIG$"):
-        lumped.config.load()
+        lumped.studies.config.load()
 
 
 def test_plotting_without_matplotlib_names_the_extra():
@@ -87,9 +87,9 @@ def test_plotting_without_matplotlib_names_the_extra():
 
 #: Run in the installed copy: where lumped comes from, its values, a short run.
 INSTALLED = textwrap.dedent("""
-    import json, lumped, lumped.config
+    import json, lumped, lumped.studies.config
     tr = lumped.backward_euler(lumped.Oscillator.bingham(), 0.05, 1e-4, x0=0.5)  # the paper's values
-    print(json.dumps({"file": lumped.__file__, "cfg": lumped.config.load(), "x": tr.x.tolist()}))
+    print(json.dumps({"file": lumped.__file__, "cfg": lumped.studies.config.load(), "x": tr.x.tolist()}))
 """)
 
 
@@ -118,7 +118,7 @@ def test_a_built_wheel_works_away_from_the_checkout(tmp_path):
 
     found = json.loads(run("-c", INSTALLED).stdout)
     assert Path(found["file"]).resolve().is_relative_to(site.resolve())
-    assert found["cfg"] == lumped.config.load(PAPER)
+    assert found["cfg"] == lumped.studies.config.load(PAPER)
     reference = L.backward_euler(L.Oscillator.bingham(), 0.05, 1e-4, x0=0.5)
     assert np.array_equal(found["x"], reference.x)  # json round-trips doubles exactly
 

@@ -6,13 +6,13 @@ import math
 
 import numpy as np
 import pytest
+import references
+from conftest import EPS, KERNELS, energy_scale
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import lumped as L
-from lumped import timestepping
-from conftest import EPS, KERNELS, energy_scale
-import references
+from lumped.solvers import backward_euler
 
 SETTINGS = settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 
@@ -83,7 +83,7 @@ def test_discrete_energy_balance_closes(kernel, run):
     assert np.abs(eb.residual).max() <= 4 * EPS * energy_scale(eb) * len(tr.t) + 1e-300
 
 
-@pytest.mark.skipif(timestepping.KERNEL != "compiled", reason="C kernel not built: nothing to compare")
+@pytest.mark.skipif(backward_euler.KERNEL != "compiled", reason="C kernel not built: nothing to compare")
 @SETTINGS
 @given(runs())
 def test_kernels_bit_identical(run):

@@ -6,11 +6,11 @@ import math
 
 import numpy as np
 import pytest
+from conftest import EPS
+from references import bingham_velocity, literal_line8
 
 import lumped as L
 from lumped.laws import bingham_corrector
-from conftest import EPS
-from references import bingham_velocity, literal_line8
 
 
 @pytest.mark.parametrize("predictor", [-37.0, -1.0000001, -1.0, -0.3, 0.0, 0.999, 1.5, 250.0])

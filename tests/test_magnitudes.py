@@ -3,9 +3,9 @@
 Algorithm 1 carries the displacement as the spring force, ``x = F_s/k``; a
 subnormal parameter or product (below ``2^-1022``) keeps fewer than the 53
 bits of a double, and ``k = 1e-322`` gave ``x = 0`` on every row while
-``v = 1``.  :func:`lumped.system.check_magnitudes` derives the bounds; the
+``v = 1``.  :func:`lumped.model.oscillator.check_magnitudes` derives the bounds; the
 sweep applies the same bounds to every row at once
-(:func:`lumped.system.magnitude_failures`).
+(:func:`lumped.model.oscillator.magnitude_failures`).
 """
 
 from __future__ import annotations
@@ -17,7 +17,7 @@ import pytest
 
 import lumped as L
 from lumped.cli import main
-from lumped.system import TINY, check_magnitudes, magnitude_failures
+from lumped.model.oscillator import TINY, check_magnitudes, magnitude_failures
 
 #: (command-line options, the option the one line must begin with, methods that refuse it)
 BOTH, BE = ("backward-euler", "exact"), ("backward-euler",)

@@ -1,4 +1,4 @@
-"""The one registry of methods (lumped.methods, issue 20 item 2): every reader reads it, and a method
+"""The one registry of methods (lumped.drivers.methods, issue 20 item 2): every reader reads it, and a method
 asked to run what it cannot says so in one line naming the method and the reason."""
 
 from __future__ import annotations
@@ -8,13 +8,14 @@ import argparse
 import pytest
 
 import lumped as L
-from lumped import cli, driver, methods
-from lumped import sweep as sweep_module
+from lumped import cli, simulate_network
 from lumped.cli import build_parser, main
-from lumped.network import SOLVERS, simulate_network
-from lumped.network import integrate as network_integrate
-from lumped.network.files import load_system
-from lumped.network.one_mass import simulate_one_mass
+from lumped.drivers import methods, simulation
+from lumped.drivers import network as network_integrate
+from lumped.drivers import sweep as sweep_module
+from lumped.drivers.network import SOLVERS
+from lumped.drivers.one_mass import simulate_one_mass
+from lumped.model.files import load_system
 
 ONE_MASS = """\
 [[mass]]
@@ -52,7 +53,7 @@ def _choices(command: str) -> tuple[str, ...]:
 
 
 def test_every_public_name_is_the_registry_or_a_view_of_it():
-    assert L.METHODS is driver.METHODS is methods.METHODS
+    assert L.METHODS is simulation.METHODS is methods.METHODS
     assert all(name == m.name for name, m in methods.METHODS.items())
     assert sweep_module.SWEEP_METHODS == tuple(n for n, m in methods.METHODS.items() if m.batch)
     network_methods = [m for m in methods.METHODS.values() if m.runs_networks]
@@ -85,8 +86,8 @@ def test_the_options_are_the_registrys_and_checked_by_it():
     with pytest.raises(ValueError, match=r"^rtol: method 'exact' takes no option 'rtol' \(it takes none\)$"):
         L.simulate(L.Oscillator.bingham(), 0.1, 1e-3, method="exact", rtol=1e-8)
     with pytest.raises(ValueError, match=r"^rtol must lie in"):
-        driver.method_options("event-driven", {"rtol": 1.0})
-    assert driver.method_options("event-driven", {"rtol": 1e-8}) == {"rtol": 1e-8}
+        simulation.method_options("event-driven", {"rtol": 1.0})
+    assert simulation.method_options("event-driven", {"rtol": 1e-8}) == {"rtol": 1e-8}
 
 
 # --------------------------------------------------------------------------- refusals, one line each
@@ -171,14 +172,15 @@ def load_system_text(text: str):
 
 @pytest.mark.parametrize("name", ["fortran", None, 1])
 def test_both_kernel_arguments_are_checked_in_one_place(name):
-    from lumped import _validate, batched
+    from lumped.kernels import batched
+    from lumped.numerics import validate
 
     message = f"^kernel must be 'auto', 'compiled' or 'python', got {name!r}$"
     with pytest.raises(ValueError, match=message):
         L.backward_euler(L.Oscillator.bingham(), 0.1, 1e-3, kernel=name)
     with pytest.raises(ValueError, match=message):
         batched._kernel_name(name)
-    assert _validate.KERNELS == ("auto", "compiled", "python")
-    assert _validate.kernel("python", "compiled", "the C kernel") == "python"
+    assert validate.KERNELS == ("auto", "compiled", "python")
+    assert validate.kernel("python", "compiled", "the C kernel") == "python"
     with pytest.raises(ValueError, match="^kernel: 'compiled' requested but the C kernel was not built$"):
-        _validate.kernel("compiled", "python", "the C kernel")
+        validate.kernel("compiled", "python", "the C kernel")

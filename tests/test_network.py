@@ -7,11 +7,12 @@ import math
 
 import numpy as np
 import pytest
+from conftest import EPS
+from references import order
 from scipy.integrate import solve_ivp
 
 import lumped as L
-from lumped import examples
-from lumped.network import (
+from lumped import (
     Bingham,
     LinearDashpot,
     Load,
@@ -24,9 +25,7 @@ from lumped.network import (
     SpringString,
     simulate_network,
 )
-
-from conftest import EPS
-from references import order
+from lumped.studies import examples
 
 PAPER = examples.paper()
 

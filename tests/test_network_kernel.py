@@ -22,9 +22,11 @@ import math
 
 import numpy as np
 import pytest
+from conftest import EPS
+from test_network import PAPER, F, _compare_active_set, chain, check_invariants
 
 import lumped as L
-from lumped.network import (
+from lumped import (
     Bingham,
     LinearDashpot,
     Load,
@@ -35,12 +37,9 @@ from lumped.network import (
     Network,
     Spring,
     SpringString,
-    kernel,
     simulate_network,
 )
-
-from conftest import EPS
-from test_network import F, PAPER, _compare_active_set, chain, check_invariants
+from lumped.solvers import network_compiled as kernel
 
 pytestmark = pytest.mark.skipif(kernel.KERNEL != "compiled", reason="the network kernel was not built")
 
@@ -266,7 +265,7 @@ def test_a_long_compiled_run_is_not_refused(monkeypatch) -> None:
     """The run-time estimate is the path's: 1e6 steps of a 100-mass chain (about
     16 s compiled, measured by benchmarks/bench_network.py; about an hour in
     Python) are accepted compiled and refused in Python."""
-    from lumped.network import integrate
+    from lumped.drivers import network as integrate
 
     monkeypatch.setattr(integrate, "_march", lambda *args: args[-1])  # the path, without running
     assert simulate_network(chain(100, 1.0, F), 1000.0, 1e-3, save_every=100) == "compiled"

@@ -17,11 +17,12 @@ import math
 
 import numpy as np
 import pytest
+from conftest import EPS
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import lumped as L
-from lumped.network import (
+from lumped import (
     Bingham,
     LinearDashpot,
     Load,
@@ -33,8 +34,6 @@ from lumped.network import (
     SpringString,
     simulate_network,
 )
-
-from conftest import EPS
 
 #: An absolute floor on every round-off tolerance: below about 2.2e-308 numbers
 #: are subnormal and rounding is no longer relative (hypothesis draws such

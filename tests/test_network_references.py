@@ -3,7 +3,7 @@
 The reference, :func:`references.stick_slip_motion`, integrates each mode
 (which friction elements stick, which way the others slip) with DOP853 at
 ``rtol = 1e-12`` and switches mode at located events; it shares no code with
-:mod:`lumped.network`.  It is checked here against closed forms and the
+the package's network solvers.  It is checked here against closed forms and the
 package's exact one-mass solver, then backward Euler (:func:`simulate_network`)
 is shown to converge to it at order one.
 """
@@ -15,13 +15,12 @@ import math
 
 import numpy as np
 import pytest
+import references as R
+from references import order
 from scipy.linalg import expm
 
 import lumped as L
-from lumped.network import Bingham, Load, Mass, Network, Spring, simulate_network
-
-import references as R
-from references import order
+from lumped import Bingham, Load, Mass, Network, Spring, simulate_network
 
 FORCE = L.SwitchedSine(10.0, 5 * math.pi, 0.0, 1.0)
 

@@ -18,8 +18,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 import lumped as L  # noqa: E402
-from lumped import plotting  # noqa: E402
-from lumped.network import (  # noqa: E402
+from lumped import (  # noqa: E402
     Bingham,
     Load,
     LockingBingham,
@@ -28,6 +27,7 @@ from lumped.network import (  # noqa: E402
     Network,
     Spring,
     SpringString,
+    plotting,  # noqa: E402
     simulate_network,
 )
 

@@ -1,6 +1,6 @@
 """Every number and verdict of the article checked against an independent computation.
 
-:func:`lumped.replication.compute` makes the JSON the article reads (it is
+:func:`lumped.studies.replication.compute` makes the JSON the article reads (it is
 called here, so no pipeline run is needed).  This file rebuilds the same
 numbers without the package's solvers:
 
@@ -39,15 +39,15 @@ from typing import Any
 
 import numpy as np
 import pytest
+import references
 import yaml
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 import lumped
-import lumped.config
-import lumped.replication as R
-import lumped.schemes
-import references
+import lumped.solvers.schemes
+import lumped.studies.config
+import lumped.studies.replication as R
 
 ROOT = Path(__file__).resolve().parent.parent
 CFG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text(encoding="utf-8"))
@@ -665,7 +665,7 @@ def numbers() -> dict[str, Any]:
     import os
 
     os.environ.pop("LUMPED_CONFIG", None)
-    return R.compute(lumped.config.load(ROOT / "config" / "config.yaml"))
+    return R.compute(lumped.studies.config.load(ROOT / "config" / "config.yaml"))
 
 
 def _compare(got: Any, want: Any, path: str, problems: list[str]) -> None:
@@ -721,7 +721,7 @@ def test_json_is_deterministic(tmp_path: Path) -> None:
     assert json.loads(paths[0].read_text())["provenance"]["command"] == "snakemake --cores all"
 
 
-# ------------------------------------------------------------ the accuracy study (lumped.accuracy)
+# ------------------------------------------------------------ the accuracy study (lumped.studies.accuracy)
 @pytest.fixture(scope="module")
 def accuracy_headline() -> dict[str, Any]:
     """The headline of a small study: the free decay at dt = 2e-4 and 1e-4, event-driven at rtol 1e-12.
@@ -729,7 +729,7 @@ def accuracy_headline() -> dict[str, Any]:
     The article's ``headline`` is the same function on the pipeline's study
     (results/accuracy/study.json), whose steps include the original's.
     """
-    import lumped.accuracy as A
+    import lumped.studies.accuracy as A
 
     study = A.study(["free-decay", "hb-n2"], steps=(2e-4, 1e-4), rtols=(1e-8, 1e-10, 1e-12), tanh=[(1e-5, 1e-9)])
     return json.loads(json.dumps(A.to_json(study), allow_nan=False))["headline"]
@@ -744,7 +744,7 @@ def test_accuracy_headline_original_step(accuracy_headline: dict[str, Any]) -> N
     be = literal_algorithm1(t_end, 1e-4, x0, lambda t: 0.0)
     got = accuracy_headline["original_step"]
     assert got["backward-euler"] == pytest.approx(abs(rest_of(be)[1] - rest) / abs(rest), rel=1e-9)
-    ec = lumped.schemes.event_capturing(lumped.Oscillator.bingham(M, K, TAU, GAMMA), t_end, 1e-4, x0=x0)
+    ec = lumped.solvers.schemes.event_capturing(lumped.Oscillator.bingham(M, K, TAU, GAMMA), t_end, 1e-4, x0=x0)
     assert got["event-capturing"] == pytest.approx(abs(ec.trajectory.rest_position - rest) / abs(rest), rel=1e-6)
     assert got["event-capturing"] <= 1e-3  # the issue's target: 0.1 % at the original's step
     assert accuracy_headline["dt"] == references.PAPER["dt"]

@@ -6,7 +6,7 @@ the PDF (what the reader reads) with pypdf and checks the key statements
 against the ``numbers.json`` of that build:
 
 * the verdict printed in each figure's section is the one
-  ``lumped.replication`` decided, at our step and, when the step differs, at
+  ``lumped.studies.replication`` decided, at our step and, when the step differs, at
   the original's;
 * every "original's step Δt = ..." is the original's 1e-4 s;
 * the first page lists every parameter that differs from the original's;

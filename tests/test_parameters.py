@@ -1,6 +1,6 @@
 """The table of the single-mass parameters (issue 20, item 5) and its readers agree.
 
-``lumped.parameters.PARAMETERS`` is read by the command line, the sweep and the
+``lumped.model.parameters.PARAMETERS`` is read by the command line, the sweep and the
 configuration's schema; the constructors of ``laws.py`` and ``system.py`` keep
 their own defaults for now, held here to the table's.
 """
@@ -16,12 +16,13 @@ from pathlib import Path
 import pytest
 import yaml
 
-import lumped.config
-from lumped import _validate, sweep
+import lumped.studies.config
 from lumped.cli import build_parser
+from lumped.drivers import sweep
 from lumped.laws import BinghamDashpot
-from lumped.parameters import PARAMETERS, PER_ROW, shown
-from lumped.system import Oscillator
+from lumped.model.oscillator import Oscillator
+from lumped.model.parameters import PARAMETERS, PER_ROW, shown
+from lumped.numerics import validate
 
 ROOT = Path(__file__).resolve().parent.parent
 CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text(encoding="utf-8"))
@@ -29,8 +30,8 @@ RANGED = [name for name, p in PARAMETERS.items() if p.range is not None]
 
 #: Values at, just inside and just outside every bound of the table's ranges.  Subnormal
 #: numbers are left out: the checks refuse a positive value below the smallest normal
-#: double (``_validate.TINY``), which a configuration's range leaves to the runs to refuse.
-PROBES = [0.0, -0.0, _validate.TINY, -_validate.TINY, 1.0, -1.0, 2e8, -2e8, 2.0000001e8, -2.0000001e8]
+#: double (``validate.TINY``), which a configuration's range leaves to the runs to refuse.
+PROBES = [0.0, -0.0, validate.TINY, -validate.TINY, 1.0, -1.0, 2e8, -2e8, 2.0000001e8, -2.0000001e8]
 PROBES += [sys.float_info.max, -sys.float_info.max, math.inf, -math.inf, math.nan]
 
 
@@ -56,7 +57,7 @@ def test_bingham_dashpot_defaults_are_the_tables():
 @pytest.mark.parametrize("name", list(PARAMETERS))
 def test_the_default_passes_its_check_and_reads_back_from_its_text(name):
     p = PARAMETERS[name]
-    parse = _validate.parse_int if p.integer else _validate.parse_float
+    parse = validate.parse_int if p.integer else validate.parse_float
     assert p.check(name, p.default) == p.default
     assert parse(name, p.default_text) == p.default
 
@@ -109,12 +110,12 @@ CONFIG_KEYS = {
 @pytest.mark.parametrize("key", sorted(CONFIG_KEYS))
 def test_the_configurations_ranges_are_the_tables(key):
     p = PARAMETERS[CONFIG_KEYS[key]]
-    assert lumped.config.schema()["properties"][key] == {**p.range.rule(), "description": p.describe()}
+    assert lumped.studies.config.schema()["properties"][key] == {**p.range.rule(), "description": p.describe()}
 
 
 def test_the_configuration_narrows_threshold_only():
     """The tutorial needs a static band: threshold > 0 where the package accepts 0; the unit is the table's."""
-    rule = lumped.config.schema()["properties"]["threshold"]
+    rule = lumped.studies.config.schema()["properties"]["threshold"]
     assert rule == {**PARAMETERS["threshold"].range.rule(), "exclusiveMinimum": 0, "description": rule["description"]}
     assert rule["description"].startswith(f"a finite number > 0 ({PARAMETERS['threshold'].unit})")
 

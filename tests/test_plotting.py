@@ -11,10 +11,16 @@ import pytest  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
 import lumped as L  # noqa: E402
-from lumped import plotting  # noqa: E402
-from lumped.network import Bingham, Mass, Network, Spring, simulate_network  # noqa: E402
+from lumped import (  # noqa: E402
+    Bingham,
+    Mass,
+    Network,
+    Spring,
+    plotting,  # noqa: E402
+    simulate_network,
+)
 from lumped.plotting import textbook as textbook_plots  # noqa: E402
-from lumped.textbook import TextbookModel, integrate_adaptive, integrate_fixed  # noqa: E402
+from lumped.solvers.textbook import TextbookModel, integrate_adaptive, integrate_fixed  # noqa: E402
 
 #: The style file's own setting (read from the file, not from the package's code).
 STYLE_FRAMEON = matplotlib.rc_params_from_file(plotting.STYLE, use_default_template=False)["legend.frameon"]

@@ -126,8 +126,8 @@ def test_a_quick_start_block_runs_and_prints_what_the_readme_shows(block: list[C
 def test_the_example_system_file_is_the_papers_figure_3() -> None:
     """examples/figure3.toml runs through Algorithm 1 and gives its arrays bit for bit (free vibration, x0 = 0.5)."""
     import lumped as L
-    from lumped.network.files import load_system
-    from lumped.network.integrate import simulate_network
+    from lumped.drivers.network import simulate_network
+    from lumped.model.files import load_system
 
     network = load_system(ROOT / "examples" / "figure3.toml")
     run = simulate_network(network, 4.0, 1e-4)

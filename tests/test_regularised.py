@@ -1,4 +1,4 @@
-"""The regularised Bingham dashpot of :mod:`lumped.laws_regularised`: a law added through the contract alone."""
+"""The regularised Bingham dashpot of :mod:`lumped.laws.regularised`: a law added through the contract alone."""
 
 from __future__ import annotations
 
@@ -6,11 +6,11 @@ import math
 
 import numpy as np
 import pytest
+from conftest import EPS
 from scipy.integrate import solve_ivp
 from scipy.special import lambertw
 
 import lumped as L
-from conftest import EPS
 
 M, K, TAU, X0, T_END = 1.0, 100.0, 1.0, 0.1, 1.0
 

@@ -31,7 +31,7 @@ from references import PAPER, order
 from scipy.integrate import solve_ivp
 
 import lumped as L
-from lumped.schemes import event_capturing, theta_method
+from lumped.solvers.schemes import event_capturing, theta_method
 
 HALVING = [1e-3, 5e-4, 2.5e-4, 1.25e-4]
 # name of references.CASES -> t_end (long enough for the free decay to rest: 3.15 s)
@@ -46,7 +46,7 @@ def _oscillator(gamma: float) -> L.Oscillator:
     return L.Oscillator.bingham(PAPER["m"], PAPER["k"], PAPER["tau"], gamma)
 
 
-def _run(case: str, dt: float) -> tuple[L.ExactSolution, L.schemes.CapturedRun]:
+def _run(case: str, dt: float) -> tuple[L.ExactSolution, L.CapturedRun]:
     gamma, kwargs, t_end = CASES[case]
     osc = _oscillator(gamma)
     return L.solve_exact(osc, t_end, **kwargs), event_capturing(osc, t_end, dt, **kwargs)

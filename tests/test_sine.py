@@ -1,4 +1,4 @@
-"""The project's sine (``_sine.h`` and its twin :mod:`lumped._sine`): accuracy and bit-identity.
+"""The project's sine (``_sine.h`` and its twin :mod:`lumped.numerics.sine`): accuracy and bit-identity.
 
 The stated bound is below 1 ulp on ``|x| <= MAX_ARGUMENT = 2e8``: checked
 against mpmath (200 bits, the arbiter) on random arguments of every scale and
@@ -16,7 +16,9 @@ import mpmath
 import numpy as np
 import pytest
 
-from lumped import _sine, batched, timestepping
+from lumped.kernels import batched
+from lumped.numerics import sine as _sine
+from lumped.solvers import backward_euler
 
 BOUND_ULPS = 1.0
 mpmath.mp.prec = 200
@@ -118,12 +120,12 @@ def test_agrees_with_math_sin_or_mpmath_decides():
 
 def _c_versions() -> list[tuple[str, object]]:
     out = []
-    if timestepping.KERNEL == "compiled":
-        from lumped import _kernel
+    if backward_euler.KERNEL == "compiled":
+        from lumped.kernels import _kernel
 
         out.append(("single-run, 1 lane", _kernel.sine))
     if batched.BATCH_KERNEL == "compiled":
-        from lumped import _batch_kernel
+        from lumped.kernels import _batch_kernel
 
         for path in _batch_kernel.paths():
             out.append((f"batched {path}", lambda x, p=path: _batch_kernel.sine(x, p)))

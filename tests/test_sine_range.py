@@ -1,7 +1,7 @@
 """The forcing's argument ``omega t + phase`` must stay inside the sine's range (issue 19).
 
-One bound, :data:`lumped._sine.MAX_ARGUMENT` (2e8 rad), checked once by
-:func:`lumped._validate.sine_argument` for every method, the network, the
+One bound, :data:`lumped.numerics.sine.MAX_ARGUMENT` (2e8 rad), checked once by
+:func:`lumped.numerics.validate.sine_argument` for every method, the network, the
 sweep and the command line: before it, ``--force-phase 1e300`` turned the
 forcing into a constant for every method but the exact one, which refused
 ``omega t`` above 1e15 rad and not the phase.
@@ -16,9 +16,11 @@ import numpy as np
 import pytest
 
 import lumped as L
-from lumped import _sine, sweep
-from lumped.driver import METHODS
-from lumped.network import Bingham, Load, Mass, Network, Spring, simulate_network
+import lumped.solvers.exact
+from lumped import Bingham, Load, Mass, Network, Spring, simulate_network
+from lumped.drivers import sweep
+from lumped.drivers.simulation import METHODS
+from lumped.numerics import sine as _sine
 
 BOUND = _sine.MAX_ARGUMENT
 
@@ -57,7 +59,7 @@ def test_the_bound_counts_phase_and_the_grid_end():
 
 def test_the_exact_method_shares_the_bound():
     """The exact method used to accept omega t up to 1e15 rad; now the sine's bound, the same for all."""
-    assert L.event_driven.MAX_PHASE == BOUND
+    assert lumped.solvers.exact.MAX_PHASE == BOUND
     with pytest.raises(ValueError, match="^force_omega"):
         L.solve_exact(L.Oscillator.bingham(), 1.0, force=L.SwitchedSine(1.0, 1e9, 0.0))
 
@@ -77,7 +79,7 @@ def test_the_sweep_refuses_before_any_work(monkeypatch):
     def no_work(*args, **kwargs):
         raise AssertionError("the kernel ran")
 
-    monkeypatch.setattr("lumped.sweep.batch_backward_euler", no_work)
+    monkeypatch.setattr("lumped.drivers.sweep.batch_backward_euler", no_work)
     with pytest.raises(ValueError, match="^force_omega"):
         sweep.sweep({"force_omega": [1.0, 3e8]}, t_end=1.0, dt=0.5, force_amplitude=1.0, periods=1)
     with pytest.raises(ValueError, match="^force_phase must be within"):

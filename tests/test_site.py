@@ -44,7 +44,6 @@ from pathlib import Path
 from typing import NamedTuple
 
 import pytest
-
 from conftest import ROOT
 
 pytestmark = pytest.mark.slow

@@ -2,7 +2,7 @@
 its chunks and its inputs.
 
 The reference is :func:`references.stick_slip_motion`, an event-driven DOP853 integration written independently of
-:mod:`lumped.event_driven` (its own stop detection, its own stick/slip decision as a complementarity problem, its own
+:mod:`lumped.solvers.exact` (its own stop detection, its own stick/slip decision as a complementarity problem, its own
 breakaway events).  A stop of the study is an event of that reference where the friction element's rate reaches zero
 and the mode chosen after it is "stick" (mode 0); a reversal chooses a slip mode instead.
 """
@@ -16,11 +16,11 @@ import pytest
 import references as R
 
 from lumped import studies
-from lumped.event_driven import solve_exact
-from lumped.forcing import SwitchedSine
+from lumped.drivers.sweep import sweep
+from lumped.model.forcing import SwitchedSine
+from lumped.model.oscillator import Oscillator
+from lumped.solvers.exact import solve_exact
 from lumped.studies import stops
-from lumped.sweep import sweep
-from lumped.system import Oscillator
 
 CFG = {"mass": 1.0, "stiffness": 100.0, "threshold": 1.0}
 OMEGA_N = 10.0  # sqrt(k/m) (rad/s)
@@ -157,7 +157,7 @@ def test_bad_inputs_name_the_argument(call, message: str) -> None:
 
 def test_event_count_equals_the_sweeps_sampled_definition_where_stops_are_long() -> None:
     # At r = 0.4, F/P = 0.6 every stop lasts a good part of a period (stuck fraction printed in notebook 12), so
-    # sampling the same exact solution every dt = 1 ms misses none: lumped.sweep's sampled stops_per_period (steps
+    # sampling the same exact solution every dt = 1 ms misses none: lumped.drivers.sweep's sampled stops_per_period (steps
     # entering v == 0, over the last K periods) must equal the count from events.  t_end is chosen so that the sweep's
     # grid ends exactly at the study's t_end up to round-off; no stop lies within dt of a window edge (asserted).
     r, ratio = 0.4, 0.6

@@ -4,16 +4,16 @@ import importlib.util
 
 import numpy as np
 import pytest
-
-import lumped.config
 from conftest import ROOT
-from lumped import studies
-from lumped.studies import rest
-from lumped.driver import simulate
-from lumped.plotting.studies import intervals
-from lumped.system import Oscillator
 
-CFG = lumped.config.default()
+import lumped.studies.config
+from lumped import studies
+from lumped.drivers.simulation import simulate
+from lumped.model.oscillator import Oscillator
+from lumped.plotting.studies import intervals
+from lumped.studies import rest
+
+CFG = lumped.studies.config.default()
 SCRIPT = ROOT / "scripts" / "study.py"
 #: A small grid (even: off x0 = 0 and the band edges), cut into uneven chunks.
 POINTS, CHUNKS = 14, 3
@@ -38,7 +38,7 @@ def test_chunks_written_and_merged_equal_one_unchunked_sweep(whole, tmp_path):
 
 @pytest.mark.parametrize("row", [0, 5, 13])
 def test_a_row_is_the_single_runs_of_both_methods(whole, row):
-    """Against lumped.driver.simulate, one run per method (not through the sweep)."""
+    """Against lumped.drivers.simulation.simulate, one run per method (not through the sweep)."""
     osc = Oscillator.bingham(CFG["mass"], CFG["stiffness"], CFG["threshold"], CFG["gamma"])
     x0 = np.linspace(-1, 1, POINTS)[row]
     for prefix, method in (("alg1", "backward-euler"), ("exact", "exact")):

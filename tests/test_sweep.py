@@ -1,4 +1,4 @@
-"""Sweeps: ``python -m lumped sweep``, :mod:`lumped.sweep` and the batched kernel :mod:`lumped.batched`."""
+"""Sweeps: ``python -m lumped sweep``, :mod:`lumped.drivers.sweep` and the batched kernel :mod:`lumped.kernels.batched`."""
 
 from __future__ import annotations
 
@@ -14,16 +14,16 @@ import numpy as np
 import pytest
 
 import lumped as L
-from lumped import batched
 from lumped.cli import main
-from lumped.sweep import Progress, SweepSpec, axis, parse_vary, run_sweep, sweep
+from lumped.drivers.sweep import Progress, SweepSpec, axis, parse_vary, run_sweep, sweep
+from lumped.kernels import batched
 
 DT = 1e-3  # a coarse grid keeps the default run fast; the arithmetic is the same at any dt
 KERNELS = ["python"] + (["compiled"] if batched.BATCH_KERNEL == "compiled" else [])
 
 
 def _stops(v: np.ndarray, mask: np.ndarray | None = None) -> int:
-    """Steps entering stick from motion, written out independently of lumped.sweep."""
+    """Steps entering stick from motion, written out independently of lumped.drivers.sweep."""
     hits = [n for n in range(1, v.size) if v[n] == 0.0 and v[n - 1] != 0.0 and (mask is None or mask[n])]
     return len(hits)
 
@@ -108,8 +108,8 @@ def test_a_too_long_sweep_states_the_estimate(tmp_path, capsys):
 @pytest.mark.parametrize(("forced", "kind"), [({}, "free"), ({"force_amplitude": 1.0, "force_omega": 10.0}, "forced")])
 def test_the_estimate_costs_forced_grids_as_forced(forced, kind):
     """A forced grid's steps cost several times a free one's (a sine per step): the estimate says so."""
-    from lumped.batched import BATCH_KERNEL
-    from lumped.sweep import SECONDS_PER_TRAJECTORY_STEP
+    from lumped.drivers.sweep import SECONDS_PER_TRAJECTORY_STEP
+    from lumped.kernels.batched import BATCH_KERNEL
 
     spec = SweepSpec.build([axis("x0", [0.0, 0.5])], t_end=1.0, periods=1, **forced)
     assert spec.seconds_per_step() == SECONDS_PER_TRAJECTORY_STEP[BATCH_KERNEL][kind]
@@ -139,10 +139,10 @@ def test_batched_equals_single_runs_bit_for_bit(kernel, calls, monkeypatch):
     """
     made = []
     if CALLS[calls] is not None:
-        monkeypatch.setattr("lumped.batched.CALL_SIZE", CALLS[calls][0])
-        monkeypatch.setattr("lumped.batched.CALL_WORK", CALLS[calls][1])
+        monkeypatch.setattr("lumped.kernels.batched.CALL_SIZE", CALLS[calls][0])
+        monkeypatch.setattr("lumped.kernels.batched.CALL_WORK", CALLS[calls][1])
         real = batched._call
-        monkeypatch.setattr("lumped.batched._call", lambda *a: made.append(a[2]) or real(*a))
+        monkeypatch.setattr("lumped.kernels.batched._call", lambda *a: made.append(a[2]) or real(*a))
     rng = np.random.default_rng(12)
     n = 23
     rows = {
@@ -258,9 +258,9 @@ def test_csv_and_npz_columns(tmp_path):
 
 
 def test_progress_goes_to_stderr_only(tmp_path, capsys, monkeypatch):
-    monkeypatch.setattr("lumped.batched.CALL_SIZE", 2)
+    monkeypatch.setattr("lumped.kernels.batched.CALL_SIZE", 2)
     # an estimate long enough to show progress (50 s), not so long as to be refused
-    monkeypatch.setattr("lumped.sweep.SECONDS_PER_BATCHED_ROW", 10.0)
+    monkeypatch.setattr("lumped.drivers.sweep.SECONDS_PER_BATCHED_ROW", 10.0)
     out = tmp_path / "s.csv"
     assert main(["sweep", "--vary", "x0=0:1:5", "--t-end", "0.1", "--output", str(out)]) == 0
     assert "sweep: 5/5 rows" in capsys.readouterr().err
@@ -306,7 +306,7 @@ def test_numpy_fallback_is_bit_identical_to_the_compiled_kernel():
 def _vector_paths() -> list[str]:
     if batched.BATCH_KERNEL != "compiled":
         return []
-    from lumped import _batch_kernel
+    from lumped.kernels import _batch_kernel
 
     return list(_batch_kernel.paths())
 
@@ -315,7 +315,7 @@ def test_this_machine_runs_every_vector_path():
     """The project's machine has AVX-512 and AVX2: the path tests below run every loop, none skipped."""
     if batched.BATCH_KERNEL != "compiled":
         pytest.skip("batched C kernel not built")
-    from lumped import _batch_kernel
+    from lumped.kernels import _batch_kernel
 
     flags = open("/proc/cpuinfo").read().split() if os.path.exists("/proc/cpuinfo") else []
     expected = ["default"] + (["avx2"] if "avx2" in flags else []) + (["avx512"] if "avx512f" in flags else [])
@@ -348,7 +348,7 @@ def test_each_vector_path_equals_the_numpy_twin_bit_for_bit(path):
         ]
     )
     nw = rng.choice([0.0, 1.0, 333.0, 901.0, n_steps + 1.0], n)
-    rows = batched._validate.output_rows(n_steps, save_every) - 1
+    rows = batched.validate.output_rows(n_steps, save_every) - 1
     out = {}
     for name, loop in (("twin", batched._numpy_batch), ("c", batched._compiled_batch)):
         sums, xs = np.empty((7, n)), np.empty((rows, n))
@@ -446,7 +446,7 @@ def test_a_signal_stops_a_long_sweep_within_one_call(tmp_path, sig, status):
     allows four such calls (a loaded machine) plus 1 s for the handler, the cleanup and the exit.  One
     call for all the steps of 8192 rows, as before, takes 8192 * 4e6 * 0.45e-9 s = 15 s at least.
     """
-    from lumped.sweep import SECONDS_PER_TRAJECTORY_STEP
+    from lumped.drivers.sweep import SECONDS_PER_TRAJECTORY_STEP
 
     bound = 1.0 + 4 * batched.CALL_WORK * SECONDS_PER_TRAJECTORY_STEP["compiled"]["forced"]
     argv = ["sweep", "--vary", "x0=-1:1:20001", "--t-end", "400", "--dt", "1e-4", "--output", "o.csv"]

@@ -15,10 +15,9 @@ import numpy as np
 import pytest
 
 import lumped as L
-
-from lumped import sweep as sweep_module
 from lumped.cli import main
-from lumped.sweep import MAX_ROWS, SweepSpec, axis, chunk_slice, parse_vary, sweep
+from lumped.drivers import sweep as sweep_module
+from lumped.drivers.sweep import MAX_ROWS, SweepSpec, axis, chunk_slice, parse_vary, sweep
 
 
 @pytest.fixture
@@ -73,10 +72,10 @@ def test_memory_is_estimated_per_row_and_column(tmp_path, capsys, no_value_check
 def test_the_file_is_bounded_by_25_bytes_a_value_in_csv(monkeypatch):
     """The file's bound (25 bytes a value in .csv, 8 in .npz) is checked apart from the memory's."""
     monkeypatch.setattr(sweep_module, "MAX_MEMORY_BYTES", math.inf)
-    monkeypatch.setattr(sweep_module._validate, "MAX_SECONDS", math.inf)
+    monkeypatch.setattr(sweep_module.validate, "MAX_SECONDS", math.inf)
     counts = [10, 10, 10, 100, 100]  # 1e7 rows of 9 columns: 2.1 GiB in .csv, 0.7 in .npz
     assert sweep_module.check_size(counts, n_steps=1, method="backward-euler", forced=False, output=".csv") == 10**7
-    monkeypatch.setattr(sweep_module._validate, "MAX_OUTPUT_BYTES", 2 * 1024**3)
+    monkeypatch.setattr(sweep_module.validate, "MAX_OUTPUT_BYTES", 2 * 1024**3)
     with pytest.raises(ValueError, match=r"^vary: the \.csv file could reach 2\.1 GiB \(10000000 rows of 9 values"):
         sweep_module.check_size(counts, n_steps=1, method="backward-euler", forced=False, output=".csv")
     assert sweep_module.check_size(counts, n_steps=1, method="backward-euler", forced=False, output=".npz") == 10**7

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from lumped.cli import main
-from lumped.network.files import parse_system
+from lumped.model.files import parse_system
 
 GOOD = """\
 [[mass]]

@@ -13,11 +13,11 @@ import numpy as np
 import pytest
 
 import lumped as L
+from lumped import Bingham, Mass, MaxwellBingham, Network, Spring, simulate_network
 from lumped.cli import main
-from lumped.network import Bingham, Mass, MaxwellBingham, Network, Spring, simulate_network
-from lumped.network.elements import MAX_NAME_LENGTH
-from lumped.network.files import MAX_FILE_BYTES, load_system, parse_system
-from lumped.network.model import MAX_ELEMENTS, MAX_MASSES
+from lumped.laws.elements import MAX_NAME_LENGTH
+from lumped.model.files import MAX_FILE_BYTES, load_system, parse_system
+from lumped.model.network import MAX_ELEMENTS, MAX_MASSES
 
 ONE = """\
 [[mass]]

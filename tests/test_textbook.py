@@ -6,10 +6,10 @@ import math
 
 import numpy as np
 import pytest
+import references
 
 import lumped as L
-import references
-from lumped.textbook import TextbookModel, integrate_adaptive, integrate_fixed
+from lumped.solvers.textbook import TextbookModel, integrate_adaptive, integrate_fixed
 
 X0 = 0.005  # Figure 10: inside the static band tau/k = 0.01
 

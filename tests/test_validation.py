@@ -10,7 +10,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 import lumped as L
-from lumped.textbook import TextbookModel, integrate_adaptive, integrate_fixed
+from lumped.solvers.textbook import TextbookModel, integrate_adaptive, integrate_fixed
 
 SETTINGS = settings(max_examples=40, deadline=None)
 

@@ -2,38 +2,53 @@
 
 A mass on a linear spring and a Bingham (or Coulomb, or any monotone) dashpot,
 whose velocity is a function of its force but not the other way round
-(Darbha, Nakshatrala and Rajagopal, 2020).
+(Darbha, Nakshatrala and Rajagopal, 2020), and networks of such elements.
 
-Modules, one idea each: :mod:`~lumped.laws` (springs and dashpots),
-:mod:`~lumped.timestepping` (Algorithm 1), :mod:`~lumped.schemes` (the θ-method
-and the event-capturing scheme), :mod:`~lumped.event_driven` (exact
-solution), :mod:`~lumped.event_integration` (event-driven integration for any
-law), :mod:`~lumped.textbook` (the ``sgn(0) = 0`` model),
-:mod:`~lumped.forcing`, :mod:`~lumped.driver` (:func:`simulate`),
-:mod:`~lumped.results`, :mod:`~lumped.cli`; the paper's runs are
-:mod:`~lumped.examples`.
+The package is built in layers, each a folder that imports only the ones
+below it: :mod:`~lumped.numerics` (validation, the sine, the root finder),
+:mod:`~lumped.laws` (dashpots, springs and network elements),
+:mod:`~lumped.model` (the oscillator, networks, loads, parameters,
+trajectories), :mod:`~lumped.kernels` (the compiled loops),
+:mod:`~lumped.solvers` (one module per method), :mod:`~lumped.drivers`
+(:func:`simulate`, :func:`simulate_network`, the method registry, the
+sweep), :mod:`~lumped.studies`, :mod:`~lumped.plotting` and
+:mod:`~lumped.cli`.  The names below are the public API.
 """
 
-from lumped.event_driven import Event, ExactSolution, Phase, solve_exact
-from lumped.event_integration import IntegratedSolution, solve_event_driven
-from lumped.forcing import SwitchedSine
+from lumped.drivers.methods import METHODS
+from lumped.drivers.network import simulate_network
+from lumped.drivers.simulation import simulate
 from lumped.laws import (
+    Bingham,
     BinghamDashpot,
     Dashpot,
     DashpotState,
+    HerschelBulkley,
     HerschelBulkleyDashpot,
+    LinearDashpot,
     LinearSpring,
+    LockingBingham,
+    MaxwellBingham,
+    Monotone,
     MonotoneDashpot,
+    PapanastasiouDashpot,
+    Spring,
+    SpringString,
     coulomb,
 )
-from lumped.laws_regularised import PapanastasiouDashpot
-from lumped.results import COLUMNS, EnergyBalance, Trajectory
-from lumped.driver import METHODS, simulate
-from lumped.schemes import CapturedRun, event_capturing, theta_method
-from lumped.system import Oscillator
-from lumped.timestepping import algorithm1, backward_euler
+from lumped.model.files import load_system, parse_system
+from lumped.model.forcing import SwitchedSine
+from lumped.model.network import Load, Mass, Network
+from lumped.model.network_trajectory import NetworkTrajectory
+from lumped.model.oscillator import Oscillator
+from lumped.model.trajectory import COLUMNS, EnergyBalance, Trajectory
+from lumped.solvers.backward_euler import algorithm1, backward_euler
+from lumped.solvers.event_driven import IntegratedSolution, solve_event_driven
+from lumped.solvers.exact import Event, ExactSolution, Phase, solve_exact
+from lumped.solvers.schemes import CapturedRun, event_capturing, theta_method
 
 __all__ = [
+    "Bingham",
     "BinghamDashpot",
     "COLUMNS",
     "CapturedRun",
@@ -42,21 +57,35 @@ __all__ = [
     "EnergyBalance",
     "Event",
     "ExactSolution",
+    "HerschelBulkley",
     "HerschelBulkleyDashpot",
     "IntegratedSolution",
+    "LinearDashpot",
     "LinearSpring",
+    "Load",
+    "LockingBingham",
     "METHODS",
+    "Mass",
+    "MaxwellBingham",
+    "Monotone",
     "MonotoneDashpot",
+    "Network",
+    "NetworkTrajectory",
     "Oscillator",
     "PapanastasiouDashpot",
     "Phase",
+    "Spring",
+    "SpringString",
     "SwitchedSine",
     "Trajectory",
     "algorithm1",
     "backward_euler",
     "coulomb",
     "event_capturing",
+    "load_system",
+    "parse_system",
     "simulate",
+    "simulate_network",
     "solve_event_driven",
     "solve_exact",
     "theta_method",

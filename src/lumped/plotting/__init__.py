@@ -32,6 +32,7 @@ from lumped.plotting.histories import (
     time_history,
     time_history_panels,
 )
+from lumped.plotting.networks import chain_positions, locking_graph, network_history, network_panels, stick_map
 from lumped.plotting.studies import (
     den_hartog_amplitudes,
     den_hartog_history,
@@ -40,7 +41,6 @@ from lumped.plotting.studies import (
     stop_histories,
     stops_map,
 )
-from lumped.plotting.networks import chain_positions, locking_graph, network_history, network_panels, stick_map
 
 __all__ = [
     "STYLE",

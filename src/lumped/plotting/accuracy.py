@@ -1,6 +1,6 @@
 """The work-precision study's figures: convergence with reference slopes, and error against work.
 
-Both helpers read the dictionary of :func:`lumped.accuracy.to_json` (the
+Both helpers read the dictionary of :func:`lumped.studies.accuracy.to_json` (the
 content of ``results/accuracy/study.json``): its ``results`` rows, one per
 run, with ``case``, ``method``, ``resolution`` (``dt`` or ``rtol``),
 ``eps``, the errors and ``work`` (steps; deterministic, so the figures are
@@ -80,7 +80,7 @@ def accuracy_convergence(
     Parameters
     ----------
     data : mapping
-        :func:`lumped.accuracy.to_json`'s dictionary.
+        :func:`lumped.studies.accuracy.to_json`'s dictionary.
     cases : sequence of str
         Cases drawn, one panel each (titles from ``data["references"]``).
     error : str
@@ -135,7 +135,7 @@ def work_precision(
     Parameters
     ----------
     data : mapping
-        :func:`lumped.accuracy.to_json`'s dictionary.
+        :func:`lumped.studies.accuracy.to_json`'s dictionary.
     cases : sequence of str
         Cases drawn, one panel each.
     axes : sequence of Axes, optional

@@ -17,9 +17,9 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from lumped.event_driven import ExactSolution
+from lumped.model.trajectory import Trajectory
 from lumped.plotting._base import legend_above, new_axes, sci_tex, styled
-from lumped.results import Trajectory
+from lumped.solvers.exact import ExactSolution
 
 __all__ = [
     "LABELS",

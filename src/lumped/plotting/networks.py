@@ -1,4 +1,4 @@
-"""Pictures of networks (:mod:`lumped.network`): histories, a lock's graph, a chain's stick map.
+"""Pictures of networks (:func:`lumped.simulate_network`): histories, a lock's graph, a chain's stick map.
 
 Each helper draws into ``ax`` (or ``axes``), makes a new styled figure when
 none is given, returns the :class:`~matplotlib.figure.Figure` and leaves
@@ -16,8 +16,8 @@ from matplotlib.axes import Axes
 from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
 
-from lumped.laws import BinghamDashpot
-from lumped.network import LockingBingham, NetworkTrajectory
+from lumped.laws import BinghamDashpot, LockingBingham
+from lumped.model.network_trajectory import NetworkTrajectory
 from lumped.plotting._base import legend_above, new_axes, styled
 
 __all__ = ["chain_positions", "locking_graph", "network_history", "network_panels", "stick_map"]

@@ -14,10 +14,10 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
+from lumped.model.oscillator import Oscillator
+from lumped.model.trajectory import Trajectory
 from lumped.plotting._base import new_axes, sci_tex, styled
-from lumped.results import Trajectory
-from lumped.system import Oscillator
-from lumped.textbook import AdaptiveOutcome, FixedStepResult
+from lumped.solvers.textbook import AdaptiveOutcome, FixedStepResult
 
 __all__ = ["acceleration_graph", "chatter", "creep"]
 
@@ -63,7 +63,7 @@ def chatter(
 ) -> Figure:
     """Dashpot force (N) against time (ms) of fixed-step runs, with the DAE's.
 
-    ``runs`` maps a label to a :class:`~lumped.textbook.FixedStepResult`;
+    ``runs`` maps a label to a :class:`~lumped.solvers.textbook.FixedStepResult`;
     ``reference`` is a trajectory of the DAE (Algorithm 1 or the exact
     solution); ``t_max`` (s) crops the time axis.
 
@@ -98,7 +98,7 @@ def chatter(
 def creep(runs: Mapping[float, AdaptiveOutcome], rest: float | None = None, ax: Axes | None = None) -> Figure:
     """Displacement (m) against time (s) of regularised runs, one per ``eps``.
 
-    ``runs`` maps ``eps`` (m/s) to an :class:`~lumped.textbook.AdaptiveOutcome`;
+    ``runs`` maps ``eps`` (m/s) to an :class:`~lumped.solvers.textbook.AdaptiveOutcome`;
     ``rest`` (m) is the DAE's rest position, drawn as a thin dashed line under
     the runs; a run that creeps very little stays visible above it, and a dot
     marks where each run ends.

@@ -32,11 +32,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped import _validate
-from lumped.event_driven import Event, ExactSolution, solve_exact
-from lumped.forcing import SwitchedSine
-from lumped.sweep import chunk_slice
-from lumped.system import Oscillator
+from lumped.drivers.sweep import chunk_slice
+from lumped.model.forcing import SwitchedSine
+from lumped.model.oscillator import Oscillator
+from lumped.numerics import validate
+from lumped.solvers.exact import Event, ExactSolution, solve_exact
 
 __all__ = [
     "coulomb_boundary",
@@ -93,7 +93,7 @@ class SteadyMotion(NamedTuple):
     nonstop: bool
 
 
-# The free oscillator is written out here rather than taken from lumped.event_driven: the closed form is
+# The free oscillator is written out here rather than taken from lumped.solvers.exact: the closed form is
 # the reference the exact solver's runs are compared with, so the two share no code.
 def _flow(m: float, c: float, k: float, t: float) -> np.ndarray:
     """``exp(M t)`` of ``z' = M z``, ``z = (x, v)``, for the underdamped free oscillator (closed form)."""
@@ -119,9 +119,9 @@ def _homogeneous_start(m: float, c: float, k: float, friction: float, omega: flo
 def _check(m: float, c: float, k: float, friction: float, p: float, omega: float) -> None:
     """Refuse, with one line naming the argument, what :func:`closed_form` does not cover."""
     for name, value in (("mass", m), ("stiffness", k), ("force_amplitude", p), ("force_omega", omega)):
-        _validate.positive(name, value)
-    _validate.non_negative("threshold", friction)
-    if not 0 <= _validate.finite("damping", c) < 2 * math.sqrt(k * m):
+        validate.positive(name, value)
+    validate.non_negative("threshold", friction)
+    if not 0 <= validate.finite("damping", c) < 2 * math.sqrt(k * m):
         raise ValueError(f"damping: c must lie in [0, 2 sqrt(k m)) = [0, {2 * math.sqrt(k * m)!r}) N s/m, got {c!r}")
     if c == 0 and omega * omega * m == k:
         raise ValueError("force_omega: omega = sqrt(k/m) with c = 0 is the undamped resonance (no steady state)")
@@ -247,7 +247,7 @@ def _window_max(solution: ExactSolution, events: list[Event], start: float, end:
 def steady_state(oscillator: Oscillator, p: float, omega: float, periods: int = PERIODS) -> SteadyState:
     """Run from rest under ``P sin(omega t)`` for :data:`TRANSIENT` s plus two windows of ``periods`` periods.
 
-    The window summary equals :mod:`lumped.sweep`'s ``steady_amplitude`` and
+    The window summary equals :mod:`lumped.drivers.sweep`'s ``steady_amplitude`` and
     ``stops_per_period`` without sampling: ``|x|`` is largest where ``v = 0``
     (a stop or a reversal event) or at an end of the window.
     """
@@ -284,15 +284,15 @@ def rows(cfg: Mapping[str, float], points: int, chunk: tuple[int, int] | None = 
     ----------
     cfg : mapping
         ``mass`` (kg), ``stiffness`` (N/m), ``threshold`` (N) and ``gamma``
-        (m/(N s), finite: the combined damping), as :func:`lumped.config.load` gives them.
+        (m/(N s), finite: the combined damping), as :func:`lumped.studies.config.load` gives them.
     points : int
         Number of frequency ratios over :data:`RATIO_RANGE`.
     chunk : (int, int), optional
-        ``(index, count)``: contiguous near-equal chunks, as :meth:`lumped.sweep.SweepSpec.chunk`.
+        ``(index, count)``: contiguous near-equal chunks, as :meth:`lumped.drivers.sweep.SweepSpec.chunk`.
     """
     if not math.isfinite(cfg["gamma"]):
         raise ValueError("gamma: the study's combined damping needs a finite gamma (c = 1/gamma)")
-    _validate.positive_int("points", points)
+    validate.positive_int("points", points)
     cells = grid(points)
     if chunk is not None:
         cells = cells[chunk_slice(len(cells), *chunk)]

@@ -1,10 +1,10 @@
 """Study "where the mass comes to rest" (notebook 10, ``results/studies/rest.csv``): free vibration (``v0 = 0``, no
 force) from every ``x0`` of an even grid over [-1, 1] m, run twice, by
 Algorithm 1 (``backward-euler``, at the configured ``dt``) and by the
-``exact`` solver, summarised by :func:`lumped.sweep.sweep`.  The file's
+``exact`` solver, summarised by :func:`lumped.drivers.sweep.sweep`.  The file's
 columns (:data:`COLUMNS`): ``x0`` (m), then ``rest_time`` (s),
 ``rest_position`` (m) and ``stops`` of each method, prefixed ``alg1_`` and
-``exact_`` (definitions in :mod:`lumped.sweep`).
+``exact_`` (definitions in :mod:`lumped.drivers.sweep`).
 """
 
 from __future__ import annotations
@@ -13,7 +13,7 @@ from collections.abc import Mapping
 
 import numpy as np
 
-from lumped.sweep import sweep
+from lumped.drivers.sweep import sweep
 
 __all__ = ["GRID", "CHUNKS", "T_END", "COLUMNS", "rows", "chunk_table"]
 
@@ -40,11 +40,11 @@ def rows(cfg: Mapping[str, float], points: int, chunk: tuple[int, int] | None = 
     ----------
     cfg : mapping
         ``mass`` (kg), ``stiffness`` (N/m), ``threshold`` (N), ``gamma``
-        (m/(N s)) and ``dt`` (s), as :func:`lumped.config.load` gives them.
+        (m/(N s)) and ``dt`` (s), as :func:`lumped.studies.config.load` gives them.
     points : int
         Number of x0 values, ``np.linspace(-1, 1, points)`` (m).
     chunk : (int, int), optional
-        ``(index, count)``, :meth:`lumped.sweep.SweepSpec.chunk`.
+        ``(index, count)``, :meth:`lumped.drivers.sweep.SweepSpec.chunk`.
 
     Raises
     ------

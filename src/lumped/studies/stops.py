@@ -2,7 +2,7 @@
 of the harmonically forced Coulomb oscillator over the plane of the friction ratio ``F/P`` and the frequency ratio
 ``r = omega/omega_n``, the quantity Hong and Liu (2000) mapped from their exact solution.
 
-Every row is one run of :func:`lumped.event_driven.solve_exact` from rest (``x0 = v0 = 0``) under ``P sin(omega t)``
+Every row is one run of :func:`lumped.solvers.exact.solve_exact` from rest (``x0 = v0 = 0``) under ``P sin(omega t)``
 with the committed mass and stiffness (``omega_n = sqrt(k/m)``), a Coulomb dashpot (``gamma = inf``) of the committed
 threshold ``tau = F`` and ``P = F / (F/P)``: for Coulomb friction the motion scaled by ``P/k`` depends only on
 ``F/P`` and ``r`` (divide ``m x'' + k x + F sgn(x') = P sin(omega t)`` by ``P``), so fixing ``F`` loses nothing.
@@ -11,7 +11,7 @@ The run lasts :data:`TRANSIENT` + 2 :data:`PERIODS` forcing periods ``T = 2 pi/o
 the solution's events, not from samples: a *stop* is an event where ``v`` reaches zero with the net force
 ``P sin(omega t) - k x`` inside the static band ``[-F, F]``, so that the mass sticks (for a time that may be zero, or
 shorter than any sampling step); a zero of ``v`` outside the band is a reversal, not a stop.  Counting events
-rather than sampling the solution as :func:`lumped.sweep.sweep` does (``method="exact"``, about 1 us per sample) is
+rather than sampling the solution as :func:`lumped.drivers.sweep.sweep` does (``method="exact"``, about 1 us per sample) is
 both cheaper and exact: no stop is missed for being shorter than the step, and where stops are long the two
 definitions agree (``tests/test_stops_study.py``).  The file's columns
 (:data:`COLUMNS`):
@@ -33,11 +33,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped import _validate
-from lumped.event_driven import ExactSolution, solve_exact
-from lumped.forcing import SwitchedSine
-from lumped.sweep import chunk_slice
-from lumped.system import Oscillator
+from lumped.drivers.sweep import chunk_slice
+from lumped.model.forcing import SwitchedSine
+from lumped.model.oscillator import Oscillator
+from lumped.numerics import validate
+from lumped.solvers.exact import ExactSolution, solve_exact
 
 __all__ = ["CHUNKS", "COLUMNS", "GRID", "PERIODS", "TRANSIENT", "Count", "count_stops", "grid", "rows", "run"]
 
@@ -80,8 +80,8 @@ class Count(NamedTuple):
 
 def grid(r_points: int, ratio_points: int) -> tuple[np.ndarray, np.ndarray]:
     """The axes: ``r`` log-spaced over :data:`R_RANGE`, ``F/P`` at the midpoints of ``ratio_points`` cells of (0, 1)."""
-    r_points = _validate.positive_int("r_points", r_points)
-    ratio_points = _validate.positive_int("ratio_points", ratio_points)
+    r_points = validate.positive_int("r_points", r_points)
+    ratio_points = validate.positive_int("ratio_points", ratio_points)
     r = np.geomspace(*R_RANGE, r_points)
     return r, (np.arange(ratio_points) + 0.5) / ratio_points
 
@@ -115,8 +115,8 @@ def run(cfg: Mapping[str, float], frequency_ratio: float, friction_ratio: float)
     friction_ratio : float
         ``F/P > 0``; the force amplitude is ``P = F / (F/P)`` (N).
     """
-    r = _validate.positive("frequency_ratio", frequency_ratio)
-    ratio = _validate.positive("friction_ratio", friction_ratio)
+    r = validate.positive("frequency_ratio", frequency_ratio)
+    ratio = validate.positive("friction_ratio", friction_ratio)
     osc = Oscillator.bingham(cfg["mass"], cfg["stiffness"], cfg["threshold"], math.inf)
     omega = r * math.sqrt(cfg["stiffness"] / cfg["mass"])
     t_end = (TRANSIENT + 2 * PERIODS) * 2 * math.pi / omega
@@ -132,12 +132,12 @@ def rows(
     Parameters
     ----------
     cfg : mapping
-        ``mass`` (kg), ``stiffness`` (N/m) and ``threshold`` (N), as :func:`lumped.config.load` gives them.
+        ``mass`` (kg), ``stiffness`` (N/m) and ``threshold`` (N), as :func:`lumped.studies.config.load` gives them.
     r_points, ratio_points : int
         Sizes of the axes of :func:`grid`; ``r`` varies slowest.
     chunk : (int, int), optional
         ``(index, count)``: the ``index``-th of ``count`` near-equal contiguous slices of the rows
-        (:func:`lumped.sweep.chunk_slice`); the chunks concatenate to the whole.
+        (:func:`lumped.drivers.sweep.chunk_slice`); the chunks concatenate to the whole.
     """
     r, ratio = grid(r_points, ratio_points)
     rr, qq = (a.ravel() for a in np.meshgrid(r, ratio, indexing="ij"))

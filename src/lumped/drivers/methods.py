@@ -1,0 +1,229 @@
+"""The one registry of methods: :data:`METHODS`, name -> :class:`Method`.
+
+Each method is declared here once, with what it can run and its options.
+Everything that chooses a method by name reads this table:
+:func:`lumped.simulate` (one mass), the command line (``--method``'s choices
+and help, the option flags such as ``--rtol``, which methods run a
+``--system`` network), :mod:`lumped.drivers.sweep` (the methods a sweep runs) and
+:func:`lumped.simulate_network` (the step solvers of a network run).
+
+Adding a method
+---------------
+1. Write its one-mass solver with the signature of :data:`Solver`: the
+   positional arguments ``(osc, t_end, dt, x0, v0, force, save_every)``, then
+   its options, keyword-only, and return a :class:`~lumped.model.trajectory.Trajectory`
+   on the grid ``t_n = n*dt``.
+2. Declare a :class:`Method` in :data:`METHODS`: its one-line description
+   (``--help`` shows it), whether it needs the Bingham form of the law
+   (``bingham_only``), whether a sweep runs it (``batch``), the step solvers
+   by which it runs any network (``network_solvers``; none: one-mass
+   networks only, as an oscillator) and its :class:`Option` s.
+
+A method asked to run what it cannot says so in one line that names the
+method and the reason (:meth:`Method.refusal`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from types import MappingProxyType
+
+import numpy as np
+
+from lumped.model.forcing import SwitchedSine
+from lumped.model.oscillator import Oscillator
+from lumped.model.trajectory import Trajectory
+from lumped.solvers.backward_euler import backward_euler
+from lumped.solvers.event_driven import DEFAULT_RTOL, solve_event_driven, validate_rtol
+from lumped.solvers.exact import solve_exact
+from lumped.solvers.schemes import event_capturing, theta_method
+
+__all__ = ["METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", "NETWORK_SOLVERS", "OPTIONS"]
+
+Force = SwitchedSine | Callable[[np.ndarray], np.ndarray] | None
+#: A one-mass solver: ``(osc, t_end, dt, x0, v0, force, save_every, **options) -> Trajectory``.
+Solver = Callable[..., Trajectory]
+
+
+@dataclass(frozen=True)
+class Option:
+    """An option of a method: its keyword (the command line's flag is ``--`` + it,
+    dashes for underscores), its check, its default (a float: the command line
+    parses the flag's value as one) and its help.
+
+    ``check(value)`` returns the cleaned value or raises a ``ValueError`` that
+    begins with ``name``.
+    """
+
+    name: str
+    check: Callable[[object], object]
+    default: float
+    #: What it is, for ``--help`` ("relative tolerance").
+    help: str
+    #: The values it accepts, for ``--help`` ("in [2.2e-14, 1e-2]").
+    accepted: str
+
+    @property
+    def flag(self) -> str:
+        """The command line's option, ``--rtol``."""
+        return "--" + self.name.replace("_", "-")
+
+
+@dataclass(frozen=True)
+class Method:
+    """A method: how it runs one mass, what else it can run, its options.
+
+    Calling a method runs its one-mass solver (``METHODS[name](osc, t_end,
+    dt, x0, v0, force, save_every, **options)``), as the registry's values
+    did when they were the solvers themselves.
+    """
+
+    name: str
+    #: The one-mass solver (:data:`Solver`).
+    run: Solver
+    #: One line for ``--help``.
+    description: str
+    #: True if it needs the law's Bingham form (``Dashpot.bingham_form()``, a Bingham or Coulomb law).
+    bingham_only: bool = False
+    #: True if a sweep runs it (a batch of rows).
+    batch: bool = False
+    #: The step solvers (``simulate_network``'s ``solver``) by which it runs any network,
+    #: the default first; empty if it runs one-mass networks only, as an oscillator.
+    network_solvers: tuple[str, ...] = ()
+    options: tuple[Option, ...] = ()
+    #: Why a sweep does not run it (when ``batch`` is false), for its refusal.
+    not_batch: str = "a sweep does not run it"
+
+    def __call__(self, *args: object, **options: object) -> Trajectory:
+        return self.run(*args, **options)
+
+    @property
+    def runs_networks(self) -> bool:
+        """True if it runs any network, not only one-mass networks."""
+        return bool(self.network_solvers)
+
+    def refusal(self, oscillator: Oscillator) -> str | None:
+        """Why this method cannot run ``oscillator`` (one line naming the method), or ``None`` if it can."""
+        if self.bingham_only and oscillator.dashpot.bingham_form() is None:
+            law = type(oscillator.dashpot).__name__
+            return f"method: {self.name!r} cannot run a {law}: its closed forms need a Bingham or Coulomb law"
+        return None
+
+    def takes(self, names: object) -> None:
+        """Refuse the first of ``names`` that is not one of this method's options."""
+        own = [o.name for o in self.options]
+        for name in names:  # type: ignore[attr-defined]
+            if name not in own:
+                takes = f"its options are {', '.join(own)}" if own else "it takes none"
+                raise ValueError(f"{name}: method {self.name!r} takes no option {name!r} ({takes})")
+
+    def check_options(self, options: Mapping[str, object]) -> dict[str, object]:
+        """``options`` checked and cleaned, or a ``ValueError`` naming the first it does not take or refuses."""
+        self.takes(options)
+        own = {o.name: o for o in self.options}
+        return {name: own[name].check(value) for name, value in options.items()}
+
+
+def _backward_euler(
+    osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, force: Force, save_every: int
+) -> Trajectory:
+    return backward_euler(osc, t_end, dt, x0=x0, v0=v0, force=force, save_every=save_every)
+
+
+def _exact(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, force: Force, save_every: int) -> Trajectory:
+    sol = solve_exact(osc, t_end, x0=x0, v0=v0, force=force)  # type: ignore[arg-type]
+    return sol.sample(dt, save_every)
+
+
+def _event_capturing(
+    osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, force: Force, save_every: int
+) -> Trajectory:
+    return event_capturing(osc, t_end, dt, x0=x0, v0=v0, force=force, save_every=save_every).trajectory  # type: ignore[arg-type]
+
+
+def _theta(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, force: Force, save_every: int) -> Trajectory:
+    return theta_method(osc, t_end, dt, x0=x0, v0=v0, force=force, save_every=save_every)
+
+
+def _event_driven(
+    osc: Oscillator,
+    t_end: float,
+    dt: float,
+    x0: float,
+    v0: float,
+    force: Force,
+    save_every: int,
+    *,
+    rtol: float = DEFAULT_RTOL,
+) -> Trajectory:
+    sol = solve_event_driven(osc, t_end, x0=x0, v0=v0, force=force, rtol=rtol)  # type: ignore[arg-type]
+    return sol.sample(dt, save_every)
+
+
+#: Why the schemes compared by the accuracy study do not run in a sweep.
+_STUDY_ONLY = "a scheme of the accuracy study, for which a sweep has no cost estimate"
+_RTOL = Option("rtol", validate_rtol, DEFAULT_RTOL, "relative tolerance", "in [2.2e-14, 1e-2]")
+
+#: The registry, in the order ``--help`` lists it.
+METHODS: Mapping[str, Method] = MappingProxyType(
+    {
+        m.name: m
+        for m in (
+            Method(
+                "backward-euler",
+                _backward_euler,
+                "Algorithm 1 (backward Euler)",
+                batch=True,
+                network_solvers=("auto", "active-set", "compiled", "python"),
+            ),
+            Method("exact", _exact, "Exact event-driven solution, sampled on the grid", bingham_only=True, batch=True),
+            Method(
+                "event-driven",
+                _event_driven,
+                "Event-driven integration for any monotone dashpot law (DOP853 slip phases, exact stick), "
+                "sampled on the grid",
+                batch=True,
+                options=(_RTOL,),
+            ),
+            Method(
+                "event-capturing",
+                _event_capturing,
+                "Event-capturing trapezoidal scheme, order 2 through the switches",
+                not_batch=_STUDY_ONLY,
+            ),
+            Method(
+                "theta",
+                _theta,
+                "Theta-method with theta = 1/2 (trapezoidal rule), switches crossed blindly",
+                not_batch=_STUDY_ONLY,
+            ),
+        )
+    }
+)
+#: Views of the registry.  The methods a sweep runs (``batch``; backward Euler in the batched kernel):
+SWEEP_METHODS = tuple(name for name, m in METHODS.items() if m.batch)
+#: The step solvers of a network run (``simulate_network``'s ``solver``), of the method that runs any network:
+NETWORK_SOLVERS = next(m.network_solvers for m in METHODS.values() if m.runs_networks)
+#: Every option of a method, by name, with the methods that take it.
+OPTIONS: Mapping[str, tuple[Option, tuple[str, ...]]] = MappingProxyType(
+    {o.name: (o, tuple(n for n, m in METHODS.items() if o in m.options)) for m in METHODS.values() for o in m.options}
+)
+
+
+def get(method: object) -> Method:
+    """The registered :class:`Method` named ``method``, or ``ValueError("method must be one of ...")``."""
+    if not isinstance(method, str) or method not in METHODS:
+        raise ValueError(f"method must be one of {', '.join(METHODS)}; got {method!r}")
+    return METHODS[method]
+
+
+def refuse_sweep(method: object) -> None:
+    """Refuse a method that a sweep does not run: an unknown name, or one in one line naming it and the reason."""
+    if not isinstance(method, str) or method not in METHODS:
+        raise ValueError(f"method: a sweep runs {', '.join(SWEEP_METHODS)}; got {method!r}")
+    m = METHODS[method]
+    if not m.batch:
+        raise ValueError(
+            f"method: {m.name!r} cannot run a sweep: {m.not_batch} (a sweep runs {', '.join(SWEEP_METHODS)})"
+        )

@@ -1,0 +1,10 @@
+"""Layer 3, the compiled kernels and their Python bindings.
+
+The C sources sit here: ``_kernel.c`` (Algorithm 1's loop), ``_batch_kernel.c``
+with its vector loop ``_batch_lanes.h`` (many parameter sets at once) and
+``_network_kernel.c`` (the network step on a forest of links).  They share
+``_stick.h`` (the stick test and corrector, once in C), ``_sine.h`` (the
+project's sine) and ``_binding_checks.h``.  :mod:`~lumped.kernels.batched`
+and :mod:`~lumped.solvers.network_compiled` call them, each with a NumPy or Python
+twin that gives the same numbers when the compiler is missing.
+"""

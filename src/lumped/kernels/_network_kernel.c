@@ -1,0 +1,609 @@
+/* Backward Euler for a network of piecewise-linear elements whose link graph
+ * is a forest: the compiled marching loop of lumped.solvers.network_compiled.
+ *
+ * The one-step problem, its modes, its mode test and its cycle handling are
+ * those of lumped.solvers.network_step (read its docstring first); the element step
+ * graphs and state updates are those of lumped.laws.elements, repeated
+ * here by kind code (change both together: tests/test_network_kernel.py
+ * compares this loop with the Python step).  What differs is the linear
+ * solve with the modes fixed.  Points are the masses and the ground; a
+ * *link* joins a point to its parent in a spanning forest and carries every
+ * element between the two (parallel elements).  Leaf to root, a free link
+ * adds its conductance K = sum b and its load A = sum s a to the parent; a
+ * rigid link (one element on a rigid piece: sticking, taut, locked) merges
+ * the child into the parent with the fixed rate offset o, v_child = v_parent
+ * + o (exactly v_parent for a sticking element).  Root to leaf, the
+ * velocities follow, then each free force f = a + b w and each rigid force
+ * from the momentum balance of its child's subtree.  O(points + elements)
+ * per solve, no fill-in; every pivot D + K is positive (masses > 0, b >= 0).
+ *
+ * One call advances steps n_first..n_last (the driver calls it block by
+ * block, with the loads of the block tabulated).  counters = (row,
+ * bad_step, bad_kind, most_iterations); bad_kind 1: the active-set iteration
+ * did not settle, 2: a velocity or force is not finite; that step is not
+ * saved.  Uses only the CPython buffer API. */
+#define PY_SSIZE_T_CLEAN
+#include <Python.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "_binding_checks.h"
+#include "_stick.h" /* sticks1: the stick test of every kernel */
+
+#define MAX_PIECES 5
+enum { SPRING = 0, STRING = 1, BINGHAM = 2, MAXWELL = 3, DASHPOT = 4, LOCKING = 5 };
+static const double SCALES[] = {1.0, 0.25, 4.0, 1.0 / 16, 16.0}; /* step.SIGMA_SCALES */
+static const int SWEEPS[] = {10, 100, 1000};
+
+typedef struct {
+    int rigid;
+    double a, b, lo, hi;
+} piece;
+
+/* The network: topology (read only), then the work arrays of one solve. */
+typedef struct {
+    Py_ssize_t n_mass, n_el, n_pt;
+    const int64_t *kind, *first, *second, *order, *parent, *link_start, *link_el, *load_mass;
+    const double *par, *sign, *inertia, *sigma;
+    Py_ssize_t n_load;
+    double dt;
+    piece *graph;     /* n_el * MAX_PIECES */
+    int *count;       /* pieces per element */
+    int *mode, *guess, *next;
+    int64_t *rig;     /* per point: the rigid element of its link, or -1 */
+    double *D, *R, *num, *den, *K, *A, *off, *vall, *w, *f, *rhs, *z;
+    uint64_t *seen;
+    int bound;
+} net_t;
+
+static piece free_piece(double a, double b, double lo, double hi) {
+    piece p = {0, a, b, lo, hi};
+    return p;
+}
+
+static piece rigid_piece(double w, double lo, double hi) {
+    piece p = {1, w, 0.0, lo, hi};
+    return p;
+}
+
+/* Bingham's band (elements._band): slip- on [lo, 0], stick, slip+ on [0, hi]. */
+static int band(piece *g, double tau, double c, double lo, double hi) {
+    g[0] = free_piece(-tau, c, lo, 0.0);
+    g[1] = rigid_piece(0.0, -tau, tau);
+    g[2] = free_piece(tau, c, 0.0, hi);
+    return 3;
+}
+
+/* Element.step_graph for each kind; p holds the kind's parameters in field order. */
+static int step_graph(int64_t kind, const double *p, double s, double dt, piece *g) {
+    switch (kind) {
+    case SPRING:
+        g[0] = free_piece(s, dt * p[0], -INFINITY, INFINITY);
+        return 1;
+    case STRING: {
+        const double k = p[0], reach = (p[1] - s) / dt;
+        g[0] = free_piece(k * s, dt * k, -INFINITY, reach);
+        g[1] = rigid_piece(reach, k * p[1], INFINITY);
+        return 2;
+    }
+    case BINGHAM:
+        return band(g, p[0], p[1], -INFINITY, INFINITY);
+    case MAXWELL: {
+        const double kdt = dt * p[0], tau = p[1], c = p[2];
+        const double lo = (-tau - s) / kdt, hi = (tau - s) / kdt, slope = c * kdt / (c + kdt);
+        g[0] = free_piece((c * s - kdt * tau) / (c + kdt), slope, -INFINITY, lo);
+        g[1] = free_piece(s, kdt, lo, hi);
+        g[2] = free_piece((c * s + kdt * tau) / (c + kdt), slope, hi, INFINITY);
+        return 3;
+    }
+    case DASHPOT:
+        g[0] = free_piece(0.0, p[0], -INFINITY, INFINITY);
+        return 1;
+    case LOCKING: { /* tau, c, v_lock */
+        const double lock = p[2], edge = p[0] + p[1] * p[2];
+        g[0] = rigid_piece(-lock, -INFINITY, -edge);
+        band(g + 1, p[0], p[1], -lock, lock);
+        g[4] = rigid_piece(lock, edge, INFINITY);
+        return 5;
+    }
+    }
+    return 0; /* not reached: the bindings refuse any other code (take_topology) */
+}
+
+/* Element.next_state for each kind. */
+static double next_state(int64_t kind, const double *p, double s, double dt, double w, double f, int rigid) {
+    switch (kind) {
+    case SPRING:
+    case MAXWELL:
+        return f;
+    case STRING:
+        return rigid ? p[1] : s + dt * w;
+    default:
+        return 0.0;
+    }
+}
+
+/* step._mode: the piece whose range of z = f + sigma w holds z.  A rigid
+ * piece holds the closed band [lo + sigma a, hi + sigma a]: sticks1 of
+ * _stick.h (lumped.laws.sticks in C), Algorithm 1's test, so a Bingham element sticks
+ * on both edges of its band (tests/test_band_edge.py runs both steps there);
+ * a rigid piece of zero width (a threshold 0) is never taken. */
+static int mode_of(const piece *g, int n, double z, double sigma) {
+    for (int k = 0; k < n; k++)
+        if (g[k].rigid && g[k].lo < g[k].hi && sticks1(z, g[k].lo + sigma * g[k].a, g[k].hi + sigma * g[k].a))
+            return k;
+    for (int k = 0; k < n - 1; k++)
+        if (!g[k].rigid && z <= g[k].a + (g[k].b + sigma) * g[k].hi) return k;
+    return n - 1;
+}
+
+static const piece *chosen(const net_t *q, Py_ssize_t e, const int *mode) {
+    return q->graph + e * MAX_PIECES + mode[e];
+}
+
+/* Leaf to root: fold each point's subtree into its parent. */
+static void eliminate(net_t *q, const int *mode) {
+    for (Py_ssize_t i = 0; i < q->n_pt; i++) {
+        q->D[i] = i < q->n_mass ? q->inertia[i] : 0.0;
+        q->R[i] = i < q->n_mass ? q->rhs[i] : 0.0;
+    }
+    for (Py_ssize_t idx = q->n_pt - 1; idx >= 0; idx--) {
+        const int64_t c = q->order[idx], p = q->parent[c];
+        if (p < 0) continue;
+        int64_t r = -1;
+        double num = q->R[c], den = q->D[c], K = 0.0, A = 0.0;
+        for (int64_t k = q->link_start[c]; k < q->link_start[c + 1]; k++) {
+            const int64_t e = q->link_el[k];
+            const piece *pc = chosen(q, e, mode);
+            if (pc->rigid) {
+                r = e;
+                continue;
+            }
+            num -= q->sign[e] * pc->a;
+            A += q->sign[e] * pc->a;
+            den += pc->b;
+            K += pc->b;
+        }
+        q->rig[c] = r;
+        if (r >= 0) {
+            const double o = q->sign[r] * chosen(q, r, mode)->a;
+            q->off[c] = o;
+            q->R[p] += q->R[c] - q->D[c] * o;
+            q->D[p] += q->D[c];
+        } else {
+            q->num[c] = num, q->den[c] = den, q->K[c] = K, q->A[c] = A;
+            q->R[p] += A + K * num / den;
+            q->D[p] += K * q->D[c] / den;
+        }
+    }
+}
+
+/* The force of a rigid link's rigid element: the subtree's momentum balance
+ * gives the link's tension T, less the parallel free elements' share. */
+static void rigid_force(net_t *q, int64_t c, const int *mode) {
+    const int64_t r = q->rig[c];
+    double free = 0.0;
+    for (int64_t k = q->link_start[c]; k < q->link_start[c + 1]; k++) {
+        const int64_t e = q->link_el[k];
+        if (e != r) free += q->sign[e] * q->f[e];
+    }
+    q->f[r] = q->sign[r] * ((q->R[c] - q->D[c] * q->vall[c]) - free);
+    q->w[r] = chosen(q, r, mode)->a;
+}
+
+/* Root to leaf: velocities, then every element's rate and force. */
+static void substitute(net_t *q, const int *mode) {
+    const Py_ssize_t ground = q->n_mass;
+    for (Py_ssize_t idx = 0; idx < q->n_pt; idx++) {
+        const int64_t c = q->order[idx], p = q->parent[c];
+        if (p < 0)
+            q->vall[c] = c == ground ? 0.0 : q->R[c] / q->D[c];
+        else if (q->rig[c] >= 0)
+            q->vall[c] = q->vall[p] + q->off[c];
+        else
+            q->vall[c] = (q->num[c] + q->K[c] * q->vall[p]) / q->den[c];
+    }
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        const piece *pc = chosen(q, e, mode);
+        if (pc->rigid) continue;
+        q->w[e] = q->vall[q->second[e]] - q->vall[q->first[e]];
+        q->f[e] = pc->a + pc->b * q->w[e];
+    }
+    for (Py_ssize_t c = 0; c < q->n_pt; c++)
+        if (q->parent[c] >= 0 && q->rig[c] >= 0) rigid_force(q, c, mode);
+}
+
+static uint64_t hash_modes(const int *m, Py_ssize_t n) {
+    uint64_t h = 1469598103934665603ULL; /* FNV-1a */
+    for (Py_ssize_t i = 0; i < n; i++) {
+        h ^= (uint64_t)(m[i] + 1);
+        h *= 1099511628211ULL;
+    }
+    return h;
+}
+
+/* step._iterate at one scale: 1 if settled (mode holds the modes), 0 if it
+ * cycles or reaches the bound.  A cycle is a repeated hash of the mode
+ * vector: a collision (odds 2^-64) only costs a restart at the next scale. */
+static int iterate(net_t *q, double scale, int *iterations) {
+    int seen = 0;
+    for (int it = 1; it <= q->bound; it++) {
+        eliminate(q, q->mode);
+        substitute(q, q->mode);
+        int settled = 1;
+        for (Py_ssize_t e = 0; e < q->n_el; e++) {
+            const double s = q->sigma[e] * scale;
+            q->next[e] = mode_of(q->graph + e * MAX_PIECES, q->count[e], q->f[e] + s * q->w[e], s);
+            settled &= q->next[e] == q->mode[e];
+        }
+        if (settled) {
+            *iterations = it;
+            return 1;
+        }
+        const uint64_t h = hash_modes(q->next, q->n_el);
+        for (int j = 0; j < seen; j++)
+            if (q->seen[j] == h) return 0;
+        q->seen[seen++] = h;
+        memcpy(q->mode, q->next, q->n_el * sizeof(int));
+    }
+    return 0;
+}
+
+/* step._dual_sweeps: modes from Gauss-Seidel on the dual (into q->guess). */
+static void dual_sweeps(net_t *q, int sweeps) {
+    double *inv = q->D, *v = q->vall, *f = q->z; /* scratch */
+    for (Py_ssize_t i = 0; i < q->n_pt; i++) {
+        inv[i] = i < q->n_mass ? 1.0 / q->inertia[i] : 0.0;
+        v[i] = i < q->n_mass ? q->rhs[i] * inv[i] : 0.0;
+    }
+    for (Py_ssize_t e = 0; e < q->n_el; e++) f[e] = 0.0, q->guess[e] = q->count[e] / 2;
+    for (int s = 0; s < sweeps; s++) {
+        for (Py_ssize_t e = 0; e < q->n_el; e++) {
+            const int64_t i = q->first[e], j = q->second[e];
+            const double sigma = 1.0 / (inv[i] + inv[j]);
+            const double z = f[e] + sigma * (v[j] - v[i]);
+            const int k = q->guess[e] = mode_of(q->graph + e * MAX_PIECES, q->count[e], z, sigma);
+            const piece *p = q->graph + e * MAX_PIECES + k;
+            const double fresh = p->rigid ? z - sigma * p->a : p->a + p->b * (z - p->a) / (p->b + sigma);
+            const double delta = fresh - f[e];
+            f[e] = fresh;
+            v[j] -= delta * inv[j];
+            v[i] += delta * inv[i];
+            v[q->n_mass] = 0.0;
+        }
+    }
+}
+
+/* step.solve_step from the warm start in q->mode: 1 if settled. */
+static int solve(net_t *q, int *iterations) {
+    memcpy(q->guess, q->mode, q->n_el * sizeof(int));
+    for (int s = 0; s < 5; s++) {
+        memcpy(q->mode, q->guess, q->n_el * sizeof(int));
+        if (iterate(q, SCALES[s], iterations)) return 1;
+    }
+    for (int s = 0; s < 3; s++) {
+        dual_sweeps(q, SWEEPS[s]);
+        memcpy(q->mode, q->guess, q->n_el * sizeof(int));
+        if (iterate(q, 1.0, iterations)) return 1;
+    }
+    return 0;
+}
+
+typedef struct {
+    double *x, *v, *state;
+    int64_t *modes, *rest, *counters;
+} march_t;
+
+typedef struct {
+    double *t, *x, *v, *force, *state;
+    uint8_t *rigid;
+} record_t;
+
+static void save(const net_t *q, const march_t *m, const record_t *o, double t, int64_t row) {
+    const Py_ssize_t n = q->n_mass, ne = q->n_el;
+    o->t[row] = t;
+    memcpy(o->x + row * n, m->x, n * sizeof(double));
+    memcpy(o->v + row * n, m->v, n * sizeof(double));
+    memcpy(o->force + row * ne, q->f, ne * sizeof(double));
+    memcpy(o->state + row * ne, m->state, ne * sizeof(double));
+    for (Py_ssize_t e = 0; e < ne; e++) o->rigid[row * ne + e] = (uint8_t)chosen(q, e, q->mode)->rigid;
+}
+
+/* One step to t = n dt with the loads `load`: 0 on success, else the bad kind. */
+static int step(net_t *q, const march_t *m, const double *load, int *iterations) {
+    for (Py_ssize_t e = 0; e < q->n_el; e++)
+        q->count[e] = step_graph(q->kind[e], q->par + 4 * e, m->state[e], q->dt, q->graph + e * MAX_PIECES);
+    for (Py_ssize_t i = 0; i < q->n_mass; i++) q->rhs[i] = q->inertia[i] * m->v[i] + 0.0;
+    for (Py_ssize_t k = 0; k < q->n_load; k++) q->rhs[q->load_mass[k]] = q->inertia[q->load_mass[k]] * m->v[q->load_mass[k]] + load[k];
+    if (!solve(q, iterations)) return 1;
+    int finite = 1;
+    for (Py_ssize_t i = 0; i < q->n_mass; i++) finite &= isfinite(q->vall[i]);
+    for (Py_ssize_t e = 0; e < q->n_el; e++) finite &= isfinite(q->f[e]);
+    if (!finite) return 2;
+    for (Py_ssize_t i = 0; i < q->n_mass; i++) {
+        m->v[i] = q->vall[i];
+        m->x[i] = m->x[i] + q->dt * m->v[i];
+    }
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        const int rigid = chosen(q, e, q->mode)->rigid;
+        m->state[e] = next_state(q->kind[e], q->par + 4 * e, m->state[e], q->dt, q->w[e], q->f[e], rigid);
+        m->modes[e] = q->mode[e];
+    }
+    return 0;
+}
+
+static int march(net_t *q, march_t *m, const record_t *o, const double *table, Py_ssize_t n_first,
+                 Py_ssize_t n_last, Py_ssize_t n_steps, Py_ssize_t save_every) {
+    int64_t *cnt = m->counters;
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        q->count[e] = step_graph(q->kind[e], q->par + 4 * e, m->state[e], q->dt, q->graph + e * MAX_PIECES);
+        q->mode[e] = m->modes[e] < 0 ? q->count[e] / 2 : (int)m->modes[e];
+    }
+    for (Py_ssize_t n = n_first; n <= n_last; n++) {
+        int iterations = 0;
+        const int bad = step(q, m, table + (n - n_first) * q->n_load, &iterations);
+        if (bad) {
+            cnt[1] = n, cnt[2] = bad;
+            return bad;
+        }
+        if (iterations > cnt[3]) cnt[3] = iterations;
+        for (Py_ssize_t i = 0; i < q->n_mass; i++)
+            if (m->v[i] != 0.0) m->rest[i] = n + 1;
+        if (n % save_every == 0 || n == n_steps) save(q, m, o, (double)n * q->dt, cnt[0]++);
+    }
+    return 0;
+}
+
+/* ---- the Python binding ------------------------------------------------ */
+
+/* Every argument is checked before the loop runs (_binding_checks.h): the
+ * lengths and item types of the arrays against the counts (elements from
+ * `kind`, masses from `inertia`, rows from `t`), the kind codes, every index
+ * (points, elements, masses, modes) within range and the forest's order. */
+
+/* The items of a tuple of `count` arrays, or NULL with ValueError naming it. */
+static PyObject *const *tuple_items(PyObject *obj, const char *name, Py_ssize_t count) {
+    if (!PyTuple_Check(obj) || PyTuple_GET_SIZE(obj) != count) {
+        PyErr_Format(PyExc_ValueError, "%s must be a tuple of %zd arrays", name, count);
+        return NULL;
+    }
+    return &PyTuple_GET_ITEM(obj, 0);
+}
+
+static const char *const TOPOLOGY[] = {
+    "topology[0] (kind)",  "topology[1] (par)",    "topology[2] (first)",      "topology[3] (second)",
+    "topology[4] (order)", "topology[5] (parent)", "topology[6] (link_start)", "topology[7] (link_el)",
+    "topology[8] (sign)",  "topology[9] (inertia)", "topology[10] (sigma)",    "topology[11] (load_mass)"};
+
+/* -1 with ValueError unless lo <= values[i] < hi for every i. */
+static int check_indices(const char *name, const Py_buffer *b, int64_t lo, int64_t hi) {
+    const int64_t *values = b->buf;
+    for (Py_ssize_t i = 0; i < items(b); i++)
+        if (values[i] < lo || values[i] >= hi) {
+            PyErr_Format(PyExc_ValueError, "%s must hold values in %lld..%lld, got %lld at %zd", name, (long long)lo,
+                         (long long)hi - 1, (long long)values[i], i);
+            return -1;
+        }
+    return 0;
+}
+
+/* -1 with ValueError unless order lists every point once, each point's parent before it, the ground a root. */
+static int check_forest(const int64_t *order, const int64_t *parent, Py_ssize_t n_pt) {
+    Py_ssize_t *place = malloc(n_pt * sizeof(Py_ssize_t));
+    if (place == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    for (Py_ssize_t p = 0; p < n_pt; p++) place[p] = -1;
+    const char *bad = NULL;
+    for (Py_ssize_t i = 0; i < n_pt && !bad; i++) {
+        if (place[order[i]] >= 0) bad = "topology[4] (order) must list every point once";
+        place[order[i]] = i;
+    }
+    for (Py_ssize_t p = 0; p < n_pt && !bad; p++)
+        if (parent[p] >= 0 && place[parent[p]] > place[p])
+            bad = "topology[5] (parent) must come before each point in topology[4] (order)";
+    if (!bad && parent[n_pt - 1] != -1) bad = "topology[5] (parent) of the ground must be -1 (a root)";
+    free(place);
+    if (bad) PyErr_SetString(PyExc_ValueError, bad);
+    return bad ? -1 : 0;
+}
+
+/* Take the topology tuple's 12 arrays into h, checked; set q's counts and topology.  q is zeroed. */
+static int take_topology(held_t *h, PyObject *obj, net_t *q) {
+    memset(q, 0, sizeof *q);
+    PyObject *const *a = tuple_items(obj, "topology", 12);
+    const Py_buffer *b[12];
+    if (a == NULL || !(b[0] = take(h, a[0], TOPOLOGY[0], 'q', -1, 0)) || !(b[9] = take(h, a[9], TOPOLOGY[9], 'd', -1, 0)))
+        return -1;
+    const Py_ssize_t n_el = items(b[0]), n_mass = items(b[9]), n_pt = n_mass + 1;
+    const Py_ssize_t count[12] = {n_el, 4 * n_el, n_el, n_el, n_pt, n_pt, n_pt + 1, -1, n_el, n_mass, n_el, -1};
+    for (int i = 1; i < 12; i++)
+        if (i != 9 && !(b[i] = take(h, a[i], TOPOLOGY[i], i == 1 || i == 8 || i == 10 ? 'd' : 'q', count[i], 0)))
+            return -1;
+    const int64_t *link_start = b[6]->buf;
+    if (check_indices(TOPOLOGY[0], b[0], 0, 6) < 0 || check_indices(TOPOLOGY[2], b[2], 0, n_pt) < 0 ||
+        check_indices(TOPOLOGY[3], b[3], 0, n_pt) < 0 || check_indices(TOPOLOGY[4], b[4], 0, n_pt) < 0 ||
+        check_indices(TOPOLOGY[5], b[5], -1, n_pt) < 0 || check_indices(TOPOLOGY[6], b[6], 0, items(b[7]) + 1) < 0 ||
+        check_indices(TOPOLOGY[7], b[7], 0, n_el) < 0 || check_indices(TOPOLOGY[11], b[11], 0, n_mass) < 0 ||
+        check_forest(b[4]->buf, b[5]->buf, n_pt) < 0)
+        return -1;
+    for (Py_ssize_t p = 0; p < n_pt; p++)
+        if (link_start[p + 1] < link_start[p]) {
+            PyErr_Format(PyExc_ValueError, "%s must not decrease, got %lld after %lld", TOPOLOGY[6],
+                         (long long)link_start[p + 1], (long long)link_start[p]);
+            return -1;
+        }
+    q->kind = b[0]->buf, q->par = b[1]->buf, q->first = b[2]->buf, q->second = b[3]->buf, q->order = b[4]->buf;
+    q->parent = b[5]->buf, q->link_start = link_start, q->link_el = b[7]->buf, q->sign = b[8]->buf;
+    q->inertia = b[9]->buf, q->sigma = b[10]->buf, q->load_mass = b[11]->buf;
+    q->n_mass = n_mass, q->n_el = n_el, q->n_pt = n_pt, q->n_load = items(b[11]);
+    return 0;
+}
+
+/* Take a tuple of arrays of the given names, item types and counts (writable) into h. */
+static int take_tuple(held_t *h, PyObject *obj, const char *name, int n, const char *const *names, const char *types,
+                      const Py_ssize_t *counts, Py_buffer **out) {
+    PyObject *const *a = tuple_items(obj, name, n);
+    if (a == NULL) return -1;
+    for (int i = 0; i < n; i++)
+        if (!(out[i] = take(h, a[i], names[i], types[i], counts[i], 1))) return -1;
+    return 0;
+}
+
+/* -1 with ValueError unless every warm-start mode is -1 or a piece of its element's graph. */
+static int check_modes(const char *name, const int64_t *modes, const int *pieces, Py_ssize_t n_el) {
+    for (Py_ssize_t e = 0; e < n_el; e++)
+        if (modes[e] < -1 || modes[e] >= pieces[e]) {
+            PyErr_Format(PyExc_ValueError, "%s must be -1 or in 0..%d for element %zd, got %lld", name, pieces[e] - 1,
+                         e, (long long)modes[e]);
+            return -1;
+        }
+    return 0;
+}
+
+static int allocate(net_t *q, Py_ssize_t n_mass, Py_ssize_t n_el) {
+    const Py_ssize_t n_pt = n_mass + 1;
+    q->n_mass = n_mass, q->n_el = n_el, q->n_pt = n_pt;
+    q->bound = 20 + 2 * (int)n_el;
+    q->graph = malloc((n_el * MAX_PIECES + 1) * sizeof(piece));
+    q->count = malloc((4 * n_el + 1) * sizeof(int));
+    q->rig = malloc(n_pt * sizeof(int64_t));
+    q->D = malloc((9 * n_pt + 3 * n_el) * sizeof(double));
+    q->seen = malloc(q->bound * sizeof(uint64_t));
+    if (!q->graph || !q->count || !q->rig || !q->D || !q->seen) return -1;
+    q->mode = q->count + n_el, q->guess = q->mode + n_el, q->next = q->guess + n_el;
+    q->R = q->D + n_pt, q->num = q->R + n_pt, q->den = q->num + n_pt, q->K = q->den + n_pt;
+    q->A = q->K + n_pt, q->off = q->A + n_pt, q->vall = q->off + n_pt, q->rhs = q->vall + n_pt;
+    q->w = q->rhs + n_pt, q->f = q->w + n_el, q->z = q->f + n_el;
+    return 0;
+}
+
+static void deallocate(net_t *q) {
+    free(q->graph), free(q->count), free(q->rig), free(q->D), free(q->seen);
+}
+
+/* network_solve(topology, pieces, counts, rhs, solution) -> iterations (0: did not settle).
+ * One step problem with the given graphs: pieces (elements, 5, 5) rows (rigid, a, b, lo, hi),
+ * counts (elements,) in 1..5; solution = (v, w, f, modes, rigid) written in place; the warm start is
+ * modes (-1: the middle piece). */
+static PyObject *network_solve(PyObject *self, PyObject *args) {
+    static const char *const names[] = {"solution[0] (v)", "solution[1] (w)", "solution[2] (f)",
+                                        "solution[3] (modes)", "solution[4] (rigid)"};
+    PyObject *topo_obj, *pieces_obj, *counts_obj, *rhs_obj, *sol_obj;
+    if (!PyArg_ParseTuple(args, "OOOOO", &topo_obj, &pieces_obj, &counts_obj, &rhs_obj, &sol_obj)) return NULL;
+    held_t h = {.n = 0};
+    net_t q;
+    Py_buffer *sb[5];
+    const Py_buffer *pieces, *counts, *rhs;
+    if (take_topology(&h, topo_obj, &q) < 0 || !(pieces = take(&h, pieces_obj, "pieces", 'd', q.n_el * MAX_PIECES * 5, 0)) ||
+        !(counts = take(&h, counts_obj, "counts", 'q', q.n_el, 0)) || !(rhs = take(&h, rhs_obj, "rhs", 'd', q.n_mass, 0)))
+        goto fail;
+    const Py_ssize_t sizes[] = {q.n_mass, q.n_el, q.n_el, q.n_el, q.n_el};
+    if (take_tuple(&h, sol_obj, "solution", 5, names, "dddqB", sizes, sb) < 0 ||
+        check_indices("counts", counts, 1, MAX_PIECES + 1) < 0)
+        goto fail;
+    const Py_ssize_t n_el = q.n_el;
+    if (allocate(&q, q.n_mass, n_el) < 0) {
+        PyErr_NoMemory();
+        goto fail_alloc;
+    }
+    const double *pc = pieces->buf, *r = rhs->buf;
+    const int64_t *cnt = counts->buf, *warm = sb[3]->buf;
+    for (Py_ssize_t e = 0; e < n_el; e++) q.count[e] = (int)cnt[e];
+    if (check_modes(names[3], warm, q.count, n_el) < 0) goto fail_alloc;
+    for (Py_ssize_t e = 0; e < n_el; e++) {
+        for (int k = 0; k < q.count[e]; k++) {
+            const double *row = pc + (e * MAX_PIECES + k) * 5;
+            q.graph[e * MAX_PIECES + k] = row[0] != 0.0 ? rigid_piece(row[1], row[3], row[4]) : free_piece(row[1], row[2], row[3], row[4]);
+        }
+        q.mode[e] = warm[e] < 0 ? q.count[e] / 2 : (int)warm[e];
+    }
+    for (Py_ssize_t i = 0; i < q.n_mass; i++) q.rhs[i] = r[i];
+    int iterations = 0;
+    const int ok = solve(&q, &iterations);
+    double *v = sb[0]->buf, *w = sb[1]->buf, *f = sb[2]->buf;
+    int64_t *modes = sb[3]->buf;
+    uint8_t *rigid = sb[4]->buf;
+    for (Py_ssize_t i = 0; i < q.n_mass; i++) v[i] = q.vall[i];
+    for (Py_ssize_t e = 0; e < n_el; e++) {
+        w[e] = q.w[e], f[e] = q.f[e], modes[e] = q.mode[e];
+        rigid[e] = (uint8_t)chosen(&q, e, q.mode)->rigid;
+    }
+    deallocate(&q);
+    release_held(&h);
+    return PyLong_FromLong(ok ? iterations : 0);
+fail_alloc:
+    deallocate(&q);
+fail:
+    release_held(&h);
+    return NULL;
+}
+
+/* network_block(topology, marching, record, table, dt, n_first, n_last, n_steps, save_every)
+ * topology = (kind, par, first, second, order, parent, link_start, link_el, sign, inertia, sigma, load_mass)
+ * marching = (x, v, state, modes, rest, counters); record = (t, x, v, force, state, rigid). */
+static PyObject *network_block(PyObject *self, PyObject *args) {
+    static const char *const march_names[] = {"marching[0] (x)",     "marching[1] (v)",    "marching[2] (state)",
+                                              "marching[3] (modes)", "marching[4] (rest)", "marching[5] (counters)"};
+    static const char *const record_names[] = {"record[0] (t)",     "record[1] (x)",     "record[2] (v)",
+                                               "record[3] (force)", "record[4] (state)", "record[5] (rigid)"};
+    PyObject *topo_obj, *march_obj, *rec_obj, *table_obj;
+    double dt;
+    Py_ssize_t n_first, n_last, n_steps, save_every;
+    if (!PyArg_ParseTuple(args, "OOOOdnnnn", &topo_obj, &march_obj, &rec_obj, &table_obj, &dt, &n_first, &n_last,
+                          &n_steps, &save_every))
+        return NULL;
+    held_t h = {.n = 0};
+    net_t q;
+    Py_buffer *mb[6], *rb[6];
+    const Py_buffer *table;
+    PyObject *const *r;
+    if (check_real("dt", dt, 0.0, 1, 0) < 0 || check_steps(n_first, n_last, n_steps, save_every) < 0 ||
+        take_topology(&h, topo_obj, &q) < 0)
+        goto fail;
+    const Py_ssize_t nm = q.n_mass, ne = q.n_el;
+    const Py_ssize_t march_sizes[] = {nm, nm, ne, ne, nm, 4};
+    if (take_tuple(&h, march_obj, "marching", 6, march_names, "dddqqq", march_sizes, mb) < 0 ||
+        !(table = take(&h, table_obj, "table", 'd', (n_last - n_first + 1) * q.n_load, 0)) ||
+        !(r = tuple_items(rec_obj, "record", 6)) || !(rb[0] = take(&h, r[0], record_names[0], 'd', -1, 1)))
+        goto fail;
+    const Py_ssize_t rows = items(rb[0]), record_sizes[] = {rows, rows * nm, rows * nm, rows * ne, rows * ne, rows * ne};
+    for (int i = 1; i < 6; i++)
+        if (!(rb[i] = take(&h, r[i], record_names[i], "ddddB"[i - 1], record_sizes[i], 1))) goto fail;
+    int64_t *counters = mb[5]->buf;
+    if (check_rows(record_names[0], counters[0], rows, n_first, n_last, n_steps, save_every) < 0) goto fail;
+    if (allocate(&q, nm, ne) < 0) {
+        PyErr_NoMemory();
+        goto fail_alloc;
+    }
+    const double *state = mb[2]->buf;
+    for (Py_ssize_t e = 0; e < ne; e++)
+        q.count[e] = step_graph(q.kind[e], q.par + 4 * e, state[e], dt, q.graph + e * MAX_PIECES);
+    if (check_modes(march_names[3], mb[3]->buf, q.count, ne) < 0) goto fail_alloc;
+    q.dt = dt;
+    march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters};
+    record_t o = {rb[0]->buf, rb[1]->buf, rb[2]->buf, rb[3]->buf, rb[4]->buf, rb[5]->buf};
+    Py_BEGIN_ALLOW_THREADS
+    march(&q, &m, &o, table->buf, n_first, n_last, n_steps, save_every);
+    Py_END_ALLOW_THREADS
+    deallocate(&q);
+    release_held(&h);
+    Py_RETURN_NONE;
+fail_alloc:
+    deallocate(&q);
+fail:
+    release_held(&h);
+    return NULL;
+}
+
+static PyMethodDef methods[] = {
+    {"network_block", network_block, METH_VARARGS, "Backward Euler for a forest network, one block of steps."},
+    {"network_solve", network_solve, METH_VARARGS, "One step problem of a forest network with given graphs."},
+    {NULL, NULL, 0, NULL}};
+
+static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_network_kernel", NULL, -1, methods};
+
+PyMODINIT_FUNC PyInit__network_kernel(void) { return PyModule_Create(&module); }

@@ -1,0 +1,13 @@
+"""Layer 2, the model: what a problem is, independent of how it is solved.
+
+* :mod:`~lumped.model.oscillator`: the paper's system (one mass, a spring, a
+  dashpot) and the magnitude checks every method shares;
+* :mod:`~lumped.model.network`: masses, loads and the :class:`Network` of
+  elements, with its well-posedness check;
+* :mod:`~lumped.model.forcing`: the loads;
+* :mod:`~lumped.model.parameters`: every parameter's name, default, unit,
+  range and help, in one table;
+* :mod:`~lumped.model.files`: system files (TOML);
+* :mod:`~lumped.model.trajectory` and :mod:`~lumped.model.network_trajectory`:
+  what a run returns.
+"""

@@ -1,0 +1,377 @@
+"""Event-driven integration for one mass, a linear spring and any monotone dashpot law.
+
+The motion is the same sequence of phases as in :mod:`lumped.solvers.exact`
+(slip, stick, and the events stop, reversal, breakaway, forcing-off, rest),
+and the same march decides between them; only the slip phases differ.
+There is no closed form for a general law, so a slip phase with direction
+``s = +-1`` integrates
+
+    m x'' = F(t) - k x - s tau - (F_d(x') - sgn(x') tau),
+
+where ``F_d`` is the law's slip force (``sgn(v)(tau + K|v|^n)`` for the
+Herschel-Bulkley law), with the explicit Runge-Kutta method of order 8 of
+Dormand and Prince (SciPy's ``DOP853``, done in Python floats by
+:mod:`lumped.numerics.dop853`, whose steps are SciPy's to round-off) and its dense
+output of order 7.
+The static part ``s tau`` is held at the phase's sign, so the right-hand
+side is smooth in the phase up to the viscous part, which is continuous
+through ``v = 0``.  The stop (``v`` returns to zero) is found on each step's
+dense output by Brent's method, to a few ulps of the time.  Stick phases,
+breakaways (in closed form, with ``arcsin``) and the stick test are those
+of the exact solver.
+
+The final approach to rest
+--------------------------
+At a stop the net force ``F - k x`` lies strictly inside the band in the
+generic case, so ``m v' = F - k x - s tau`` is nonzero and ``v`` vanishes
+linearly: the mass stops in finite time, for every exponent.  What the
+exponent changes is how the viscous force behaves as ``v -> 0``.  With
+``n > 1`` it vanishes faster than ``v``: the last half-cycles are damped by
+the threshold alone (Coulomb-like), each shortens the amplitude by about
+``2 tau / k``, and the mass comes to rest after finitely many of them at a
+well-defined *rest position*.  With ``n < 1`` small velocities meet a large
+viscous force (its slope ``n K |v|^(n-1)`` is unbounded): near the band
+edge, ``k|x| - tau = u > 0`` small, the mass can *creep*, inertia
+negligible, at ``K v^n = u``, so ``u' = -k (u/K)^(1/n)`` and ``u`` decays
+like ``t^(-n/(1-n))``, never reaching 0.  Such a mass approaches the band
+edge without stopping, and what is well defined at the end of a run is its
+*position at the end*, not a rest position.  The creep is stiff (the
+velocity's decay rate ``n K v^(n-1)/m`` grows without bound), so the
+explicit integrator's steps shrink with ``v^(1-n)``; the step budget
+``max_steps`` bounds the work.
+
+Every loop is bounded: the integrator's steps by ``max_steps`` (over the
+whole run), the events by ``max_events``, each root search by Brent's
+``maxiter``; a run that would pass a bound stops with a ``ValueError``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import ClassVar
+
+import numpy as np
+
+from lumped.laws import Dashpot
+from lumped.model.forcing import SwitchedSine
+from lumped.model.oscillator import MAGNITUDE_LIMIT, Oscillator
+from lumped.numerics import validate
+from lumped.numerics.dop853 import Dop853, Piece, PiecewiseDense, piece_value
+from lumped.numerics.roots import brentq
+from lumped.solvers.exact import ExactSolution, _Builder, check_scales
+
+__all__ = [
+    "DEFAULT_RTOL",
+    "RTOL_RANGE",
+    "IntegratedSlip",
+    "IntegratedSolution",
+    "solve_event_driven",
+    "validate_rtol",
+    "viscous_part",
+]
+
+#: Relative tolerance of the integrator when none is given.
+DEFAULT_RTOL = 1e-10
+#: Range of ``rtol`` accepted: DOP853 cannot go below ``100 eps`` (SciPy raises
+#: smaller values to it with a warning), and above ``1e-2`` no digit is safe.
+RTOL_RANGE = (100 * float(np.finfo(float).eps), 1e-2)
+#: Factor between ``rtol`` and the absolute tolerance, relative to the motion's scale.
+_ATOL_FACTOR = 1e-3
+_SAMPLES = 64  # points of the dense output searched for the first motion from rest
+_RTOL_ROOT = 4 * float(np.finfo(float).eps)  # Brent's relative tolerance on a stop's time: the least SciPy's allows
+#: Largest displacement (m) or speed (m/s) the energy bound may allow: DOP853's
+#: error norms square the scaled state and its derivative.
+_LARGEST_STATE = 1e100
+
+
+def validate_rtol(rtol: object) -> float:
+    """Return ``rtol`` as a float in :data:`RTOL_RANGE`, else a one-line ``ValueError``."""
+    out = validate.finite("rtol", rtol)
+    lo, hi = RTOL_RANGE
+    if not lo <= out <= hi:
+        raise ValueError(f"rtol must lie in [{lo:.3g}, {hi:.0e}] (DOP853's range), got {out:.6g}")
+    return out
+
+
+@dataclass
+class _Budget:
+    """Integrator steps left for the whole run (a mutable counter shared by the phases)."""
+
+    left: int
+    total: int
+
+    def take(self, t: float) -> None:
+        self.left -= 1
+        if self.left < 0:
+            raise ValueError(
+                f"max_steps: the event-driven integration needs more than {self.total} steps "
+                f"(reached at t = {t:.6g} s); raise max_steps or rtol, or shorten t_end"
+            )
+
+
+def viscous_part(law: Dashpot) -> Callable[[float], float]:
+    """``F_d(v) - sgn(v) tau`` (N) as a fast scalar function, continuous through ``v = 0`` (the law's contract, point 7)."""
+    return law.viscous_part()
+
+
+@dataclass(frozen=True)
+class _Settings:
+    """What every slip phase shares: the law's viscous part, tolerances, the budget."""
+
+    viscous: Callable[[float], float]
+    rtol: float
+    atol: tuple[float, float]
+    budget: _Budget
+
+
+class IntegratedSlip:
+    """One slip phase integrated by DOP853 (:mod:`lumped.numerics.dop853`); the interface of :class:`~lumped.solvers.exact.SlipMotion`.
+
+    ``first_stop`` integrates (once) from ``t0`` and returns the first zero of
+    ``v`` before ``t_lim``, or ``None``; ``state`` then evaluates the dense
+    output on ``[t0, end]``.
+    """
+
+    def __init__(
+        self,
+        m: float,
+        k: float,
+        s_tau: float,
+        forcing: tuple[float, float, float],
+        start: tuple[float, float, float],
+        settings: _Settings,
+    ) -> None:
+        self.m, self.k, self.s_tau = m, k, s_tau
+        self.P, self.w, self.ph = forcing
+        self.t0, self.x0, self.v0 = start
+        self.settings = settings
+        self._dense: PiecewiseDense | None = None
+
+    def rhs(self, t: float, y: Sequence[float]) -> tuple[float, float]:
+        """``(x', v')`` of the slip equation (module docstring)."""
+        x, v = y
+        force = self.P * math.sin(self.w * t + self.ph) if self.P else 0.0
+        return v, (force - self.k * x - self.s_tau - self.settings.viscous(v)) / self.m
+
+    def state(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+        """Displacement (m) and velocity (m/s) at times ``t`` in the integrated span."""
+        t = np.asarray(t, dtype=float)
+        if self._dense is None:
+            return np.full_like(t, self.x0), np.full_like(t, self.v0)
+        y = self._dense(t)
+        return y[0], y[1]
+
+    def first_stop(self, t_lim: float, direction: int) -> float | None:
+        """First time in ``(t0, t_lim]`` at which ``v`` returns to zero, or ``None``."""
+        if t_lim <= self.t0:
+            return None
+        st = self.settings
+        solver = Dop853(self.rhs, self.t0, (self.x0, self.v0), t_lim, st.rtol, st.atol)
+        times: list[float] = [self.t0]
+        pieces: list[Piece] = []
+        while solver.status == "running":
+            st.budget.take(solver.t)
+            ok = solver.step()
+            if not ok or not all(math.isfinite(y) for y in solver.y):
+                why = "the step size fell below the spacing of floats" if not ok else "a value left double precision"
+                raise ValueError(
+                    f"t_end: the event-driven integration failed at t = {solver.t:.6g} s "
+                    f"({why}); shorten t_end or lower x0, v0 or the force"
+                )
+            times.append(solver.t)
+            pieces.append(solver.dense_output())
+            if direction * solver.y[1] <= 0:
+                stop = self._root(pieces[-1], times[-2], times[-1], direction)
+                times[-1] = stop
+                break
+        else:
+            stop = None
+        if times[-1] == times[-2]:  # no motion in the last step
+            times.pop()
+            pieces.pop()
+        self._dense = PiecewiseDense(times, pieces) if pieces else None
+        return stop
+
+    def _root(self, piece: Piece, a: float, b: float, direction: int) -> float:
+        """The zero of ``direction * v`` in ``(a, b]`` on one step's dense output."""
+        g = lambda t: direction * piece_value(piece, t, 1)
+        if g(b) == 0:
+            return b
+        if not g(a) > 0:  # the step started at rest: find where the motion is under way
+            ahead = (p for p in (a + (b - a) * i / _SAMPLES for i in range(1, _SAMPLES)) if g(p) > 0)
+            first = next(ahead, None)
+            if first is None:
+                return a
+            a = first
+            if not g(b) < 0:
+                return b
+        return brentq(g, a, b, xtol=1e-300, rtol=_RTOL_ROOT, maxiter=200)
+
+
+class _IntegratingBuilder(_Builder):
+    """The exact solver's march with slip phases from :class:`IntegratedSlip`."""
+
+    def __init__(self, osc: Oscillator, force: SwitchedSine, t_end: float, max_events: int, settings: _Settings):
+        super().__init__(osc, force, t_end, max_events)
+        self.settings = settings
+
+    def motion(
+        self, t: float, x: float, v: float, direction: int, forcing: tuple[float, float, float]
+    ) -> IntegratedSlip:  # type: ignore[override]
+        return IntegratedSlip(self.m, self.k, direction * self.tau, forcing, (t, x, v), self.settings)
+
+
+@dataclass(frozen=True, eq=False)
+class IntegratedSolution(ExactSolution):
+    """The event-driven solution: :class:`~lumped.solvers.exact.ExactSolution`'s phases and events.
+
+    Its slip phases hold the dense output of the integrator instead of a closed
+    form; ``sample`` gives a :class:`~lumped.model.trajectory.Trajectory` with
+    ``method = "event-driven"``.  Additional attributes: ``rtol``, the
+    tolerance asked, ``max_steps``, the step bound, and ``steps``, the number of
+    integrator steps taken.
+    """
+
+    method: ClassVar[str] = "event-driven"
+    rtol: float = DEFAULT_RTOL
+    max_steps: int = 1_000_000
+    steps: int = 0
+
+    def extended(self, t_end: float) -> IntegratedSolution:
+        """The same motion solved to a later ``t_end`` (``self`` if not later)."""
+        if t_end <= self.t_end:
+            return self
+        return solve_event_driven(
+            self.oscillator,
+            t_end,
+            x0=self.x0,
+            v0=self.v0,
+            force=self.force,
+            rtol=self.rtol,
+            max_events=self.max_events,
+            max_steps=self.max_steps,
+        )
+
+
+def _motion_scale(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float, v0: float) -> tuple[float, float]:
+    """Displacement (m) and velocity (m/s) scales: the energy bound on the amplitude, or the band.
+
+    The smaller of the amplitude bound ``|x0| + sqrt(m/k)|v0| + 2 P t_on /
+    sqrt(m k)`` and the band ``tau/k`` (when positive): the rest position lies
+    in the band, so an absolute tolerance relative to it keeps its digits.
+    """
+    m, k = osc.mass, osc.stiffness
+    P = 0.0 if force.is_zero else abs(force.amplitude)
+    t_on = min(t_end, force.until) if P else 0.0
+    amplitude = (
+        abs(x0) + math.sqrt(m / k) * abs(v0) + 2 * P * t_on / (math.sqrt(m) * math.sqrt(k))
+    )  # sqrt(m k) underflows at m = 1e-200
+    band = osc.threshold / k
+    scale = min(amplitude, band) if band > 0 else amplitude
+    scale = scale if scale > 0 else 1.0
+    return scale, scale * math.sqrt(k / m)
+
+
+def _check_sizes(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float, v0: float) -> None:
+    """Refuse a run whose state or viscous force could leave what the integrator carries.
+
+    The energy bounds the speed by ``sqrt(k/m)|x0| + |v0| + 2 P t_on / m``;
+    that speed and the matching amplitude must stay below ``1e100`` (DOP853's
+    norms square them) and the dashpot force there below :data:`MAGNITUDE_LIMIT`.
+    """
+    m, k = osc.mass, osc.stiffness
+    P = 0.0 if force.is_zero else abs(force.amplitude)
+    t_on = min(t_end, force.until) if P else 0.0
+    parts = {"x0": math.sqrt(k / m) * abs(x0), "v0": abs(v0), "force_amplitude": 2 * P * t_on / m}
+    v_max = sum(parts.values())
+    if max(v_max, v_max * math.sqrt(m / k)) > _LARGEST_STATE:
+        name = max(parts, key=parts.get)  # type: ignore[arg-type]
+        raise ValueError(
+            f"{name}: the run could reach a speed of {v_max:.3g} m/s (bound from the energy); the "
+            f"event-driven integrator carries states up to {_LARGEST_STATE:.0e} only"
+        )
+    with np.errstate(over="ignore"):
+        f = abs(float(osc.dashpot.slip_force(v_max))) if v_max > 0 else 0.0
+    if not f <= MAGNITUDE_LIMIT:
+        raise ValueError(
+            f"v0: the dashpot force could reach {f:.3g} N at the speed {v_max:.3g} m/s the energy allows, "
+            f"above {MAGNITUDE_LIMIT:.0e} N; lower v0, x0 or the force"
+        )
+
+
+def solve_event_driven(
+    oscillator: Oscillator,
+    t_end: float,
+    *,
+    x0: float = 0.0,
+    v0: float = 0.0,
+    force: SwitchedSine | None = None,
+    rtol: float = DEFAULT_RTOL,
+    max_events: int = 100_000,
+    max_steps: int = 1_000_000,
+) -> IntegratedSolution:
+    """Event-driven solution of the DAE (8) for any monotone dashpot law.
+
+    Parameters
+    ----------
+    oscillator : Oscillator
+        One mass, a linear spring and any :class:`~lumped.laws.Dashpot`.
+    t_end : float, s
+        Final time ``> 0``.
+    x0, v0 : float, m and m/s
+        Initial state.
+    force : SwitchedSine or None
+        ``P sin(omega t + phase)`` until ``t_off``, zero afterwards.
+    rtol : float
+        Relative tolerance of DOP853, in :data:`RTOL_RANGE`; the absolute
+        tolerance is ``1e-3 rtol`` times the scale of :func:`_motion_scale`.
+    max_events, max_steps : int
+        Bounds on the events and on the integrator's steps over the run.
+
+    Returns
+    -------
+    IntegratedSolution
+
+    Raises
+    ------
+    ValueError
+        One line beginning with the argument to change: a bad input, a
+        forcing that is not a :class:`SwitchedSine`, forces that could
+        overflow, or a bound on events or steps that would be passed.
+    """
+    if not isinstance(oscillator, Oscillator):
+        raise ValueError(f"oscillator must be an Oscillator, got {type(oscillator).__name__}")
+    if force is not None and not isinstance(force, SwitchedSine):
+        raise ValueError("force: the event-driven method needs a SwitchedSine or None")
+    t_end = validate.positive("t_end", t_end)
+    x0, v0 = validate.finite("x0", x0), validate.finite("v0", v0)
+    rtol = validate_rtol(rtol)
+    max_events = validate.positive_int("max_events", max_events)
+    max_steps = validate.positive_int("max_steps", max_steps)
+    force = force or SwitchedSine()
+    check_scales(oscillator, force, t_end, x0, v0)
+    _check_sizes(oscillator, force, t_end, x0, v0)
+    x_scale, v_scale = _motion_scale(oscillator, force, t_end, x0, v0)
+    atol = (_ATOL_FACTOR * rtol * x_scale, _ATOL_FACTOR * rtol * v_scale)
+    settings = _Settings(viscous_part(oscillator.dashpot), rtol, atol, _Budget(max_steps, max_steps))
+    build = _IntegratingBuilder(oscillator, force, t_end, max_events, settings)
+    build.run(x0, v0)
+    events = tuple(sorted(build.events, key=lambda e: e.time))
+    if not all(math.isfinite(p.x_start) for p in build.phases):
+        raise ValueError("t_end: the event-driven solution left double precision; shorten t_end")
+    return IntegratedSolution(
+        oscillator,
+        force,
+        t_end,
+        tuple(build.phases),
+        events,
+        *build.rest,
+        x0=x0,
+        v0=v0,
+        max_events=max_events,
+        rtol=rtol,
+        max_steps=max_steps,
+        steps=max_steps - settings.budget.left,
+    )

@@ -1,0 +1,201 @@
+"""The compiled step for networks whose link graph is a forest (``_network_kernel.c``).
+
+The *link graph* has the masses and the ground as points and one link per
+pair of points joined by at least one element (parallel elements share a
+link).  When it is a forest and every element is piecewise linear with a C
+copy of its step graph (a ``kernel_form``, point 9 of
+:class:`~lumped.laws.elements.Element`: every kind but the law elements,
+:class:`~lumped.laws.elements.Monotone` and Herschel-Bulkley), the one-step problem
+with its modes fixed is solved by elimination along the forest, leaf to
+root, and back-substitution: a free link adds its conductance to its parent,
+a rigid link merges its child into the parent with a fixed rate offset.
+That is Gaussian elimination of the merged system of
+:mod:`lumped.solvers.network_step` in an order that creates no fill-in, so a step
+costs O(masses + elements); the C loop runs the whole march (step graphs,
+active-set iteration, state updates, saving), block by block.
+
+The active-set iteration, its warm start, its mode test, its cycle handling
+and its bound are those of :func:`lumped.solvers.network_step.solve_step`, and the
+step graphs those of :mod:`lumped.laws.elements`, repeated in C by kind
+code.  Only the rounding of the linear solve differs from the Python step
+(a band or dense factorisation there); ``tests/test_network_kernel.py``
+bounds the difference.  For the paper's one-mass system both reduce to
+Algorithm 1's operations in Algorithm 1's order.
+"""
+
+from __future__ import annotations
+
+import os
+from collections import deque
+from typing import NamedTuple
+
+import numpy as np
+
+from lumped.laws.elements import Piece
+from lumped.model.network import Network, listed, rigid_loop
+from lumped.solvers.network_step import StepError, StepSolution, default_bound, unsettled
+
+__all__ = ["KERNEL", "Plan", "ineligible", "plan", "solve_graphs", "march_block"]
+
+#: ``"compiled"`` when ``_network_kernel.c`` was built (and ``LUMPED_PURE_PYTHON``
+#: is unset), else ``"python"``: the Python step then runs every network.
+KERNEL = "python"
+if os.environ.get("LUMPED_PURE_PYTHON", "") in ("", "0"):
+    try:
+        from lumped.kernels._network_kernel import network_block as _network_block  # type: ignore[import-not-found]
+        from lumped.kernels._network_kernel import network_solve as _network_solve  # type: ignore[import-not-found]
+
+        KERNEL = "compiled"
+    except ImportError:  # no C compiler at install: the Python step, as before
+        pass
+
+
+class Plan(NamedTuple):
+    """The arrays the C loop reads: elements by kind code and the spanning forest.
+
+    ``order`` lists the points root first (breadth first from the ground,
+    then from each mass not connected to it); ``parent[p]`` is ``-1`` at a
+    root; the elements of the link from ``p`` to its parent are
+    ``link_el[link_start[p]:link_start[p + 1]]``, each with ``sign`` +1 if
+    ``p`` is its ``second`` point.
+    """
+
+    kind: np.ndarray
+    par: np.ndarray
+    first: np.ndarray
+    second: np.ndarray
+    order: np.ndarray
+    parent: np.ndarray
+    link_start: np.ndarray
+    link_el: np.ndarray
+    sign: np.ndarray
+
+
+def ineligible(net: Network) -> str | None:
+    """Why the compiled step cannot run ``net``, or ``None`` if it can."""
+    if KERNEL != "compiled":
+        return "the compiled network kernel was not built"
+    forms = [el.kernel_form() for el in net.elements]  # the element contract, point 9
+    odd = [el.name for el, form in zip(net.elements, forms) if form is None]
+    if odd:
+        return f"element {odd[0]!r} is not piecewise linear"
+    index, links = net.point_index(), _links(net)
+    loop = rigid_loop(index, [(pair, net.elements[els[0]]) for pair, els in links.items()])
+    if loop:
+        return f"the links of {listed([el.name for el in loop])} close a loop"
+    for els in links.values():
+        if sum(forms[e].rigid_pieces for e in els) > 1:  # type: ignore[union-attr]
+            return f"elements {listed([net.elements[e].name for e in els])} are in parallel and more than one has rigid pieces"
+    return None
+
+
+def _links(net: Network) -> dict[tuple[int, int], list[int]]:
+    """Element indices by unordered pair of points, in element order."""
+    first, second = net.incidence()
+    links: dict[tuple[int, int], list[int]] = {}
+    for e, (a, b) in enumerate(zip(first.tolist(), second.tolist())):
+        links.setdefault((min(a, b), max(a, b)), []).append(e)
+    return links
+
+
+def _forest(n_points: int, links: dict[tuple[int, int], list[int]]) -> tuple[list[int], list[int], list[list[int]]]:
+    """Breadth-first order, parent and link elements of each point (ground first)."""
+    adjacent: list[list[tuple[int, list[int]]]] = [[] for _ in range(n_points)]
+    for (a, b), els in links.items():
+        adjacent[a].append((b, els))
+        adjacent[b].append((a, els))
+    order, parent, via = [], [-1] * n_points, [[] for _ in range(n_points)]
+    done = [False] * n_points
+    for root in [n_points - 1, *range(n_points - 1)]:
+        if done[root]:
+            continue
+        done[root], queue = True, deque([root])
+        while queue:
+            p = queue.popleft()
+            order.append(p)
+            for q, els in adjacent[p]:
+                if not done[q]:
+                    done[q], parent[q], via[q] = True, p, els
+                    queue.append(q)
+    return order, parent, via
+
+
+def _int64(values: object) -> np.ndarray:
+    return np.ascontiguousarray(values, dtype=np.int64)
+
+
+def plan(net: Network) -> Plan:
+    """The compiled loop's arrays for ``net`` (which :func:`ineligible` accepts)."""
+    first, second = net.incidence()
+    order, parent, via = _forest(len(net.masses) + 1, _links(net))
+    link_start = np.cumsum([0] + [len(els) for els in via])
+    sign = np.zeros(len(net.elements))
+    for p, els in enumerate(via):
+        for e in els:
+            sign[e] = 1.0 if second[e] == p else -1.0
+    forms = [el.kernel_form() for el in net.elements]
+    par = np.zeros((len(net.elements), 4))
+    for e, form in enumerate(forms):
+        par[e, : len(form.parameters)] = form.parameters  # type: ignore[union-attr]
+    return Plan(
+        _int64([form.code for form in forms]),  # type: ignore[union-attr]
+        par,
+        _int64(first),
+        _int64(second),
+        _int64(order),
+        _int64(parent),
+        _int64(link_start),
+        _int64([e for els in via for e in els]),
+        sign,
+    )
+
+
+def march_block(
+    topology: Plan,
+    inertia: np.ndarray,
+    sigma: np.ndarray,
+    loaded: np.ndarray,
+    marching: tuple[np.ndarray, ...],
+    record: tuple[np.ndarray, ...],
+    table: np.ndarray,
+    dt: float,
+    steps: tuple[int, int, int, int],
+) -> None:
+    """Advance steps ``n_first..n_last`` in C (``steps = (n_first, n_last, n_steps, save_every)``).
+
+    ``marching = (x, v, state, modes, rest, counters)`` is updated in place
+    (``modes`` -1 for the middle piece; ``counters = (row, bad_step,
+    bad_kind, most_iterations)``); saved rows go to ``record = (t, x, v,
+    force, state, rigid)``; ``table`` holds the loads on the masses
+    ``loaded`` for each step of the block.
+    """
+    _network_block((*topology, inertia, sigma, loaded), marching, record, np.ascontiguousarray(table), dt, *steps)
+
+
+def solve_graphs(
+    topology: Plan, inertia: np.ndarray, sigma: np.ndarray, graphs: list[tuple[Piece, ...]], rhs: np.ndarray
+) -> StepSolution:
+    """One step problem with the given graphs, in C (the initial forces' problem).
+
+    The same problem, iteration and result as :func:`lumped.solvers.network_step.solve_step`
+    from the middle pieces.
+
+    Raises
+    ------
+    StepError
+        If the iteration does not settle.
+    """
+    pieces = np.zeros((len(graphs), 5, 5))
+    for e, graph in enumerate(graphs):
+        pieces[e, : len(graph)] = graph
+    counts = np.array([len(g) for g in graphs], dtype=np.int64)
+    n_el = len(graphs)
+    v, w, f = np.empty(inertia.size), np.empty(n_el), np.empty(n_el)
+    modes, rigid = np.full(n_el, -1, dtype=np.int64), np.zeros(n_el, dtype=bool)
+    topo = (*topology, inertia, sigma, np.empty(0, dtype=np.int64))
+    iterations = _network_solve(
+        topo, pieces, counts, np.ascontiguousarray(rhs, dtype=float), (v, w, f, modes, rigid.view(np.uint8))
+    )
+    if iterations == 0:
+        raise StepError(unsettled(default_bound(n_el)))
+    return StepSolution(v, w, f, modes.tolist(), rigid.tolist(), iterations)

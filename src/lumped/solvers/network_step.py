@@ -1,0 +1,360 @@
+"""The one-step problem of a network: new velocities and element forces.
+
+Given the inertia ``d_i`` of each mass (``m_i/dt`` in a step; ``m_i`` in the
+problem for the initial forces), the right-hand side ``r_i`` (``m_i/dt v_n,i
++ F_i``) and the step graph of every element (:class:`Piece` s), find ``v``
+and ``f`` with
+
+    d_i v_i + sum_e B_ei f_e = r_i,      (w_e, f_e) on the graph of e,
+
+``w = B v``, ``B_ei = +1`` if mass ``i`` is the element's ``second`` point,
+``-1`` if its ``first``.  These are the optimality conditions of the
+strictly convex potential of :class:`~lumped.model.network.Network`.
+
+Method: a primal-dual active set (semismooth Newton) iteration.  Each
+element is given a *mode*, one piece of its graph.  With the modes fixed the
+problem is linear: a free piece adds ``b`` to the stiffness between its
+points and ``a`` to the load; a rigid piece fixes its rate, so the masses it
+joins move as one (their velocities differ by the fixed rates, and by
+exactly 0 for a sticking element) and are merged into one unknown.  The
+merged system is symmetric positive definite (the inertias are positive);
+for a chain in file order it is tridiagonal and is solved as a band.  The
+rigid elements' forces then follow from the momentum balance of each mass,
+leaf to root of the rigid forest (unique, see ``Network``).  Each element's
+new mode is the piece that contains ``z = f + sigma w``, its resolvent with
+a scale ``sigma > 0`` of the stiffness its points see; the iteration stops
+when no mode changes, and then every ``(w, f)`` lies on its graph: the
+problem is solved exactly, up to the rounding of one linear solve.  A mode
+vector that comes back is a cycle: the iteration is restarted with other
+scales ``sigma``; if none settles, or the bound on iterations is reached, a
+``StepError`` says so.  (For one mass with a spring and a Bingham dashpot,
+``sigma = m/dt + k dt`` makes ``z`` the predictor ``F~`` of eq. 15b and the
+mode test Algorithm 1's ``|F~| <= mu_s N_f``.)
+
+A graph that is not piecewise linear (a
+:class:`~lumped.laws.elements.LawGraph`, the step graph of a
+:class:`~lumped.laws.elements.Monotone` or Herschel-Bulkley element) is
+given instead the line of slope ``sigma`` through its resolvent point of
+``z``; the fixed point of that iteration lies on its graph, reached to a
+relative 8 ulps.  The step asks each graph through the graph contract of
+:class:`~lumped.laws.elements.StepGraph` (its pieces, its modes), never
+for its class.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import NamedTuple
+
+import numpy as np
+
+from lumped.laws.elements import Piece, StepGraph, as_step_graph
+
+__all__ = ["StepError", "StepSolution", "solve_step", "SIGMA_SCALES", "default_bound", "unsettled"]
+
+#: Scales of ``sigma`` tried in turn when the active-set iteration cycles.
+SIGMA_SCALES = (1.0, 0.25, 4.0, 1 / 16, 16.0)
+#: Largest unknown count solved as a dense matrix.
+_DENSE = 48
+
+Graph = Sequence[Piece] | StepGraph
+
+
+class StepError(ArithmeticError):
+    """The active-set iteration did not settle."""
+
+
+class StepSolution(NamedTuple):
+    """Velocities ``v`` (masses), rates ``w``, forces ``f``, chosen ``modes`` (elements),
+    ``rigid`` (elements on a rigid piece) and the ``iterations`` taken."""
+
+    v: np.ndarray
+    w: np.ndarray
+    f: np.ndarray
+    modes: list[int]
+    rigid: list[bool]
+    iterations: int
+
+
+class _Topology(NamedTuple):
+    first: list[int]
+    second: list[int]
+    n_mass: int
+
+
+def solve_step(
+    first: Sequence[int],
+    second: Sequence[int],
+    inertia: np.ndarray,
+    rhs: np.ndarray,
+    graphs: Sequence[Graph],
+    sigma: np.ndarray,
+    modes: Sequence[int] | None = None,
+    max_iterations: int | None = None,
+) -> StepSolution:
+    """Solve the one-step problem (see the module docstring).
+
+    Parameters
+    ----------
+    first, second : sequences of int
+        Point indices of each element; the ground is ``len(inertia)``.
+    inertia : ndarray, (masses,)
+        ``d_i > 0``.
+    rhs : ndarray, (masses,)
+    graphs : sequence
+        Each element's step graph: its pieces, or a
+        :class:`~lumped.laws.elements.StepGraph` (a law's
+        :class:`~lumped.laws.elements.LawGraph`).
+    sigma : ndarray, (elements,)
+        Scale of each element's mode test (> 0).
+    modes : sequence of int, optional
+        Initial guess (the previous step's modes); the middle piece otherwise.
+    max_iterations : int, optional
+        Bound per scale; ``20 + 2 * elements`` by default.
+
+    Raises
+    ------
+    StepError
+        If no scale settles within the bound.
+    """
+    topo = _Topology(list(first), list(second), inertia.size)
+    graphs = [as_step_graph(g) for g in graphs]
+    guess = [g.initial_mode() for g in graphs] if modes is None else list(modes)
+    bound = default_bound(len(graphs)) if max_iterations is None else max_iterations
+    for scale in SIGMA_SCALES:
+        out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound)
+        if out is not None:
+            return out
+    for sweeps in (10, 100, 1000):  # the guaranteed way in, then the exact finish
+        guess = _dual_sweeps(topo, inertia, rhs, graphs, sweeps)
+        out = _iterate(topo, inertia, rhs, graphs, sigma, guess, bound)
+        if out is not None:
+            return out
+    raise StepError(unsettled(bound))
+
+
+def unsettled(bound: int) -> str:
+    """The message of a step whose iteration did not settle within ``bound`` per scale."""
+    return f"the active-set iteration did not settle (tried sigma scales {SIGMA_SCALES}, {bound} iterations each)"
+
+
+def default_bound(elements: int) -> int:
+    """The bound on active-set iterations per scale: ``20 + 2 * elements``."""
+    return 20 + 2 * elements
+
+
+def _iterate(
+    topo: _Topology,
+    inertia: np.ndarray,
+    rhs: np.ndarray,
+    graphs: Sequence[StepGraph],
+    sigma: np.ndarray,
+    modes: list,
+    bound: int,
+) -> StepSolution | None:
+    """The active-set loop at one scale; ``None`` if it cycles or hits the bound."""
+    seen: set[tuple] = set()
+    piecewise = all(g.is_piecewise for g in graphs)
+    for it in range(1, bound + 1):
+        pieces = [g.piece(m, s) for g, m, s in zip(graphs, modes, sigma)]
+        v, w, f = _linear(topo, inertia, rhs, pieces)
+        new = [g.mode(fe + s * we, s) for g, fe, we, s in zip(graphs, f, w, sigma)]
+        settled = all(g.same(a, b) for a, b, g in zip(modes, new, graphs))
+        if settled:
+            return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it)
+        key = tuple(m if g.is_piecewise else None for m, g in zip(new, graphs))
+        if key in seen and piecewise:
+            return None  # a cycle: this scale will never settle
+        seen.add(key)
+        modes = new
+    return None
+
+
+def _dual_sweeps(
+    topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, graphs: Sequence[StepGraph], sweeps: int
+) -> list:
+    """Modes from Gauss-Seidel on the dual problem, a fallback when the active set cycles.
+
+    The dual of the step, minimise ``|r - B^T f|^2_{D^-1}/2 + sum_e psi_e*(f_e)``
+    over the forces, has a separable nonsmooth part, so exact minimisation
+    over one force at a time converges (Tseng, 2001).  For element ``e`` with
+    ``q = 1/d_first + 1/d_second``, that minimisation is the resolvent point
+    of ``z = f_e + w_e/q`` with scale ``1/q``: the same mode test.  It
+    converges only linearly, so it is used to find the modes, which the
+    active-set iteration then finishes exactly.
+    """
+    inv = [1.0 / d for d in inertia] + [0.0]
+    v = [r * s for r, s in zip(rhs, inv)] + [0.0]
+    f = [0.0] * len(graphs)
+    modes: list = [g.initial_mode() for g in graphs]
+    for _ in range(sweeps):
+        for e, g in enumerate(graphs):
+            if not g.is_piecewise:
+                continue
+            i, j = topo.first[e], topo.second[e]
+            sigma = 1.0 / (inv[i] + inv[j])
+            z = f[e] + sigma * (v[j] - v[i])
+            k = modes[e] = g.mode(z, sigma)
+            p = g.piece(k, sigma)
+            new = z - sigma * p.a if p.rigid else p.a + p.b * (z - p.a) / (p.b + sigma)
+            delta, f[e] = new - f[e], new
+            v[j] -= delta * inv[j]
+            v[i] += delta * inv[i]
+            v[-1] = 0.0
+    return modes
+
+
+def _clusters(topo: _Topology, pieces: list[Piece]) -> tuple[list[int], list[float]]:
+    """Merge the points joined by rigid pieces: each point's cluster root and
+    velocity offset from it (exactly 0 across sticking elements)."""
+    n = topo.n_mass + 1
+    adjacent: dict[int, list[tuple[int, float]]] = {}
+    for e, p in enumerate(pieces):
+        if p.rigid:
+            a, b = topo.first[e], topo.second[e]
+            adjacent.setdefault(a, []).append((b, p.a))
+            adjacent.setdefault(b, []).append((a, -p.a))
+    root, offset = list(range(n)), [0.0] * n
+    done = [False] * n
+    ground = topo.n_mass
+    for start in [ground] + [i for i in range(topo.n_mass) if i in adjacent]:
+        if done[start]:
+            continue
+        done[start], stack = True, [start]
+        while stack:
+            node = stack.pop()
+            for nxt, rate in adjacent.get(node, ()):
+                if not done[nxt]:
+                    done[nxt], root[nxt] = True, start
+                    offset[nxt] = offset[node] + rate
+                    stack.append(nxt)
+    return root, offset
+
+
+def _linear(
+    topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, pieces: list[Piece]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Solve with every mode fixed: velocities, rates and forces."""
+    n, ground = topo.n_mass, topo.n_mass
+    root, offset = _clusters(topo, pieces)
+    unknown: dict[int, int] = {}
+    for i in range(n):
+        if root[i] != root[ground] and root[i] not in unknown:
+            unknown[root[i]] = len(unknown)
+    col = [unknown.get(root[i], -1) for i in range(n + 1)]
+    matrix, load = _assemble(topo, inertia, rhs, pieces, col, offset, len(unknown))
+    u = _solve(matrix, load)
+    v_all = [offset[i] if col[i] < 0 else u[col[i]] + offset[i] for i in range(n + 1)]
+    v_all[ground] = 0.0
+    w, f = _rates_forces(topo, pieces, v_all)
+    _rigid_forces(topo, inertia, rhs, pieces, v_all, f)
+    return np.array(v_all[:n]), np.array(w), np.array(f)
+
+
+def _assemble(
+    topo: _Topology,
+    inertia: np.ndarray,
+    rhs: np.ndarray,
+    pieces: list[Piece],
+    col: list[int],
+    offset: list[float],
+    size: int,
+) -> tuple[dict, np.ndarray]:
+    """The merged system as ``{(row, col): value}`` and its right-hand side."""
+    entries: dict[tuple[int, int], float] = {}
+    load = np.zeros(size)
+    for i in range(topo.n_mass):
+        c = col[i]
+        if c >= 0:
+            load[c] += rhs[i] - inertia[i] * offset[i]
+            entries[c, c] = entries.get((c, c), 0.0) + inertia[i]
+    for e, p in enumerate(pieces):
+        i, j = topo.first[e], topo.second[e]
+        ci, cj = col[i], col[j]
+        if p.rigid or ci == cj:  # fixed rate, or inside one cluster: cancels
+            continue
+        known = p.a + p.b * (offset[j] - offset[i])
+        for c, other, sign in ((cj, ci, 1.0), (ci, cj, -1.0)):
+            if c < 0:
+                continue
+            load[c] -= sign * known
+            if p.b:
+                entries[c, c] = entries.get((c, c), 0.0) + p.b
+                if other >= 0:
+                    entries[c, other] = entries.get((c, other), 0.0) - p.b
+    return entries, load
+
+
+def _solve(entries: dict, load: np.ndarray) -> np.ndarray:
+    """Solve the symmetric positive definite system: scalar, dense or band."""
+    size = load.size
+    if size == 0:
+        return load
+    if size == 1:
+        return load / entries[0, 0]
+    band = max(abs(r - c) for r, c in entries)
+    if size <= _DENSE or band > 8:
+        matrix = np.zeros((size, size))
+        for (r, c), value in entries.items():
+            matrix[r, c] = value
+        if size <= _DENSE:
+            return np.linalg.solve(matrix, load)
+        from scipy.sparse import csc_matrix
+        from scipy.sparse.linalg import spsolve
+
+        return spsolve(csc_matrix(matrix), load)
+    from scipy.linalg import solveh_banded  # here, as spsolve above: the command line starts without SciPy
+
+    upper = np.zeros((band + 1, size))
+    for (r, c), value in entries.items():
+        if r <= c:
+            upper[band + r - c, c] = value
+    return solveh_banded(upper, load)
+
+
+def _rates_forces(topo: _Topology, pieces: list[Piece], v_all: list[float]) -> tuple[list[float], list[float]]:
+    """Each element's rate (the fixed rate on a rigid piece) and free force."""
+    w, f = [], []
+    for e, p in enumerate(pieces):
+        if p.rigid:
+            w.append(p.a)
+            f.append(0.0)
+        else:
+            rate = v_all[topo.second[e]] - v_all[topo.first[e]]
+            w.append(rate)
+            f.append(p.a + p.b * rate)
+    return w, f
+
+
+def _rigid_forces(
+    topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, pieces: list[Piece], v_all: list[float], f: list[float]
+) -> None:
+    """Forces of the rigid elements, leaf to root of the rigid forest (in place)."""
+    rigid = [e for e, p in enumerate(pieces) if p.rigid]
+    if not rigid:
+        return
+    n, ground = topo.n_mass, topo.n_mass
+    gap = [rhs[i] - inertia[i] * v_all[i] for i in range(n)] + [0.0]
+    pushed = [0.0] * (n + 1)
+    for e, p in enumerate(pieces):
+        if not p.rigid:
+            pushed[topo.second[e]] += f[e]
+            pushed[topo.first[e]] -= f[e]
+    gap = [g - q for g, q in zip(gap, pushed)]
+    at: dict[int, set[int]] = {}
+    for e in rigid:
+        at.setdefault(topo.first[e], set()).add(e)
+        at.setdefault(topo.second[e], set()).add(e)
+    leaves = [i for i, es in at.items() if len(es) == 1 and i != ground]
+    while leaves:
+        i = leaves.pop()
+        if len(at[i]) != 1:
+            continue
+        e = at[i].pop()
+        sign = 1.0 if topo.second[e] == i else -1.0
+        f[e] = sign * gap[i]
+        j = topo.first[e] if sign > 0 else topo.second[e]
+        gap[j] -= (1.0 if topo.second[e] == j else -1.0) * f[e]
+        at[j].discard(e)
+        if len(at[j]) == 1 and j != ground:
+            leaves.append(j)
