@@ -14,7 +14,6 @@ from lumped.drivers import methods, simulation
 from lumped.drivers import network as network_integrate
 from lumped.drivers import sweep as sweep_module
 from lumped.drivers.network import SOLVERS
-from lumped.drivers.one_mass import simulate_one_mass
 from lumped.model.files import load_system
 
 ONE_MASS = """\
@@ -105,7 +104,7 @@ def test_exact_refuses_a_network_of_several_masses(tmp_path):
     path = tmp_path / "two.toml"
     path.write_text(TWO_MASSES)
     with pytest.raises(ValueError, match="^method 'exact' needs a one-mass system; the network has 2 masses$"):
-        simulate_one_mass(load_system(str(path)), 0.1, 1e-3, method="exact")
+        L.solve(L.Problem(load_system(str(path)), 0.1), 1e-3, method="exact")
 
 
 @pytest.mark.parametrize(

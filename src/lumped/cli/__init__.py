@@ -487,9 +487,9 @@ def _signals_unwind() -> Iterator[None]:
 
 def _simulate_system(args: argparse.Namespace, output: _Output) -> str:
     """``--system``: read the file, reserve the output, run the network, write."""
-    from lumped.drivers.network import simulate_network
-    from lumped.drivers.one_mass import simulate_one_mass
+    from lumped.drivers.simulation import solve
     from lumped.model.files import load_system
+    from lumped.model.problem import Problem
 
     values = {
         name: PARAMETERS[name].check(name, parse(name, getattr(args, name)))
@@ -504,17 +504,12 @@ def _simulate_system(args: argparse.Namespace, output: _Output) -> str:
     options = _method_options(args)
     _check_output(args.output)
     network = load_system(args.system)
-    any_network = METHODS[args.method].runs_networks
-    if not any_network:
+    if not METHODS[args.method].runs_networks:
         _one_mass(network, args)
     output.create()
     try:
-        if any_network:
-            traj = simulate_network(network, values["t_end"], values["dt"], save_every=values["save_every"])
-        else:
-            traj = simulate_one_mass(
-                network, values["t_end"], values["dt"], save_every=values["save_every"], method=args.method, **options
-            )
+        problem = Problem(network, values["t_end"])
+        traj = solve(problem, values["dt"], method=args.method, save_every=values["save_every"], **options)
     except ValueError as err:
         raise ValueError(_system_message(str(err), args.system, network)) from None
     output.commit(traj.columns(os.path.splitext(args.output)[1].lower()))
@@ -559,7 +554,7 @@ def _system_message(message: str, path: str, network: object) -> str:
 def _one_mass(network: object, args: argparse.Namespace) -> None:
     """Refuse a network that the single-mass ``--method`` cannot run (not one mass, or a law
     the method does not take), naming the file."""
-    from lumped.drivers.one_mass import one_mass_form
+    from lumped.model.problem import one_mass_form
 
     try:
         form = one_mass_form(network)  # type: ignore[arg-type]

@@ -23,7 +23,8 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.drivers.methods import NETWORK_SOLVERS
-from lumped.drivers.one_mass import OneMass, network_trajectory, one_mass_form
+from lumped.drivers.one_mass import network_trajectory
+from lumped.model.problem import OneMass, one_mass_form
 from lumped.model.forcing import SwitchedSine
 from lumped.model.network import Network
 from lumped.model.network_trajectory import NetworkTrajectory

@@ -45,7 +45,7 @@ class NetworkTrajectory:
         backward Euler through the law's resolvent), ``"compiled"`` (the
         active-set step in C, :mod:`lumped.solvers.network_compiled`), ``"python"``
         (the active-set step of :mod:`lumped.solvers.network_step`), or the
-        single-mass method of :func:`lumped.drivers.one_mass.simulate_one_mass`.
+        single-mass method that :func:`lumped.solve` ran.
     iterations : int
         Largest number of active-set iterations in a step (0 for Algorithm 1).
     """
