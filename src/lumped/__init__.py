@@ -40,7 +40,6 @@ from lumped.laws import (
 from lumped.model.files import load_system, parse_system
 from lumped.model.forcing import SwitchedSine
 from lumped.model.network import Load, Mass, Network
-from lumped.model.network_trajectory import NetworkTrajectory
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import Problem
 from lumped.model.trajectory import COLUMNS, EnergyBalance, Trajectory
@@ -72,7 +71,6 @@ __all__ = [
     "Monotone",
     "MonotoneDashpot",
     "Network",
-    "NetworkTrajectory",
     "Oscillator",
     "PapanastasiouDashpot",
     "Phase",

@@ -512,7 +512,7 @@ def _simulate_system(args: argparse.Namespace, output: _Output) -> str:
         traj = solve(problem, values["dt"], method=args.method, save_every=values["save_every"], **options)
     except ValueError as err:
         raise ValueError(_system_message(str(err), args.system, network)) from None
-    output.commit(traj.columns(os.path.splitext(args.output)[1].lower()))
+    output.commit(traj.system_columns(os.path.splitext(args.output)[1].lower()))
     return traj.summary()
 
 

@@ -1,4 +1,4 @@
-"""A one-mass run written back as its network's :class:`~lumped.model.network_trajectory.NetworkTrajectory`.
+"""A one-mass run written back on the network it came from (:func:`network_trajectory`).
 
 A network of the paper's form (one mass, linear springs and one dashpot, all
 to the ground: :func:`lumped.model.problem.one_mass_form`) is run as an
@@ -8,11 +8,12 @@ Algorithm 1's kernel; :func:`network_trajectory` gives each element its force.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from lumped.laws.elements import GROUND, Element
 from lumped.model.network import Network
-from lumped.model.network_trajectory import NetworkTrajectory
 from lumped.model.problem import OneMass
 from lumped.model.trajectory import Trajectory
 
@@ -24,8 +25,8 @@ def _orientation(el: Element) -> float:
     return 1.0 if el.between[0] == GROUND else -1.0
 
 
-def network_trajectory(net: Network, form: OneMass, tr: Trajectory, solver: str) -> NetworkTrajectory:
-    """The :class:`~lumped.model.network_trajectory.NetworkTrajectory` of a one-mass trajectory.
+def network_trajectory(net: Network, form: OneMass, tr: Trajectory, solver: str) -> Trajectory:
+    """The trajectory of a one-mass run ``tr`` written on the network ``net`` it came from.
 
     Each spring carries the share ``k_i / k`` of ``F_s`` (all of it, exactly,
     for one spring); tensions take the sign of each element's orientation.
@@ -42,4 +43,4 @@ def network_trajectory(net: Network, form: OneMass, tr: Trajectory, solver: str)
     ]
     force, state, rigid = (np.column_stack([c[i] for c in columns]) for i in range(3))
     rest = (np.array([tr.rest_time]), np.array([tr.rest_position]))
-    return NetworkTrajectory(tr.t, tr.x[:, None], tr.v[:, None], force, state, rigid, *rest, net, tr.dt, solver, 0)
+    return replace(tr, forces=force, network=net, states=state, rigid=rigid, final_rest=rest, solver=solver)

@@ -3,7 +3,7 @@
 :func:`solve` is the one entry point: ``solve(problem, dt, method=...)``
 runs any problem by any registered method (:data:`lumped.drivers.methods.METHODS`,
 re-exported as ``lumped.METHODS``) and returns the network's
-:class:`~lumped.model.network_trajectory.NetworkTrajectory`.  A method that
+:class:`~lumped.model.trajectory.Trajectory`.  A method that
 runs any network (backward Euler) gets the whole system, and the paper's
 system goes to Algorithm 1's kernel by itself; a method that runs one mass
 gets the system as an oscillator, or refuses it in one line.
@@ -16,6 +16,7 @@ with the dashpot's force and the energy balance.  (The module is not called
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
+from dataclasses import replace
 
 import numpy as np
 
@@ -24,8 +25,7 @@ from lumped.drivers.methods import METHODS
 from lumped.drivers.network import simulate_network
 from lumped.drivers.one_mass import network_trajectory
 from lumped.model.forcing import SwitchedSine
-from lumped.model.network_trajectory import NetworkTrajectory
-from lumped.model.problem import Problem
+from lumped.model.problem import Problem, oscillator_network
 from lumped.model.oscillator import Oscillator
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
@@ -79,12 +79,15 @@ def simulate(
     run = METHODS[method]
     if isinstance(oscillator, Oscillator) and (reason := run.refusal(oscillator)) is not None:
         raise ValueError(reason)
-    return run(oscillator, t_end, dt, x0, v0, force, save_every, **options)
+    tr = run(oscillator, t_end, dt, x0, v0, force, save_every, **options)
+    if force is None:
+        return tr
+    return replace(tr, network=oscillator_network(oscillator, x0, v0, force))  # the system with its load
 
 
 def solve(
     problem: Problem, dt: float, *, method: str = "backward-euler", save_every: int = 1, **options: object
-) -> NetworkTrajectory:
+) -> Trajectory:
     """Solve ``problem`` on the grid ``t_n = n*dt`` by ``method``.
 
     Parameters
@@ -101,8 +104,8 @@ def solve(
 
     Returns
     -------
-    NetworkTrajectory
-        Positions and velocities of every mass, the force of every element.
+    Trajectory
+        Positions and velocities of every mass, the force of every element, the events.
 
     Raises
     ------

@@ -25,7 +25,7 @@ from lumped.model.network import Load, Mass, Network
 from lumped.model.oscillator import Oscillator
 from lumped.numerics import validate
 
-__all__ = ["OneMass", "Problem", "one_mass_form"]
+__all__ = ["OneMass", "Problem", "one_mass_form", "oscillator_network"]
 
 #: The names :meth:`Problem.oscillator` gives the paper's system's parts.
 MASS, SPRING, DASHPOT = "m", "spring", "dashpot"
@@ -66,6 +66,27 @@ def one_mass_form(net: Network) -> OneMass:
     return OneMass(osc, springs, dashpots[0])
 
 
+def oscillator_network(
+    oscillator: Oscillator,
+    x0: float = 0.0,
+    v0: float = 0.0,
+    force: SwitchedSine | Callable[[np.ndarray], np.ndarray] | None = None,
+) -> Network:
+    """The paper's system (Figure 3) as a network: the mass ``"m"`` starting at ``x0`` with ``v0``,
+    the spring ``"spring"`` and the dashpot ``"dashpot"`` from the ground, ``force`` (if any) on the mass.
+
+    The dashpot is a :class:`~lumped.laws.Monotone` element holding
+    ``oscillator.dashpot`` itself (any law), so :func:`one_mass_form` gives
+    back an oscillator equal to ``oscillator``, with the same law object.
+    """
+    if not isinstance(oscillator, Oscillator):
+        raise ValueError(f"oscillator must be an Oscillator, got {type(oscillator).__name__}")
+    between = (GROUND, MASS)
+    elements = [Spring(SPRING, between, oscillator.stiffness), Monotone(DASHPOT, between, oscillator.dashpot)]
+    loads = [] if force is None else [Load(MASS, force)]
+    return Network([Mass(MASS, oscillator.mass, x0, v0)], elements, loads)
+
+
 @dataclass(frozen=True)
 class Problem:
     """A system over the span ``[0, t_end]``.
@@ -96,24 +117,12 @@ class Problem:
         v0: float = 0.0,
         force: SwitchedSine | Callable[[np.ndarray], np.ndarray] | None = None,
     ) -> Problem:
-        """The paper's system (Figure 3) as the one-mass network.
+        """The paper's system as the one-mass network of :func:`oscillator_network`.
 
-        The mass ``"m"`` starts at ``x0`` with ``v0``; the spring ``"spring"``
-        and the dashpot ``"dashpot"`` (a :class:`~lumped.laws.Monotone`
-        element holding ``oscillator.dashpot`` itself, any law) join it to the
-        ground; ``force``, if any, acts on it.  :meth:`one_mass` gives back
-        an oscillator equal to ``oscillator``, with the same law object, so a
-        method runs it exactly as it runs ``oscillator``.
+        :meth:`one_mass` gives back an oscillator equal to ``oscillator``, with
+        the same law object, so a method runs it exactly as it runs ``oscillator``.
         """
-        if not isinstance(oscillator, Oscillator):
-            raise ValueError(f"oscillator must be an Oscillator, got {type(oscillator).__name__}")
-        between = (GROUND, MASS)
-        elements = [
-            Spring(SPRING, between, oscillator.stiffness),
-            Monotone(DASHPOT, between, oscillator.dashpot),
-        ]
-        loads = [] if force is None else [Load(MASS, force)]
-        return cls(Network([Mass(MASS, oscillator.mass, x0, v0)], elements, loads), t_end)
+        return cls(oscillator_network(oscillator, x0, v0, force), t_end)
 
     def one_mass(self) -> OneMass:
         """The system as an oscillator (:func:`one_mass_form`), or a ``ValueError`` saying why it is not one."""
