@@ -27,8 +27,8 @@ import pytest
 from conftest import F17B
 
 import lumped as L
-from lumped import cli
 from lumped.cli import main, option_message
+from lumped.cli import output as cli_output
 from lumped.numerics.validate import MAX_STEPS
 from lumped.solvers import backward_euler as timestepping
 from lumped.solvers import network_compiled as network_kernel
@@ -415,7 +415,7 @@ def test_unwritable_folder_is_refused_before_the_run(tmp_path, monkeypatch, caps
     def denied(*args, **kwargs):
         raise PermissionError(errno.EACCES, os.strerror(errno.EACCES))
 
-    monkeypatch.setattr(cli.tempfile, "mkstemp", denied)
+    monkeypatch.setattr(cli_output.tempfile, "mkstemp", denied)
     monkeypatch.setattr(DRIVER, "simulate", _raise(AssertionError("ran")))
     status, line = _main(["simulate", "--output", str(tmp_path / "o.csv")], capsys)
     assert status == 2

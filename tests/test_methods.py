@@ -8,8 +8,8 @@ import argparse
 import pytest
 
 import lumped as L
-from lumped import cli, simulate_network
-from lumped.cli import build_parser, main
+from lumped import simulate_network
+from lumped.cli import build_parser, main, messages
 from lumped.drivers import methods, simulation
 from lumped.drivers import network as network_integrate
 from lumped.drivers import sweep as sweep_module
@@ -67,7 +67,7 @@ def test_the_command_line_reads_the_registry():
     assert flags == {"--rtol"}
     for command in ("simulate", "sweep"):
         assert flags <= set(_actions(command))
-    assert {cli._API_TO_OPTION[o.name] for m in methods.METHODS.values() for o in m.options} == flags
+    assert {messages.API_TO_OPTION[o.name] for m in methods.METHODS.values() for o in m.options} == flags
 
 
 def test_help_lists_every_registered_method(capsys):
