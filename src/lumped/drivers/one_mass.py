@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from lumped.laws.elements import GROUND, Element
+from lumped.laws.element import GROUND, Element
 from lumped.model.network import Network
 from lumped.model.network_trajectory import NetworkTrajectory
 from lumped.model.problem import OneMass

@@ -3,7 +3,7 @@
  *
  * The one-step problem, its modes, its mode test and its cycle handling are
  * those of lumped.solvers.network_step (read its docstring first); the element step
- * graphs and state updates are those of lumped.laws.elements, repeated
+ * graphs and state updates are those of lumped.laws.*_elements, repeated
  * here by kind code (change both together: tests/test_network_kernel.py
  * compares this loop with the Python step).  What differs is the linear
  * solve with the modes fixed.  Points are the masses and the ground; a
