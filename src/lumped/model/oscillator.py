@@ -42,10 +42,8 @@ class Oscillator:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass", validate.positive("mass", self.mass))
-        if not isinstance(self.spring, LinearSpring):
-            raise ValueError("spring must be a LinearSpring")
-        if not isinstance(self.dashpot, Dashpot):
-            raise ValueError("dashpot must be a Dashpot")
+        LinearSpring.check(self.spring, "spring")
+        Dashpot.check(self.dashpot, "dashpot")
 
     @classmethod
     def bingham(
