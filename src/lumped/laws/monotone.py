@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from lumped.laws import monotone_graph
-from lumped.laws.bingham import bingham_corrector
+from lumped.laws.bingham import bingham_corrector, sticks
 from lumped.laws.contract import Dashpot, DashpotState, StepBound
 from lumped.numerics import validate
 from lumped.numerics.roots import MAXITER, brentq
@@ -162,7 +162,7 @@ class HerschelBulkleyDashpot(Dashpot):
         tau, K, n = self.threshold, self.consistency, self.exponent
         if n == 1.0:
             return DashpotState(*bingham_corrector(predictor, eta, tau, K))
-        if abs(predictor) <= tau:
+        if sticks(predictor, -tau, tau):  # the one stick test (Algorithm 1, line 5)
             return DashpotState(predictor, 0.0)
         s, r = math.copysign(1.0, predictor), abs(predictor) - tau
         w = _power_speed(r, eta, K, n)

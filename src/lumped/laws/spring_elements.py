@@ -12,7 +12,7 @@ import math
 from dataclasses import dataclass
 from typing import ClassVar
 
-from lumped.laws.bingham import BinghamDashpot
+from lumped.laws.bingham import BinghamDashpot, sticks
 from lumped.laws.element import Element
 from lumped.laws.step_graph import Piece, free_piece, rigid_piece
 from lumped.numerics import validate
@@ -183,7 +183,7 @@ class MaxwellBingham(_ForceState, Element):
         object.__setattr__(self, "threshold", law.threshold)
         object.__setattr__(self, "gamma", law.gamma)
         self._set("force0", validate.finite)
-        if math.isinf(self.gamma) and abs(self.force0) > self.threshold:
+        if math.isinf(self.gamma) and not sticks(self.force0, -self.threshold, self.threshold):
             raise ValueError(
                 f"force0 = {self.force0:.6g} N lies outside the band |f| <= threshold = {self.threshold:.6g} N, "
                 "which a Coulomb dashpot (gamma = inf) cannot leave; lower |force0| or give a finite gamma"
