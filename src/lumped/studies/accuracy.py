@@ -61,9 +61,10 @@ from lumped.model.oscillator import Oscillator
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 from lumped.solvers import textbook
+from lumped.solvers.event_capturing import event_capturing
 from lumped.solvers.event_driven import RTOL_RANGE, solve_event_driven
-from lumped.solvers.exact import Event, ExactSolution, solve_exact
-from lumped.solvers.schemes import event_capturing
+from lumped.solvers.events import Event
+from lumped.solvers.exact import ExactSolution, solve_exact
 from lumped.studies import config, examples
 from lumped.studies.replication import clean
 

@@ -1,21 +1,15 @@
-"""Second-order time stepping of the DAE (8): the θ-method and an event-capturing scheme.
+"""The ``event-capturing`` method: trapezoidal steps within modes, switching at located events.
 
-Both schemes march on the grid ``t_n = n*dt`` of Algorithm 1 and return a
-:class:`~lumped.model.trajectory.Trajectory` there.
-
-* :func:`theta_method` is the θ-method with the dashpot law enforced at the
-  new time level, so that its step, like Algorithm 1's, is a resolvent of the
-  set-valued law (``theta = 1`` *is* Algorithm 1).  With ``theta = 1/2``
-  (the trapezoidal rule) it is of order two on smooth motions but not through
-  the switches: it crosses them blindly, and in stick its dashpot force
-  alternates about the reaction instead of settling (measured in
-  ``tests/test_schemes.py``).
-* :func:`event_capturing` takes trapezoidal steps *within* one mode (slip in
-  a direction, or stick), checks after each step whether the mode still
-  holds, and when it does not, locates the switch inside the step, takes the
-  partial step to it, applies the switching rule and completes the step.  It
-  keeps order two through stops, reversals, breakaways and the switch-off of
-  the forcing, and reports the events it found.
+:func:`event_capturing` marches on the grid ``t_n = n*dt`` of Algorithm 1
+(:mod:`lumped.solvers.grid`) and returns a
+:class:`~lumped.model.trajectory.Trajectory` there, with the events it
+found.  It takes trapezoidal steps (the θ-method of
+:mod:`lumped.solvers.theta` at ``theta = 1/2``) *within* one mode (slip in
+a direction, or stick), checks after each step whether the mode still
+holds, and when it does not, locates the switch inside the step, takes the
+partial step to it, applies the switching rule and completes the step.  It
+keeps order two through stops, reversals, breakaways and the switch-off of
+the forcing.
 
 Why the trapezoidal rule inside the modes, and not a Radau IIA or a
 Runge-Kutta method of higher order: its step is one scalar monotone equation,
@@ -41,176 +35,21 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.model.forcing import SwitchedSine, evaluate, validate_force
-from lumped.model.oscillator import Oscillator, check_magnitudes, initial_dashpot_force
+from lumped.model.forcing import SwitchedSine
+from lumped.model.oscillator import Oscillator, check_magnitudes
 from lumped.model.trajectory import COLUMNS, Trajectory
 from lumped.numerics import sine
 from lumped.numerics import validate
-from lumped.solvers.backward_euler import _seconds_per_step
-from lumped.solvers.exact import Event
+from lumped.solvers.events import Event
+from lumped.solvers.grid import start_run
 
-__all__ = ["CapturedRun", "event_capturing", "theta_method"]
+__all__ = ["CapturedRun", "event_capturing"]
 
-#: Cost of one step relative to Algorithm 1's Python loop, for the run-time
-#: bound: measured 2.6 (theta) and 3.0 (event-capturing) on the free decay
-#: (measured with benchmarks/bench_accuracy.py --table), with a margin.
-_COST_OVER_PYTHON_BE = 5.0
 #: Bound on the switches located within one grid step (each a root search).
 MAX_SWITCHES_PER_STEP = 64
 #: Halvings of a substep tried to find where a slip started at rest is moving.
 _HALVINGS = 40
 _EPS = float(np.finfo(float).eps)
-
-
-# --------------------------------------------------------------------------- θ-method
-
-
-def theta_step(
-    osc: Oscillator, dt: float, theta: float, f_s: float, v: float, f_d: float, f_now: float, f_next: float
-) -> tuple[float, float, float]:
-    """One step of the θ-method for the DAE (8); returns ``(F_s, v, F_d)`` at ``n+1``.
-
-    Parameters
-    ----------
-    osc : Oscillator
-    dt : float, s
-    theta : float
-        Weight of the new time level, ``1/2 <= theta <= 1``.
-    f_s, v, f_d : float, N, m/s, N
-        Spring force, velocity and dashpot force at ``t_n``.
-    f_now, f_next : float, N
-        External force at ``t_n`` and ``t_{n+1}``.
-
-    Notes
-    -----
-    The scheme is ``x_{n+1} = x_n + dt (theta v_{n+1} + (1-theta) v_n)`` and
-    ``m (v_{n+1} - v_n) = dt (theta G_{n+1} + (1-theta) G_n)`` with ``G = F - k x
-    - F_d`` (eqs. 8), and ``v_{n+1} = phi(F_d,n+1)`` (eq. 6) at the new level.
-    Divide the second equation by ``theta dt`` and put the first into its
-    ``k x_{n+1}``::
-
-        F_d,n+1 + eta v_{n+1} = F~,      eta = m/(theta dt) + k theta dt,
-        F~ = (m/(theta dt)) v_n + F_{n+1} - F_s,n
-             + (1 - theta) (G_n/theta - k dt v_n).
-
-    With ``v_{n+1} = phi(F_d,n+1)`` this is ``F_d,n+1 = (I + eta phi)^{-1}(F~)``,
-    the resolvent of :mod:`lumped.laws` with another predictor and ``eta``;
-    then ``v_{n+1} = (F~ - F_d,n+1)/eta`` and ``F_s,n+1 = F_s,n + dt k (theta
-    v_{n+1} + (1-theta) v_n)``.  At ``theta = 1`` the extra term is ``0`` and
-    every operation is Algorithm 1's (eqs. 14, 15), in the same order, so the
-    two agree bit for bit.
-    """
-    m, k = osc.mass, osc.spring.stiffness
-    g_now = f_now - f_s - f_d
-    eta = m / (theta * dt) + k * theta * dt
-    predictor = (m / (theta * dt)) * v + f_next - f_s + (1 - theta) * (g_now / theta - k * dt * v)
-    f_d, v_next = osc.dashpot._resolvent_impl(predictor, eta)
-    return f_s + dt * k * (theta * v_next + (1 - theta) * v), v_next, f_d
-
-
-def _theta_rows(
-    osc: Oscillator, dt: float, theta: float, n_steps: int, save_every: int, force: object, out: np.ndarray
-) -> float:
-    """March the θ-method, filling ``out`` from its row 0; return the rest's start (s)."""
-    k = osc.spring.stiffness
-    f_s, v, f_d, f_now = out[0, 3], out[0, 2], out[0, 4], out[0, 5]
-    row, rest_start = 1, 0 if v == 0 else 1
-    for first in range(1, n_steps + 1, 1 << 16):
-        table = evaluate(force, np.arange(first, min(first + (1 << 16), n_steps + 1)) * dt)  # type: ignore[arg-type]
-        for n, f_next in enumerate(table.tolist(), start=first):
-            f_s, v, f_d = theta_step(osc, dt, theta, f_s, v, f_d, f_now, f_next)
-            f_now = f_next
-            if not (math.isfinite(f_s) and math.isfinite(v) and math.isfinite(f_d)):
-                raise ValueError(f"the θ-method overflowed at t = {n * dt:.6g} s (step {n})")
-            rest_start = n + 1 if v != 0.0 else rest_start
-            if n % save_every == 0 or n == n_steps:
-                out[row] = (n * dt, f_s / k, v, f_s, f_d, f_next)
-                row += 1
-    return rest_start * dt
-
-
-def _start(
-    osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, save_every: int, kind: str, force: object
-) -> tuple:
-    """Validate the common arguments; return ``(t_end, dt, x0, v0, save_every, n_steps)``."""
-    if not isinstance(osc, Oscillator):
-        raise ValueError(f"oscillator must be an Oscillator, got {type(osc).__name__}")
-    t_end, dt = validate.positive("t_end", t_end), validate.positive("dt", dt)
-    x0, v0 = validate.finite("x0", x0), validate.finite("v0", v0)
-    save_every = validate.stride("save_every", save_every)
-    n_steps = validate.step_count(t_end, dt)
-    if isinstance(force, SwitchedSine):
-        force.check_span(n_steps * dt)  # the sine's range, to the grid's last time
-    validate.output_size(n_steps, save_every)
-    per_step = _COST_OVER_PYTHON_BE * _seconds_per_step(osc, None, "python", dt)  # law's cost measured there
-    validate.run_time(n_steps, per_step, f"the {kind} scheme")
-    return t_end, dt, x0, v0, save_every, n_steps
-
-
-def theta_method(
-    oscillator: Oscillator,
-    t_end: float,
-    dt: float,
-    *,
-    theta: float = 0.5,
-    x0: float = 0.0,
-    v0: float = 0.0,
-    force: SwitchedSine | Callable[[np.ndarray], np.ndarray] | None = None,
-    save_every: int = 1,
-) -> Trajectory:
-    """Integrate the DAE (8) with the θ-method (:func:`theta_step`) on ``t_n = n*dt``.
-
-    Parameters
-    ----------
-    theta : float
-        Weight of the new level, in ``[1/2, 1]`` (the scheme is A-stable
-        there); ``1/2`` is the trapezoidal rule, ``1`` is Algorithm 1.
-    oscillator, t_end, dt, x0, v0, force, save_every
-        As for :func:`~lumped.solvers.backward_euler.backward_euler`.
-
-    Returns
-    -------
-    Trajectory
-        ``method = "theta"``; its ``rest_time`` is the first grid point of the
-        final run of ``v == 0``.
-
-    Notes
-    -----
-    Measured against the exact solution (``tests/test_schemes.py``), at
-    ``theta = 1/2``:
-
-    * without a static band (no switches) the order is 2;
-    * through switches the maximum displacement error is of order one
-      (fitted slopes 0.9 to 1.4): a step across a stop or a reversal averages
-      ``G`` over both sides of the jump of ``F_d``, a momentum error
-      ``O(dt)`` whose factor depends on where the switch falls in its step.
-      The rest position of the free decay happens to converge faster
-      (relative error 1.2e-3 at ``dt = 1e-3``, 1.2e-5 at ``1e-4``), that of
-      eq. (17b) erratically;
-    * in stick ``F_d,n+1 + F_d,n = F_n+1 + F_n - 2 k x``: the dashpot force
-      alternates about the reaction with the amplitude the last slip step
-      left (0.21 N in the free decay at ``dt = 1e-3``) and never settles;
-    * the resolvent returns ``v = 0`` whenever the predictor falls in the
-      band, so some reversals become one-step stops that the exact motion
-      does not have (Coulomb under eq. 17b).
-
-    """
-    t_end, dt, x0, v0, save_every, n_steps = _start(oscillator, t_end, dt, x0, v0, save_every, "theta", force)
-    theta = validate.finite("theta", theta)
-    if not 0.5 <= theta <= 1:
-        raise ValueError(f"theta must lie in [0.5, 1], got {theta!r}")
-    force = validate_force(force)
-    check_magnitudes(oscillator, t_end, dt, x0, v0, force.amplitude if isinstance(force, SwitchedSine) else 0.0)
-    out = np.empty((validate.output_rows(n_steps, min(save_every, n_steps + 1)), len(COLUMNS)))
-    f0 = float(evaluate(force, np.zeros(1))[0])  # type: ignore[arg-type]
-    k = oscillator.spring.stiffness
-    out[0] = (0.0, x0, v0, k * x0, initial_dashpot_force(oscillator, f0, x0, v0), f0)
-    rest = _theta_rows(oscillator, dt, theta, n_steps, min(save_every, n_steps + 1), force, out)
-    final = (rest, float(out[-1, 1])) if out[-1, 2] == 0 else (math.nan, math.nan)
-    return Trajectory.from_array(out, oscillator, method="theta", dt=dt, save_every=save_every, final_rest=final)
-
-
-# --------------------------------------------------------------------------- event capturing
 
 
 def _root(f: Callable[[float], float], a: float, b: float, xtol: float | None = None) -> float:
@@ -279,7 +118,7 @@ class _Capture:
         return self.on if t < self.force.until and self.on.amplitude != 0 else self.off
 
     def slip_step(self, s: int, st: _State, h: float, p: _Piece) -> tuple[float, float, float]:
-        """Trapezoidal step of size ``h`` in slip mode ``s``: ``(x, v, F_d)`` (see :func:`theta_step`)."""
+        """Trapezoidal step of size ``h`` in slip mode ``s``: ``(x, v, F_d)`` (see :func:`~lumped.solvers.theta.theta_step`)."""
         m, k = self.m, self.k
         g_now = p(st.t) - k * st.x - st.f_d
         eta = 2 * m / h + k * h / 2
@@ -446,9 +285,9 @@ def event_capturing(
     Notes
     -----
     A mode is *slip* with direction ``s`` (``F_d = s tau + u``, ``v =
-    psi(u)``, see :func:`_collapsed_resolvent`) or *stick* (``v = 0``, ``x``
+    psi(u)``, see the law's ``band_free_resolvent``) or *stick* (``v = 0``, ``x``
     fixed, ``F_d = F - k x``, eq. 11c).  In slip, a trapezoidal step of size
-    ``h`` (:func:`theta_step` at ``theta = 1/2``, ``G_n`` from the consistent
+    ``h`` (:func:`~lumped.solvers.theta.theta_step` at ``theta = 1/2``, ``G_n`` from the consistent
     ``F_d``) is accepted while ``s v > 0``; otherwise the stop is the zero of
     the step map's velocity ``v(h')`` on ``(0, h]`` (Brent), whose error is the
     step's local error ``O(h^3)``.  There the rule of the exact solver applies:
@@ -468,7 +307,9 @@ def event_capturing(
     solved for the force, where ``psi`` is smooth), 1.99 for the rest
     position and 1.92 for the event times.
     """
-    t_end, dt, x0, v0, save_every, n_steps = _start(oscillator, t_end, dt, x0, v0, save_every, "event-capturing", force)
+    t_end, dt, x0, v0, save_every, n_steps = start_run(
+        oscillator, t_end, dt, x0, v0, save_every, "event-capturing", force
+    )
     if force is not None and not isinstance(force, SwitchedSine):
         raise ValueError("force: the event-capturing scheme needs a SwitchedSine or None")
     force = force or SwitchedSine()
