@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import NamedTuple
 
 import numpy as np
@@ -38,9 +37,8 @@ import numpy as np
 from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator, check_magnitudes
 from lumped.model.trajectory import COLUMNS, Trajectory
-from lumped.numerics import sine
 from lumped.numerics import validate
-from lumped.solvers.events import Event
+from lumped.solvers.events import STICK, Event, EventMarch, Piece
 from lumped.solvers.grid import start_run
 
 __all__ = ["CapturedRun", "event_capturing"]
@@ -62,7 +60,7 @@ def _root(f: Callable[[float], float], a: float, b: float, xtol: float | None = 
 class CapturedRun(NamedTuple):
     """Result of :func:`event_capturing`: the grid ``trajectory`` and the located ``events``.
 
-    ``events`` are :class:`~lumped.solvers.exact.Event` with the kinds of the
+    ``events`` are :class:`~lumped.solvers.events.Event` with the kinds of the
     exact solver: ``"stop"``, ``"reversal"``, ``"breakaway"``,
     ``"forcing-off"`` and ``"rest"`` (a stop after which the force stays zero,
     dated back to the start of that stick).
@@ -76,21 +74,8 @@ class CapturedRun(NamedTuple):
         return np.array([e.time for e in self.events if e.kind == kind])
 
 
-@dataclass(frozen=True)
-class _Piece:
-    """The forcing on one smooth segment ``[.., end]``: ``amplitude sin(omega t + phase)``."""
-
-    amplitude: float
-    omega: float
-    phase: float
-    end: float
-
-    def __call__(self, t: float) -> float:
-        return self.amplitude * sine.sin(self.omega * t + self.phase) if self.amplitude else 0.0
-
-
 class _State(NamedTuple):
-    """``mode`` is ``0`` (stick) or the slip direction ``+-1``; ``hold`` a time before which stick is kept."""
+    """``mode`` is ``STICK`` (0) or the slip direction ``+-1``; ``hold`` a time before which stick is kept."""
 
     t: float
     x: float
@@ -100,25 +85,22 @@ class _State(NamedTuple):
     hold: float = -math.inf
 
 
-class _Capture:
-    """The event-capturing march; :func:`event_capturing` is its only user."""
+class _Capture(EventMarch):
+    """The event-capturing march over the time grid; :func:`event_capturing` is its only user.
+
+    The events, forcing pieces and switching rules are those of
+    :class:`~lumped.solvers.events.EventMarch`; the forcing is the switched
+    sine as given (not canonical), evaluated with the project's sine.
+    """
 
     def __init__(self, osc: Oscillator, force: SwitchedSine) -> None:
-        self.m, self.k, self.tau = osc.mass, osc.spring.stiffness, osc.dashpot.threshold
-        self.force = force
+        on = Piece(0.0 if force.is_zero else force.amplitude, force.omega, force.phase, force.until)
+        super().__init__(osc, force, on)
         self.law, self.resolvent = osc.dashpot, osc.dashpot.band_free_resolvent()  # contract point 8
-        self.events: list[Event] = []
         self.stick_since = math.nan
-        zero = force.is_zero
-        self.on = _Piece(0.0 if zero else force.amplitude, force.omega, force.phase, force.until)
-        self.off = _Piece(0.0, 0.0, 0.0, math.inf)
 
-    def piece(self, t: float) -> _Piece:
-        """The forcing piece holding just after ``t``."""
-        return self.on if t < self.force.until and self.on.amplitude != 0 else self.off
-
-    def slip_step(self, s: int, st: _State, h: float, p: _Piece) -> tuple[float, float, float]:
-        """Trapezoidal step of size ``h`` in slip mode ``s``: ``(x, v, F_d)`` (see :func:`~lumped.solvers.theta.theta_step`)."""
+    def slip_step(self, s: int, st: _State, h: float, p: Piece) -> tuple[float, float, float]:
+        """Trapezoidal step of size ``h`` in slip mode ``s``: ``(x, v, F_d)`` (see :func:`.theta.theta_step`)."""
         m, k = self.m, self.k
         g_now = p(st.t) - k * st.x - st.f_d
         eta = 2 * m / h + k * h / 2
@@ -126,32 +108,25 @@ class _Capture:
         u, v = self.resolvent(predictor - s * self.tau, eta)
         return st.x + h / 2 * (st.v + v), v, s * self.tau + u
 
-    def event(self, t: float, kind: str, x: float) -> None:
-        """Record an event at ``t`` (s) with the displacement ``x`` (m)."""
-        self.events.append(Event(t, kind, x))
-
     def enter_stick(self, t: float, x: float, f_d: float, hold: float) -> _State:
         """Stick from ``t``; record ``"rest"`` when the force is zero for ever."""
         if math.isnan(self.stick_since):
             self.stick_since = t
-        st = _State(t, x, 0.0, f_d, 0, hold)
+        st = _State(t, x, 0.0, f_d, STICK, hold)
         self.check_rest(st)
         return st
 
     def check_rest(self, st: _State) -> None:
         """Record ``"rest"`` (dated at the start of the stick) once the force is zero for ever."""
-        p = self.piece(st.t)
-        forever = st.mode == 0 and p.amplitude == 0 and p.end == math.inf
-        if forever and not any(e.kind == "rest" and e.time == self.stick_since for e in self.events):
-            self.event(self.stick_since, "rest", st.x)
+        if st.mode == STICK and self.piece(st.t).zero_for_ever:
+            self.record_rest(self.stick_since, st.x)
 
     def at_zero_velocity(self, st: _State, s: int) -> _State:
-        """Switching rule at ``v = 0`` after slipping with direction ``s`` (see :mod:`lumped.solvers.exact`)."""
-        net = self.piece(st.t)(st.t) - self.k * st.x
-        if -s * net > self.tau:  # m v' = net - s tau points to -s, beyond the band
-            self.event(st.t, "reversal", st.x)
-            return _State(st.t, st.x, 0.0, -s * self.tau, -s)
-        self.event(st.t, "stop", st.x)
+        """Switching rule at ``v = 0`` after slipping with direction ``s`` (:meth:`.EventMarch.stop_or_reverse`)."""
+        net = self.net(st.t, st.x)
+        mode = self.stop_or_reverse(st.t, st.x, s, net)
+        if mode != STICK:
+            return _State(st.t, st.x, 0.0, mode * self.tau, mode)
         return self.enter_stick(st.t, st.x, net, hold=-math.inf)
 
     def breakaway(self, st: _State, s: int, kind: str = "breakaway") -> _State:
@@ -161,18 +136,18 @@ class _Capture:
         self.stick_since = math.nan
         return _State(st.t, st.x, 0.0, s * self.tau, s)
 
-    def stick(self, st: _State, t_next: float, p: _Piece) -> _State:
+    def stick(self, st: _State, t_next: float, p: Piece) -> _State:
         """Stick to ``t_next`` unless the net force leaves the band first (located on the closed form)."""
         x = st.x
         net = p(t_next) - self.k * x
         if abs(net) <= self.tau or t_next <= st.hold:
-            return _State(t_next, x, 0.0, net, 0, st.hold)
+            return _State(t_next, x, 0.0, net, STICK, st.hold)
         s = 1 if net > 0 else -1
         excess = lambda t: s * (p(t) - self.k * x) - self.tau
         t_b = st.t if excess(st.t) >= 0 else _root(excess, st.t, t_next)
-        return self.breakaway(_State(t_b, x, 0.0, p(t_b) - self.k * x, 0), s)
+        return self.breakaway(_State(t_b, x, 0.0, p(t_b) - self.k * x, STICK), s)
 
-    def slip(self, st: _State, t_next: float, p: _Piece) -> _State:
+    def slip(self, st: _State, t_next: float, p: Piece) -> _State:
         """Slip to ``t_next``, or to the zero of the step map's velocity and the switch there."""
         s, h = st.mode, t_next - st.t
         x, v, f_d = self.slip_step(s, st, h, p)
@@ -185,11 +160,11 @@ class _Capture:
         x = self.slip_step(s, st, h_stop, p)[0] if h_stop != h else x
         return self.at_zero_velocity(_State(st.t + h_stop, x, 0.0, f_d, s), s)
 
-    def speed(self, s: int, st: _State, a: float, p: _Piece) -> float:
+    def speed(self, s: int, st: _State, a: float, p: Piece) -> float:
         """``s v`` after a slip step of size ``a`` (``s v_n`` at ``a = 0``)."""
         return s * st.v if a == 0 else s * self.slip_step(s, st, a, p)[1]
 
-    def moving_substep(self, s: int, st: _State, h: float, p: _Piece) -> float | None:
+    def moving_substep(self, s: int, st: _State, h: float, p: Piece) -> float | None:
         """A substep ``a < h`` after which a slip begun at ``v = 0`` moves in direction ``s``."""
         a = h
         for _ in range(_HALVINGS):
@@ -204,22 +179,22 @@ class _Capture:
             if st.t >= t_next:
                 return st
             p = self.piece(st.t)
-            st = self.switch_forcing(st, p) if st.t == self.force.until > 0 else st
+            st = self.switch_forcing(st) if st.t == self.force.until > 0 else st
             end = min(t_next, p.end)
-            st = self.stick(st, end, p) if st.mode == 0 else self.slip(st, end, p)
+            st = self.stick(st, end, p) if st.mode == STICK else self.slip(st, end, p)
         raise ValueError(
             f"the event-capturing scheme found more than {MAX_SWITCHES_PER_STEP} switches "
             f"in the step ending at t = {t_next:.6g} s (stick-slip chatter); lower dt"
         )
 
-    def switch_forcing(self, st: _State, p: _Piece) -> _State:
+    def switch_forcing(self, st: _State) -> _State:
         """At ``t = t_off``: record the event; a sticking mass may break away under the new force."""
         if self.force.is_zero or any(e.kind == "forcing-off" for e in self.events):
             return st
         self.event(st.t, "forcing-off", st.x)
-        if st.mode != 0:
+        if st.mode != STICK:
             return st
-        net = p(st.t) - self.k * st.x
+        net = self.net(st.t, st.x)
         if abs(net) > self.tau:  # the forcing-off event is the switch, as in the exact solver
             return self.breakaway(st, 1 if net > 0 else -1, kind="")
         self.check_rest(st)
@@ -227,13 +202,12 @@ class _Capture:
 
     def initial(self, x0: float, v0: float) -> _State:
         """The mode at ``t = 0``: slip in the direction of ``v0``, or of the net force, or stick."""
+        net = self.net(0.0, x0)
+        s = self.mode(v0, net)
         if v0 != 0:
-            s = 1 if v0 > 0 else -1
             return _State(0.0, x0, v0, self.law.force_interval(v0)[0], s)
-        net = self.piece(0.0)(0.0) - self.k * x0
-        if abs(net) <= self.tau:
+        if s == STICK:
             return self.enter_stick(0.0, x0, net, -math.inf)
-        s = 1 if net > 0 else -1
         return _State(0.0, x0, 0.0, s * self.tau, s)
 
 
@@ -318,7 +292,7 @@ def event_capturing(
     stride = min(save_every, n_steps + 1)
     out = np.empty((validate.output_rows(n_steps, stride), len(COLUMNS)))
     st = _capture_rows(run, run.initial(x0, v0), dt, n_steps, stride, out)
-    final = (run.stick_since, st.x) if st.mode == 0 else (math.nan, math.nan)
+    final = (run.stick_since, st.x) if st.mode == STICK else (math.nan, math.nan)
     traj = Trajectory.from_array(
         out, oscillator, method="event-capturing", dt=dt, save_every=save_every, final_rest=final
     )

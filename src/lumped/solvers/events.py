@@ -157,7 +157,7 @@ class EventMarch:
         return 1 if net > 0 else -1
 
     def stop_or_reverse(self, t: float, x: float, direction: int, net: float) -> int:
-        """Record the stop or the reversal at a zero of ``v`` after slipping with sign ``direction``; return the next mode.
+        """Record the stop or reversal at a zero of ``v`` after slipping with sign ``direction``; return the next mode.
 
         At a zero of ``v`` after slipping with sign ``s``, ``m v' = net - s tau``
         points against ``s``: the motion reverses only if the net force lies
