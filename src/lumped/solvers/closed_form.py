@@ -10,7 +10,8 @@ Zeros of ``v`` are found in closed form when the force is constant over the
 phase (the velocity is then a damped sine, or a sum of two exponentials that
 vanishes at most once); under a sinusoidal force they are bracketed on a grid
 graded from the fastest time scale of the phase to the slowest relevant one and
-refined with Brent's method to a few ulps of the phase time.
+refined with Brent's method (:func:`lumped.numerics.roots.brentq`) to a few
+ulps of the phase time.
 """
 
 from __future__ import annotations
@@ -22,9 +23,10 @@ from functools import cached_property
 
 import numpy as np
 
+from lumped.numerics.roots import brentq
+
 __all__ = ["SlipMotion"]
 
-_EPS = np.finfo(float).eps
 _BLOCK = 256  # samples per block when bracketing a zero of v
 _MAX_BLOCKS = 100_000  # bound on the search for one zero of v (2.6e7 samples)
 _PER_SCALE = 32  # samples per time scale of the bracketing grid
@@ -246,12 +248,10 @@ class SlipMotion:
 
     def _polish(self, t: float, direction: int) -> float:
         """Brent's method on ``t +- 1e-6 (t - t0)`` when that brackets the zero, else ``t``."""
-        from scipy.optimize import brentq
-
         a, b = self.t0 + (t - self.t0) * (1 - 1e-6), self.t0 + (t - self.t0) * (1 + 1e-6)
         if not direction * self.velocity(a) > 0 >= direction * self.velocity(b):
             return t
-        return brentq(self.velocity, a, b, xtol=1e-300, rtol=4 * _EPS, maxiter=200)
+        return brentq(self.velocity, a, b)
 
     def _grid(self, t_lim: float):  # noqa: ANN202 (a generator of arrays)
         """Blocks of sample times ``t0 + tau``: geometric from the fast scale, then uniform.
@@ -294,8 +294,6 @@ class SlipMotion:
 
     def _refine(self, a: float, b: float, t_lim: float, direction: int) -> float | None:
         """The zero of ``v`` in the bracket ``(a, b]``, if it lies before ``t_lim``."""
-        from scipy.optimize import brentq
-
         if a >= t_lim or (b > t_lim and direction * self.velocity(t_lim) > 0):
             return None
         if a == self.t0 and self.v0 == 0:
@@ -304,7 +302,7 @@ class SlipMotion:
                 return self.t0
         if self.velocity(b) == 0:
             return min(b, t_lim)
-        root = brentq(self.velocity, a, b, xtol=1e-300, rtol=4 * _EPS, maxiter=200)
+        root = brentq(self.velocity, a, b)
         return min(root, t_lim)
 
     def _leave_rest(self, b: float, direction: int) -> float | None:

@@ -38,6 +38,7 @@ from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator, check_magnitudes
 from lumped.model.trajectory import COLUMNS, Trajectory
 from lumped.numerics import validate
+from lumped.numerics.roots import brentq
 from lumped.solvers.events import STICK, Event, EventMarch, Piece
 from lumped.solvers.grid import start_run
 
@@ -51,10 +52,8 @@ _EPS = float(np.finfo(float).eps)
 
 
 def _root(f: Callable[[float], float], a: float, b: float, xtol: float | None = None) -> float:
-    """Brent's root of ``f`` on ``[a, b]`` (signs opposite), to about an ulp of ``b``."""
-    from scipy.optimize import brentq  # imported here, as in laws: `import lumped` stays light
-
-    return brentq(f, a, b, xtol=_EPS * abs(b) if xtol is None else xtol, rtol=4 * _EPS)
+    """Brent's root of ``f`` on ``[a, b]`` (signs opposite), to about an ulp of ``b`` (or to ``xtol``)."""
+    return brentq(f, a, b, xtol=_EPS * abs(b) if xtol is None else xtol)
 
 
 class CapturedRun(NamedTuple):

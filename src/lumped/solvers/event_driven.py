@@ -82,7 +82,6 @@ RTOL_RANGE = (100 * float(np.finfo(float).eps), 1e-2)
 #: Factor between ``rtol`` and the absolute tolerance, relative to the motion's scale.
 _ATOL_FACTOR = 1e-3
 _SAMPLES = 64  # points of the dense output searched for the first motion from rest
-_RTOL_ROOT = 4 * float(np.finfo(float).eps)  # Brent's relative tolerance on a stop's time: the least SciPy's allows
 #: Largest displacement (m) or speed (m/s) the energy bound may allow: DOP853's
 #: error norms square the scaled state and its derivative.
 _LARGEST_STATE = 1e100
@@ -209,7 +208,7 @@ class IntegratedSlip:
             a = first
             if not g(b) < 0:
                 return b
-        return brentq(g, a, b, xtol=1e-300, rtol=_RTOL_ROOT, maxiter=200)
+        return brentq(g, a, b)
 
 
 def _integrated(osc: Oscillator, settings: _Settings) -> SlipFactory:
