@@ -51,8 +51,19 @@ setup(
             optional=True,
         )
         for name, depends in (
-            ("_kernel", ["src/lumped/kernels/_binding_checks.h", "src/lumped/kernels/_sine.h", "src/lumped/kernels/_stick.h"]),
-            ("_network_kernel", ["src/lumped/kernels/_binding_checks.h", "src/lumped/kernels/_stick.h"]),
+            (
+                "_kernel",
+                ["src/lumped/kernels/_binding_checks.h", "src/lumped/kernels/_sine.h", "src/lumped/kernels/_stick.h"],
+            ),
+            (
+                "_network_kernel",
+                [
+                    "src/lumped/kernels/_binding_checks.h",
+                    "src/lumped/kernels/_network_elements.h",
+                    "src/lumped/kernels/_network_forest.h",
+                    "src/lumped/kernels/_stick.h",
+                ],
+            ),
         )
     ]
     + [
@@ -61,7 +72,12 @@ setup(
         Extension(
             "lumped.kernels._batch_kernel",
             ["src/lumped/kernels/_batch_kernel.c"],
-            depends=["src/lumped/kernels/_batch_lanes.h", "src/lumped/kernels/_sine.h", "src/lumped/kernels/_stick.h"],  # its vector loop (once per instruction set), the sine
+            depends=[  # its block layout, its vector loop (once per instruction set), the sine, the stick test
+                "src/lumped/kernels/_batch_block.h",
+                "src/lumped/kernels/_batch_lanes.h",
+                "src/lumped/kernels/_sine.h",
+                "src/lumped/kernels/_stick.h",
+            ],
             extra_compile_args=["-O3", "-fopenmp", "-ffp-contract=off", "-fno-fast-math", "-Wno-psabi"],
             extra_link_args=["-fopenmp"],
             optional=True,

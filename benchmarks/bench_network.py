@@ -58,7 +58,7 @@ def best_of(repeats: int, fn) -> float:  # noqa: ANN001
     return min(times)
 
 
-def run(net: Network, steps: int, solver: str = "auto") -> L.network.NetworkTrajectory:
+def run(net: Network, steps: int, solver: str = "auto") -> L.Trajectory:
     return simulate_network(net, steps * DT, DT, save_every=max(1, steps // 100), solver=solver)
 
 

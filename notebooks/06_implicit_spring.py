@@ -101,7 +101,7 @@ def impact_network(string: bool) -> Network:
 t_end = 1.5
 run = simulate_network(impact_network(True), t_end, dt)
 free = simulate_network(impact_network(False), t_end, dt)
-print(f"largest mount deflection max |f_d| / k_m = {np.abs(run.force[:, 1]).max() / k_mount:.1e} m")
+print(f"largest mount deflection max |f_d| / k_m = {np.abs(run.forces[:, 1]).max() / k_mount:.1e} m")
 
 # %% [markdown]
 # ## Before the impact: a damped harmonic swing
@@ -132,7 +132,7 @@ t_hit = brentq(lambda t: swing(t)[0] - length, 0.0, math.pi / wd)
 v_hit = float(swing(t_hit)[1])
 before = run.t < t_hit - dt
 print(f"closed form: impact at t* = {t_hit:.5f} s with v* = {v_hit:.5f} m/s")
-print(f"max |x - closed form| before the impact: {np.abs(run.x[before, 0] - swing(run.t[before])[0]).max():.1e} m")
+print(f"max |x - closed form| before the impact: {np.abs(run.positions[before, 0] - swing(run.t[before])[0]).max():.1e} m")
 
 # %% [markdown]
 # ## The impact: the velocity drops to zero within two steps
@@ -149,9 +149,9 @@ print(f"max |x - closed form| before the impact: {np.abs(run.x[before, 0] - swin
 taut = np.flatnonzero(run.rigid[:, 0])
 n = taut[0]
 print(f"string taut on steps {taut.tolist()} (t = {run.t[n]:.4f} s; closed form t* = {t_hit:.4f} s)")
-print(f"elongation there: {run.state[taut, 0].tolist()} (exactly L)")
+print(f"elongation there: {run.states[taut, 0].tolist()} (exactly L)")
 for i in range(n - 1, n + 3):
-    print(f"  t = {run.t[i]:.4f} s: x = {run.x[i, 0]:+.6f} m, v = {run.v[i, 0]:+.5f} m/s, string force {run.force[i, 0]:9.1f} N")
+    print(f"  t = {run.t[i]:.4f} s: x = {run.positions[i, 0]:+.6f} m, v = {run.velocities[i, 0]:+.5f} m/s, string force {run.forces[i, 0]:9.1f} N")
 
 # %% [markdown]
 # In the exact motion the velocity jumps from $v^*$ to 0 at $t^*$: the string
@@ -163,8 +163,8 @@ for i in range(n - 1, n + 3):
 # kinetic energy drops from its value before the impact to zero:
 
 # %%
-impulse = dt * np.sum(run.force[taut, 0] - k * length)
-kinetic = 0.5 * m * run.v[:, 0] ** 2
+impulse = dt * np.sum(run.forces[taut, 0] - k * length)
+kinetic = 0.5 * m * run.velocities[:, 0] ** 2
 print(f"impulse of the string: {impulse:.4f} N s; m v* = {m * v_hit:.4f} N s "
       f"({100 * (1 - impulse / (m * v_hit)):.2f} % less)")
 print(f"kinetic energy: {kinetic[n - 1]:.4f} J before the impact, {kinetic[taut[-1]]:.4f} J after; "
@@ -208,7 +208,7 @@ for name, sol in (("with the string", after), ("without it", without)):
 # %%
 late = run.t > t_end - 0.2
 for name, tr, sol in (("with the string", run, after), ("without it", free, without)):
-    x_late = tr.x[late, 0]
+    x_late = tr.positions[late, 0]
     print(f"{name}: network rest {x_late.mean():+.5f} m (ripple {np.ptp(x_late):.0e} m), "
           f"exact {sol.rest_position:+.5f} m")
 print(f"stored energy at rest: with the string {0.5 * k * after.rest_position**2:.4f} J, "

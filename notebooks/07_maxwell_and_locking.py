@@ -76,7 +76,7 @@ def held(f0: float) -> Network:
 
 runs = {f0: simulate_network(held(f0), 0.1, dt) for f0 in (0.5, 5.0)}
 for f0, tr in runs.items():
-    print(f"f0 = {f0} N: mass moved {np.abs(tr.x[:, 0] - stretch).max():.1e} m; force at t = 0.1 s {tr.force[-1, 1]:.6f} N")
+    print(f"f0 = {f0} N: mass moved {np.abs(tr.positions[:, 0] - stretch).max():.1e} m; force at t = 0.1 s {tr.forces[-1, 1]:.6f} N")
 
 # %% [markdown]
 # With $f_0 = 0.5$ N, inside the band, the force stays $0.5$ N; with
@@ -90,9 +90,9 @@ n = np.arange(tr.t.size)
 discrete = tau + (f0 - tau) / (1 + dt * k_m * gamma) ** n
 exact = tau + (f0 - tau) * np.exp(-k_m * gamma * tr.t)
 # 1e-12 N: the closed form and the step round differently, by a few ulps of 5 N per step
-print(f"|f - discrete closed form| below 1e-12 N at every step: {np.abs(tr.force[:, 1] - discrete).max() < 1e-12}")
-print(f"max |f - exponential| = {np.abs(tr.force[:, 1] - exact).max():.4f} N (dt k_m gamma = {dt * k_m * gamma})")
-print(f"held force of f0 = 0.5 N: max |f - 0.5| = {np.abs(runs[0.5].force[:, 1] - 0.5).max():.0e} N")
+print(f"|f - discrete closed form| below 1e-12 N at every step: {np.abs(tr.forces[:, 1] - discrete).max() < 1e-12}")
+print(f"max |f - exponential| = {np.abs(tr.forces[:, 1] - exact).max():.4f} N (dt k_m gamma = {dt * k_m * gamma})")
+print(f"held force of f0 = 0.5 N: max |f - 0.5| = {np.abs(runs[0.5].forces[:, 1] - 0.5).max():.0e} N")
 
 # %% [markdown]
 # So the force at which the element slips is the dashpot's threshold: a
@@ -103,7 +103,7 @@ print(f"held force of f0 = 0.5 N: max |f - 0.5| = {np.abs(runs[0.5].force[:, 1] 
 # runs with the exponential.
 
 # %%
-spring_part = tr.force[-1, 1] / k_m
+spring_part = tr.forces[-1, 1] / k_m
 print(f"dashpot's stretch after relaxing: {stretch - spring_part:.5f} m "
       f"(closed form (f0 - mu_s N_f)/k_m at t -> inf: {(f0 - tau) / k_m:.5f} m)")
 fig = P.network_history(
@@ -165,7 +165,7 @@ _ = P.save_figure(fig, "ext03_locking_graph")
 k, x0, t_end, dt = 100.0, 0.5, 1.5, 1e-4
 net = Network([Mass("m", 1.0, x0)], [Spring("k", ("ground", "m"), k), lock])
 run = simulate_network(net, t_end, dt)
-v = run.v[:, 0]
+v = run.velocities[:, 0]
 print(f"largest |v| = {float(np.abs(v).max())!r} m/s (v_lock = {lock.v_lock!r}); "
       f"steps at exactly -v_lock: {int(np.sum(v == -lock.v_lock))}")
 
@@ -185,7 +185,7 @@ def reference(t):
     return np.where(t < t1, xc + (x0 - xc) * np.cos(omega * t), np.where(t < t2, x1 - lock.v_lock * (t - t1), phase3))
 
 
-print(f"max |x - reference| over the run: {np.abs(run.x[:, 0] - reference(run.t)).max():.1e} m")
+print(f"max |x - reference| over the run: {np.abs(run.positions[:, 0] - reference(run.t)).max():.1e} m")
 
 # %% [markdown]
 # The speed never passes $v_{\text{lock}}$; it reaches it *exactly* (the

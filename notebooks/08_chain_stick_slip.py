@@ -74,13 +74,13 @@ print(f"F = 6 N: {len(run.network.elements)} elements, {run.t.size - 1} steps")
 # %%
 def first_moves(tr) -> np.ndarray:
     """Time (s) of each mass's first nonzero velocity; nan if it never moves."""
-    moving = tr.v != 0
+    moving = tr.velocities != 0
     return np.where(moving.any(axis=0), tr.t[np.argmax(moving, axis=0)], np.nan)
 
 
 def slips(tr) -> np.ndarray:
     """Number of separate slip episodes (runs of v != 0) of each mass."""
-    moving = (tr.v != 0).astype(int)
+    moving = (tr.velocities != 0).astype(int)
     return np.sum(np.diff(moving, axis=0, prepend=0) == 1, axis=0)
 
 
@@ -117,8 +117,8 @@ _ = P.save_figure(fig, "ext05_chain_stick_map")
 c = math.sqrt(k / m)
 linear = simulate_network(chain(6.0, threshold=0.0), 0.1, dt)
 print(f"c = sqrt(k/m) = {c:.1f} masses/s")
-print(f"at t = 0.1 s: masses moved without friction {int(np.sum(linear.x[-1] != 0))}, "
-      f"with friction {int(np.sum(run.x[run.t <= 0.1 + dt / 2][-1] != 0))}")
+print(f"at t = 0.1 s: masses moved without friction {int(np.sum(linear.positions[-1] != 0))}, "
+      f"with friction {int(np.sum(run.positions[run.t <= 0.1 + dt / 2][-1] != 0))}")
 
 # %% [markdown]
 # The front's speed is the slope of mass index against first-move time,
@@ -159,10 +159,10 @@ for push in (3.0, 6.0, 20.0, 60.0):  # the other pushes run to 1.5 s, past every
 
 # %%
 friction = [i for i, name in enumerate(run.network.element_names) if name.startswith("f")]
-print(f"at t = {t_end} s: still masses {int(np.sum(run.v[-1] == 0))} of {n_mass}, "
-      f"the last to stop from t = {np.nanmax(run.rest_time):.3f} s")
-print("positions (mm):", np.array2string(1e3 * run.x[-1], precision=1))
-print(f"max |f_i| / mu_s N_f at the end: {np.abs(run.force[-1, friction]).max() / tau:.3f}")
+print(f"at t = {t_end} s: still masses {int(np.sum(run.velocities[-1] == 0))} of {n_mass}, "
+      f"the last to stop from t = {np.nanmax(run.rest_times):.3f} s")
+print("positions (mm):", np.array2string(1e3 * run.positions[-1], precision=1))
+print(f"max |f_i| / mu_s N_f at the end: {np.abs(run.forces[-1, friction]).max() / tau:.3f}")
 
 # %% [markdown]
 # Figure ext06 shows every mass's position, shifted up by its index so that

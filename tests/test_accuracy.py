@@ -20,10 +20,38 @@ from scipy.integrate import solve_ivp
 import lumped as L
 from lumped.solvers.event_driven import RTOL_RANGE
 from lumped.solvers.events import Event
+from lumped.drivers.methods import METHODS
 from lumped.studies import accuracy as A
+from lumped.studies.accuracy import methods as M
+from lumped.studies.accuracy.orders import _slope
 
 # Three halvings from 1e-3: enough for a slope, ~1 s for the three schemes on one case.
 STEPS = (1e-3, 5e-4, 2.5e-4)
+
+
+# ---------------------------------------------------------------- the methods, from the registry
+
+
+def test_the_study_compares_every_method_of_the_registry_in_one_group():
+    """The methods come from lumped.drivers.methods.METHODS (issue 20, item 2), grouped by their capabilities."""
+    groups = (M.SCHEMES, M.TOLERANCED, M.CLOSED_FORM)
+    assert sorted(name for group in groups for name in group) == sorted(METHODS)
+    assert M.STUDY_METHODS == (*M.SCHEMES, *M.TOLERANCED, *M.CLOSED_FORM, "tanh") == A.STUDY_METHODS
+    assert all(any(o.name == "rtol" for o in METHODS[name].options) for name in M.TOLERANCED)
+    # the order of the rows of results/accuracy/study.json and of its order table
+    assert M.SCHEMES == ("backward-euler", "event-capturing", "theta")
+    assert (M.TOLERANCED, M.CLOSED_FORM) == (("event-driven",), ("exact",))
+
+
+@pytest.mark.parametrize("name", ["exact", "event-driven"])
+def test_a_methods_run_samples_its_solution_in_continuous_time(name):
+    """``Method.solution`` is what ``run`` samples: the study measures the one the others call (bit for bit)."""
+    case = A.cases()["forced-17b"]
+    method, dt = METHODS[name], 1e-3
+    traj = method(case.oscillator, case.t_end, dt, case.x0, 0.0, case.force, 1)
+    sampled = method.solution(case.oscillator, case.t_end, x0=case.x0, v0=0.0, force=case.force).sample(dt)
+    assert np.array_equal(traj.x, sampled.x) and np.array_equal(traj.v, sampled.v)
+    assert not method.fixed_step and all(METHODS[n].solution is None for n in M.SCHEMES)
 
 
 # ---------------------------------------------------------------- events of a grid trajectory
@@ -164,8 +192,8 @@ def test_theta_method_is_not_second_order_through_switches(forced_orders):
 
 def test_slope_uses_the_finest_finite_run():
     steps, errors = [8.0, 4.0, 2.0, 1.0], [math.nan, 4.0, 2.0, 1.0]
-    assert A._slope(steps, errors) == pytest.approx(1.0, abs=1e-12)
-    assert math.isnan(A._slope(steps, [1.0, 1.0, math.nan, 1.0]))  # one point left: no fit
+    assert _slope(steps, errors) == pytest.approx(1.0, abs=1e-12)
+    assert math.isnan(_slope(steps, [1.0, 1.0, math.nan, 1.0]))  # one point left: no fit
 
 
 @pytest.mark.slow

@@ -242,16 +242,22 @@ def test_stick_intervals_and_rest_semantics(paper_oscillator):
     v = np.array([0.0, 0.0, 1.0, -1.0, 0.0, 0.0, 0.0, 0.0])
     x = np.array([0.0, 0.0, 0.1, 0.2, 0.3, 0.3, 0.3, 0.3])
     z = np.zeros_like(t)
-    tr = L.Trajectory(t, x, v, 100 * x, z, z, paper_oscillator, "backward-euler", 0.5)
+
+    def hand_built(v: np.ndarray, method: str) -> L.Trajectory:
+        return L.Trajectory.of_oscillator(
+            t=t, x=x, v=v, F_s=100 * x, F_d=z, F=z, oscillator=paper_oscillator, method=method, dt=0.5
+        )
+
+    tr = hand_built(v, "backward-euler")
     assert tr.stick_intervals() == [(0.0, 0.5), (2.0, 3.5)]
     assert tr.rest_time == 2.0 and tr.rest_position == 0.3
     v2 = np.array([0.0, 0.0, 1.0, 0.0, 0.0, 1.0, -1.0, 2.0])
-    moving = L.Trajectory(t, x, v2, 100 * x, z, z, paper_oscillator, "x", 0.5)
+    moving = hand_built(v2, "x")
     assert math.isnan(moving.rest_time) and math.isnan(moving.rest_position)
     assert moving.stick_intervals() == [(0.0, 0.5), (1.5, 2.0)]
     # a single zero is a (degenerate) interval of its own
     v3 = np.array([1.0, 0.0, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0])
-    single = L.Trajectory(t, x, v3, 100 * x, z, z, paper_oscillator, "x", 0.5)
+    single = hand_built(v3, "x")
     assert single.stick_intervals() == [(0.5, 0.5), (3.5, 3.5)] and single.rest_time == 3.5
 
 

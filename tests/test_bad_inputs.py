@@ -27,8 +27,8 @@ import pytest
 from conftest import F17B
 
 import lumped as L
-from lumped import cli
 from lumped.cli import main, option_message
+from lumped.cli import output as cli_output
 from lumped.numerics.validate import MAX_STEPS
 from lumped.solvers import backward_euler as timestepping
 from lumped.solvers import network_compiled as network_kernel
@@ -130,11 +130,10 @@ def _network(solver: str):  # noqa: ANN202
 
 
 def _one_mass(s: int):  # noqa: ANN202
-    from lumped import Bingham, Mass, Network, Spring
-    from lumped.drivers.one_mass import simulate_one_mass
+    from lumped import Bingham, Mass, Network, Problem, Spring, solve
 
     net = Network([Mass("m", 1.0, 0.5)], [Spring("k", ("ground", "m"), 100.0), Bingham("d", ("ground", "m"), 1.0, 1.0)])
-    return simulate_one_mass(net, 1.0, 1e-3, save_every=s)
+    return solve(Problem(net, 1.0), 1e-3, method="event-driven", save_every=s)
 
 
 #: Every driver that takes save_every: (what it is called with a stride).
@@ -148,7 +147,7 @@ STRIDED = {
         for m in L.METHODS
     },
     **{f"simulate_network-{solver}": _network(solver) for solver in ("auto", "python", "compiled")},
-    "simulate_one_mass": _one_mass,
+    "solve-event-driven": _one_mass,
 }
 #: Drivers that need the compiled network kernel (absent with LUMPED_PURE_PYTHON=1).
 NEEDS_NETWORK_KERNEL = {"simulate_network-compiled"}
@@ -416,7 +415,7 @@ def test_unwritable_folder_is_refused_before_the_run(tmp_path, monkeypatch, caps
     def denied(*args, **kwargs):
         raise PermissionError(errno.EACCES, os.strerror(errno.EACCES))
 
-    monkeypatch.setattr(cli.tempfile, "mkstemp", denied)
+    monkeypatch.setattr(cli_output.tempfile, "mkstemp", denied)
     monkeypatch.setattr(DRIVER, "simulate", _raise(AssertionError("ran")))
     status, line = _main(["simulate", "--output", str(tmp_path / "o.csv")], capsys)
     assert status == 2

@@ -65,7 +65,7 @@ def batch(x0: float, gamma: float, loop: str) -> batched.BatchSummary:
     return batched.batch_backward_euler(params, T_END, DT, save_every=1, kernel=loop)
 
 
-def network(x0: float, gamma: float, solver: str):  # noqa: ANN201 (a NetworkTrajectory)
+def network(x0: float, gamma: float, solver: str):  # noqa: ANN201 (a Trajectory)
     """The same system as a network; ``auto`` runs it through Algorithm 1, the others through the step."""
     net = Network([Mass("m", M, x0)], [Spring("k", ("ground", "m"), K), Bingham("d", ("ground", "m"), TAU, gamma)])
     tr = simulate_network(net, T_END, DT, solver=solver)
@@ -102,8 +102,8 @@ def test_the_network_sticks_on_the_edge(solver: str, start: str, law: str) -> No
     tr = network(x0, LAWS[law], solver)
     assert np.all(tr.v == 0) and np.all(tr.x == x0)
     assert tr.rigid[1:, 1].all()  # the dashpot on its sticking piece at every step
-    assert np.all(tr.force[1:, 1] == -K * x0)
-    assert tr.rest_time[0] == 0.0
+    assert np.all(tr.forces[1:, 1] == -K * x0)
+    assert tr.rest_times[0] == 0.0
 
 
 @pytest.mark.parametrize("law", LAWS)
@@ -117,7 +117,7 @@ def test_one_ulp_outside_the_band_every_path_slips(law: str) -> None:
         assert batch(OUTSIDE, gamma, loop).rest_step[0] >= 2, loop  # v_1 != 0
     for solver in NETWORK:
         tr = network(OUTSIDE, gamma, solver)
-        assert tr.v[1, 0] < 0, solver
+        assert tr.v[1] < 0, solver
         if solver != "auto":  # the step's own flag (Algorithm 1's path derives it from v)
             assert not tr.rigid[1, 1], solver
 

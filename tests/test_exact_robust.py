@@ -49,10 +49,10 @@ def test_sampled_values_are_the_solution_at_their_times(case):
     at_rest = ref.rest_time <= tr.t[-1]
     assert (tr.v[-1] == 0.0) == at_rest
     if at_rest:
-        assert tr.final_rest == (ref.rest_time, ref.rest_position)
+        assert (tr.rest_time, tr.rest_position) == (ref.rest_time, ref.rest_position)
         assert tr.x[-1] == ref.rest_position
     else:
-        assert all(math.isnan(r) for r in tr.final_rest)
+        assert math.isnan(tr.rest_time) and math.isnan(tr.rest_position)
 
 
 def test_the_issue_examples_report_the_solution():

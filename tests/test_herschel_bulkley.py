@@ -107,7 +107,7 @@ def test_system_file_kind_and_backward_euler_through_the_resolvent():
     tr = simulate_network(net, 1.0, 1e-3)
     assert tr.solver == "resolvent"
     ref = L.backward_euler(L.Oscillator(1.0, L.LinearSpring(100.0), net.elements[1].law), 1.0, 1e-3, x0=0.5)
-    assert np.array_equal(tr.x[:, 0], ref.x) and np.array_equal(tr.force[:, 1], ref.F_d)
+    assert np.array_equal(tr.positions[:, 0], ref.x) and np.array_equal(tr.forces[:, 1], ref.F_d)
 
 
 def test_active_set_step_agrees_with_the_resolvent():
@@ -145,7 +145,7 @@ def test_herschel_bulkley_in_a_network_of_several_masses_is_an_element_like_any_
         [Mass("a", 1.0, 0.3), Mass("b", 1.0)], [Spring("k", ("ground", "a"), 50.0), el, Spring("c", ("a", "b"), 5.0)]
     )
     tr = simulate_network(net, 0.5, 1e-3)
-    assert tr.solver == "python" and np.isfinite(tr.x).all()  # not piecewise linear: the Python step
+    assert tr.solver == "python" and np.isfinite(tr.positions).all()  # not piecewise linear: the Python step
 
 
 # The step's own magnitudes (the law's contract, point 9).  With m = 1 kg,

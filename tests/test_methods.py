@@ -8,13 +8,12 @@ import argparse
 import pytest
 
 import lumped as L
-from lumped import cli, simulate_network
-from lumped.cli import build_parser, main
+from lumped import simulate_network
+from lumped.cli import build_parser, main, messages
 from lumped.drivers import methods, simulation
 from lumped.drivers import network as network_integrate
 from lumped.drivers import sweep as sweep_module
 from lumped.drivers.network import SOLVERS
-from lumped.drivers.one_mass import simulate_one_mass
 from lumped.model.files import load_system
 
 ONE_MASS = """\
@@ -68,7 +67,7 @@ def test_the_command_line_reads_the_registry():
     assert flags == {"--rtol"}
     for command in ("simulate", "sweep"):
         assert flags <= set(_actions(command))
-    assert {cli._API_TO_OPTION[o.name] for m in methods.METHODS.values() for o in m.options} == flags
+    assert {messages.API_TO_OPTION[o.name] for m in methods.METHODS.values() for o in m.options} == flags
 
 
 def test_help_lists_every_registered_method(capsys):
@@ -105,7 +104,7 @@ def test_exact_refuses_a_network_of_several_masses(tmp_path):
     path = tmp_path / "two.toml"
     path.write_text(TWO_MASSES)
     with pytest.raises(ValueError, match="^method 'exact' needs a one-mass system; the network has 2 masses$"):
-        simulate_one_mass(load_system(str(path)), 0.1, 1e-3, method="exact")
+        L.solve(L.Problem(load_system(str(path)), 0.1), 1e-3, method="exact")
 
 
 @pytest.mark.parametrize(

@@ -49,9 +49,9 @@ def test_paper_network_is_algorithm1_bit_for_bit(name: str) -> None:
     run = PAPER[name]
     tr, net = run.algorithm1(), simulate_network(paper_network(run), run.t_end, run.dt)
     assert net.solver == "algorithm1"
-    assert np.array_equal(net.x[:, 0], tr.x) and np.array_equal(net.v[:, 0], tr.v)
-    assert np.array_equal(net.force, np.column_stack([tr.F_s, tr.F_d]))
-    assert net.rest_time[0] == tr.rest_time or (np.isnan(net.rest_time[0]) and np.isnan(tr.rest_time))
+    assert np.array_equal(net.positions[:, 0], tr.x) and np.array_equal(net.velocities[:, 0], tr.v)
+    assert np.array_equal(net.forces, np.column_stack([tr.F_s, tr.F_d]))
+    assert net.rest_times[0] == tr.rest_time or (np.isnan(net.rest_times[0]) and np.isnan(tr.rest_time))
 
 
 def _compare_active_set(run: examples.Example, dt: float, solver: str = "python") -> None:
@@ -74,14 +74,14 @@ def _compare_active_set(run: examples.Example, dt: float, solver: str = "python"
     tr = run.algorithm1(dt)
     net = simulate_network(paper_network(run), run.t_end, dt, solver=solver)
     assert net.solver == solver
-    assert np.array_equal(net.v[:, 0], tr.v) and np.array_equal(net.state[:, 0], tr.F_s)
+    assert np.array_equal(net.velocities[:, 0], tr.v) and np.array_equal(net.states[:, 0], tr.F_s)
     n = np.arange(tr.t.size)
     bound_x = EPS * (n * np.max(np.abs(tr.x)) + 2 * np.cumsum(dt * np.abs(tr.v)))
-    assert np.all(np.abs(net.x[:, 0] - tr.x) <= bound_x)
+    assert np.all(np.abs(net.positions[:, 0] - tr.x) <= bound_x)
     eta, c = osc.mass / dt + osc.stiffness * dt, osc.dashpot.viscosity
     bound_f = 4 * EPS * (np.abs(tr.F_d) + osc.threshold + c * eta * np.abs(tr.v))
-    assert np.all(np.abs(net.force[1:, 1] - tr.F_d[1:]) <= bound_f[1:])
-    assert net.force[0, 1] == tr.F_d[0]  # the consistent initial force, the same rule
+    assert np.all(np.abs(net.forces[1:, 1] - tr.F_d[1:]) <= bound_f[1:])
+    assert net.forces[0, 1] == tr.F_d[0]  # the consistent initial force, the same rule
 
 
 @pytest.mark.parametrize("name", ["forced_large", "free_large"])
@@ -122,7 +122,7 @@ def test_spring_string_converges_at_order_one(v0: float) -> None:
     errors = []
     for dt in dts:
         tr = simulate_network(string_network(v0), 0.5, dt)
-        errors.append(np.max(np.abs(tr.x[:, 0] - string_motion(tr.t, 100.0, 0.05, v0))))
+        errors.append(np.max(np.abs(tr.positions[:, 0] - string_motion(tr.t, 100.0, 0.05, v0))))
     # the slope of a first-order method whose error constant settles: within 0.1 of 1
     assert 0.9 <= order(dts, np.array(errors)) <= 1.1
 
@@ -131,11 +131,11 @@ def test_spring_string_impact_is_inelastic_and_exactly_taut() -> None:
     tr = simulate_network(string_network(1.0), 0.3, 1e-4)
     taut = tr.rigid[:, 0]
     assert taut.any()
-    assert np.all(tr.state[taut, 0] == 0.05)  # exactly at length, not recomputed
+    assert np.all(tr.states[taut, 0] == 0.05)  # exactly at length, not recomputed
     first = int(np.argmax(taut))
-    assert tr.v[first + 1, 0] <= 0  # no bounce: the relative motion stops
+    assert tr.velocities[first + 1, 0] <= 0  # no bounce: the relative motion stops
     # energy after the impact: what remains is the spring's k L^2 / 2 (less the scheme's loss)
-    assert tr.force[first, 0] >= 100.0 * 0.05
+    assert tr.forces[first, 0] >= 100.0 * 0.05
 
 
 # -- the Maxwell element against a high-accuracy integration -------------------
@@ -168,7 +168,9 @@ def test_maxwell_bingham_converges_at_order_one() -> None:
     for dt in dts:
         tr = simulate_network(net, t_end, dt)
         exact = ref(tr.t)
-        errors.append(max(np.max(np.abs(tr.x[:, 0] - exact[0])), np.max(np.abs(tr.force[:, 1] - exact[2])) / 100.0))
+        errors.append(
+            max(np.max(np.abs(tr.positions[:, 0] - exact[0])), np.max(np.abs(tr.forces[:, 1] - exact[2])) / 100.0)
+        )
     assert 0.9 <= order(dts, np.array(errors)) <= 1.1
     assert errors[-1] < 1e-2
 
@@ -202,10 +204,10 @@ def test_stuck_pair_moves_as_one_mass() -> None:
     )
     tr = simulate_network(net, 4.0, 1e-3)
     ref = L.backward_euler(L.Oscillator.bingham(1.0, 100.0, 1.0, 1.0), 4.0, 1e-3, x0=0.5)
-    assert np.all(tr.v[:, 0] == tr.v[:, 1])  # exactly together
+    assert np.all(tr.velocities[:, 0] == tr.velocities[:, 1])  # exactly together
     bound = tr.t.size * 8 * EPS * (np.max(np.abs(ref.v)) + 10 * np.max(np.abs(ref.x)))
-    assert np.max(np.abs(tr.v[:, 0] - ref.v)) <= bound
-    assert np.max(np.abs(tr.x[:, 0] - ref.x)) <= bound
+    assert np.max(np.abs(tr.velocities[:, 0] - ref.v)) <= bound
+    assert np.max(np.abs(tr.positions[:, 0] - ref.x)) <= bound
 
 
 # -- invariants -----------------------------------------------------------------
@@ -215,35 +217,35 @@ def energy_residual(tr) -> tuple[np.ndarray, np.ndarray]:
     net, dt = tr.network, tr.dt
     m = np.array([mm.mass for mm in net.masses])
     first, second = net.incidence()
-    vg = np.column_stack([tr.v, np.zeros(tr.t.size)])
+    vg = np.column_stack([tr.velocities, np.zeros(tr.t.size)])
     w = vg[:, second] - vg[:, first]
     loads = net.load_table(tr.t)
-    dv = np.diff(tr.v, axis=0)
-    kin = 0.5 * m * (tr.v[1:] ** 2 - tr.v[:-1] ** 2) + 0.5 * m * dv**2
-    work = dt * np.sum(tr.force[1:] * w[1:], axis=1)
-    balance = kin.sum(axis=1) + work - dt * np.sum(loads[1:] * tr.v[1:], axis=1)
-    stored = np.array([[el.stored_energy(s) for el, s in zip(net.elements, row)] for row in tr.state])
-    removed = dt * tr.force[1:] * w[1:] - np.diff(stored, axis=0)
+    dv = np.diff(tr.velocities, axis=0)
+    kin = 0.5 * m * (tr.velocities[1:] ** 2 - tr.velocities[:-1] ** 2) + 0.5 * m * dv**2
+    work = dt * np.sum(tr.forces[1:] * w[1:], axis=1)
+    balance = kin.sum(axis=1) + work - dt * np.sum(loads[1:] * tr.velocities[1:], axis=1)
+    stored = np.array([[el.stored_energy(s) for el, s in zip(net.elements, row)] for row in tr.states])
+    removed = dt * tr.forces[1:] * w[1:] - np.diff(stored, axis=0)
     return balance, removed
 
 
 def check_invariants(tr) -> None:
     net = tr.network
     first, second = net.incidence()
-    vg = np.column_stack([tr.v, np.zeros(tr.t.size)])
+    vg = np.column_stack([tr.velocities, np.zeros(tr.t.size)])
     w = vg[:, second] - vg[:, first]
     for e, el in enumerate(net.elements):
         held = tr.rigid[:, e]
         if isinstance(el, Bingham):
             assert np.all(w[held, e] == 0.0), el.name  # sticking: exactly still
-            assert np.all(np.abs(tr.force[held, e]) <= el.threshold * (1 + 4 * EPS))
+            assert np.all(np.abs(tr.forces[held, e]) <= el.threshold * (1 + 4 * EPS))
         if isinstance(el, SpringString):
-            assert np.all(tr.state[held, e] == el.length)  # taut: exactly at length
-            assert np.all(tr.state[:, e] <= el.length)
+            assert np.all(tr.states[held, e] == el.length)  # taut: exactly at length
+            assert np.all(tr.states[:, e] <= el.length)
     balance, removed = energy_residual(tr)
-    scale = np.max(np.abs(tr.force)) * np.max(np.abs(tr.v)) * tr.dt + np.max(
+    scale = np.max(np.abs(tr.forces)) * np.max(np.abs(tr.velocities)) * tr.dt + np.max(
         np.array([mm.mass for mm in net.masses])
-    ) * np.max(tr.v**2)
+    ) * np.max(tr.velocities**2)
     assert np.max(np.abs(balance)) <= 64 * EPS * scale * len(net.elements)
     assert np.min(removed) >= -64 * EPS * scale
 
@@ -274,9 +276,9 @@ def test_locking_bingham_never_exceeds_its_lock() -> None:
         [Spring("k", ("ground", "m"), 100.0), LockingBingham("lock", ("ground", "m"), 1.0, math.inf, 2.0)],
     )
     tr = simulate_network(net, 2.0, 1e-3)
-    assert np.max(np.abs(tr.v)) == 2.0  # reached, exactly, never passed
-    locked = tr.rigid[:, 1] & (np.abs(tr.v[:, 0]) == 2.0)
-    assert locked.any() and np.all(np.abs(tr.force[locked, 1]) >= 1.0)
+    assert np.max(np.abs(tr.velocities)) == 2.0  # reached, exactly, never passed
+    locked = tr.rigid[:, 1] & (np.abs(tr.velocities[:, 0]) == 2.0)
+    assert locked.any() and np.all(np.abs(tr.forces[locked, 1]) >= 1.0)
 
 
 def test_linear_dashpot_matches_the_monotone_law() -> None:
@@ -295,7 +297,7 @@ def test_monotone_element_matches_the_generic_loop() -> None:
     net = Network([Mass("m", 1.0, 0.5)], [Spring("k", ("ground", "m"), 100.0), Monotone("d", ("ground", "m"), law)])
     tr = simulate_network(net, 1.0, 1e-3)
     ref = L.backward_euler(L.Oscillator(1.0, L.LinearSpring(100.0), law), 1.0, 1e-3, x0=0.5)
-    assert np.max(np.abs(tr.v[:, 0] - ref.v)) <= 1e-10
+    assert np.max(np.abs(tr.velocities[:, 0] - ref.v)) <= 1e-10
 
 
 # -- well-posedness -------------------------------------------------------------------

@@ -124,14 +124,14 @@ class Steps:
         self.tr, self.net, self.dt = tr, net, tr.dt
         self.m = np.array([mm.mass for mm in net.masses])
         self.first, self.second = net.incidence()
-        vg = np.column_stack([tr.v, np.zeros(tr.t.size)])
-        xg = np.column_stack([tr.x, np.zeros(tr.t.size)])
+        vg = np.column_stack([tr.velocities, np.zeros(tr.t.size)])
+        xg = np.column_stack([tr.positions, np.zeros(tr.t.size)])
         self.w = (vg[:, self.second] - vg[:, self.first])[1:]  # each step's rates
         self.e = (xg[:, self.second] - xg[:, self.first])[1:]
-        self.f = tr.force[1:]
+        self.f = tr.forces[1:]
         self.load = net.load_table(tr.t)[1:]
-        self.s0, self.s1 = tr.state[:-1], tr.state[1:]
-        self.v0, self.v1 = tr.v[:-1], tr.v[1:]
+        self.s0, self.s1 = tr.states[:-1], tr.states[1:]
+        self.v0, self.v1 = tr.velocities[:-1], tr.velocities[1:]
         self.rigid = tr.rigid[1:]
         self.vpeak = np.max(np.abs(self.v1), axis=1)  # each step's largest speed (see check_momentum)
 
@@ -194,7 +194,7 @@ def check_energy_balance(s: Steps) -> None:
     residual = (k1.sum(1) + u1.sum(1) + num.sum(1) + d.sum(1)) - (k0.sum(1) + u0.sum(1) + work)
     scale = (k0 + k1).sum(1) + (u0 + u1).sum(1) + np.abs(d).sum(1) + np.abs(work) + s.dt * np.abs(s.f * s.w).sum(1)
     scale = scale + np.sum(s.m * (np.abs(s.v0) + np.abs(s.v1)), axis=1) * s.vpeak  # see check_momentum
-    scale = scale + s.dt * s.vpeak * np.sum(np.abs(s.f) + np.abs(s.tr.force[:-1]), axis=1)  # its residual times dt v
+    scale = scale + s.dt * s.vpeak * np.sum(np.abs(s.f) + np.abs(s.tr.forces[:-1]), axis=1)  # its residual times dt v
     terms = s.m.size + len(els)
     assert np.all(np.abs(residual) <= 16 * terms * EPS * scale + TINY)
     assert np.all(d >= -16 * EPS * scale[:, None] - TINY)
@@ -215,7 +215,7 @@ def check_momentum(s: Steps) -> None:
     lhs = s.m * (s.v1 - s.v0) / s.dt
     rhs = s.load + s.pushed(s.f)
     terms = s.m * (np.abs(s.v1) + np.abs(s.v0) + s.vpeak[:, None]) / s.dt + np.abs(s.load)
-    terms = terms + _abs_pushed(s, np.abs(s.f) + np.abs(s.tr.force[:-1]))
+    terms = terms + _abs_pushed(s, np.abs(s.f) + np.abs(s.tr.forces[:-1]))
     scale = np.sum(terms, axis=1, keepdims=True)
     count = 2 + len(s.net.elements)
     assert np.all(np.abs(lhs - rhs) <= 8 * count * EPS * scale + TINY)
@@ -234,7 +234,7 @@ def check_rigid(s: Steps) -> None:
     """Sticking elements: rate exactly 0.0 (their masses move as one); locked ones at
     ``+-v_lock`` to round-off (the rate is a difference of two velocities, one
     offset by ``v_lock``); taut strings exactly at their length; no string beyond it."""
-    vmax = float(np.max(np.abs(s.tr.v)))
+    vmax = float(np.max(np.abs(s.tr.velocities)))
     for e, el in enumerate(s.net.elements):
         held, w = s.rigid[:, e], s.w[:, e]
         if isinstance(el, Bingham):
@@ -244,7 +244,7 @@ def check_rigid(s: Steps) -> None:
             assert np.all((w[held] == 0.0) | locked), el.name
         if isinstance(el, SpringString):
             assert np.all(s.s1[held, e] == el.length), el.name
-            assert np.all(s.tr.state[:, e] <= el.length), el.name
+            assert np.all(s.tr.states[:, e] <= el.length), el.name
         if not el.rigid_capable:
             assert not held.any(), el.name
 
@@ -268,8 +268,8 @@ def check_graphs(s: Steps) -> None:
     Maxwell element's force is its state, so its graph says nothing: its
     dashpot's rate ``w - df/(dt k)`` is checked on the Bingham graph instead.
     """
-    vmax, steps = float(np.max(np.abs(s.tr.v))), s.w.shape[0]
-    xmax = float(np.max(np.abs(s.tr.x)))
+    vmax, steps = float(np.max(np.abs(s.tr.velocities))), s.w.shape[0]
+    xmax = float(np.max(np.abs(s.tr.positions)))
     for e, el in enumerate(s.net.elements):
         f, w = s.f[:, e], _graph_rate(el, s.w[:, e], s.rigid[:, e], vmax)
         if isinstance(el, MaxwellBingham):
@@ -280,7 +280,7 @@ def check_graphs(s: Steps) -> None:
         assert not np.isnan(bounds).any(), el.name
         slack = TINY + 8 * EPS * (np.abs(f) + _terms(s, e, el))
         if isinstance(el, Spring):
-            slack = slack + 4 * EPS * steps * (el.stiffness * xmax + np.max(np.abs(s.tr.force[:, e])))
+            slack = slack + 4 * EPS * steps * (el.stiffness * xmax + np.max(np.abs(s.tr.forces[:, e])))
         lo, hi = bounds[:, 0], bounds[:, 1]
         assert np.all((f >= lo - slack) & (f <= hi + slack)), el.name
 
@@ -360,11 +360,11 @@ def _mixed() -> Network:
 
 #: Perturbations of one saved number, far below any physical tolerance: (array, row, column, change).
 PERTURBATIONS = {
-    "spring force 1e-9": ("force", 100, 0, lambda q: q * (1 + 1e-9)),
-    "dashpot force 1e-9": ("force", 100, 5, lambda q: q * (1 + 1e-9)),
-    "Maxwell force 1e-9": ("force", 100, 3, lambda q: q * (1 + 1e-9)),
-    "spring state 1e-9": ("state", 100, 0, lambda q: q * (1 + 1e-9)),
-    "velocity 1e-12": ("v", 100, 1, lambda q: q + 1e-12),
+    "spring force 1e-9": ("forces", 100, 0, lambda q: q * (1 + 1e-9)),
+    "dashpot force 1e-9": ("forces", 100, 5, lambda q: q * (1 + 1e-9)),
+    "Maxwell force 1e-9": ("forces", 100, 3, lambda q: q * (1 + 1e-9)),
+    "spring state 1e-9": ("states", 100, 0, lambda q: q * (1 + 1e-9)),
+    "velocity 1e-12": ("velocities", 100, 1, lambda q: q + 1e-12),
 }
 
 
@@ -393,7 +393,7 @@ def test_the_checks_catch_a_sticking_element_that_creeps() -> None:
         0.1,
     )
     assert tr.rigid[1:, 1].all()
-    v = tr.v.copy()
+    v = tr.velocities.copy()
     v[5, 0] = 5e-324
     with pytest.raises(AssertionError):
-        check_every_step(dataclasses.replace(tr, v=v))
+        check_every_step(dataclasses.replace(tr, velocities=v))

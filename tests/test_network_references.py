@@ -197,11 +197,11 @@ def errors(name: str, dt: float) -> tuple[float, float, float]:
     ref = reference(name)
     tr = simulate_network(net, t_end, dt)
     x_ref, _ = ref.state(tr.t)
-    assert np.all(np.isfinite(ref.rest_time)) and np.all(np.isfinite(tr.rest_time))  # all at rest
+    assert np.all(np.isfinite(ref.rest_time)) and np.all(np.isfinite(tr.rest_times))  # all at rest
     return (
-        float(np.max(np.abs(tr.x - x_ref))),
-        float(np.max(np.abs(tr.rest_position - ref.rest_position))),
-        float(np.max(np.abs(tr.rest_time - ref.rest_time))),
+        float(np.max(np.abs(tr.positions - x_ref))),
+        float(np.max(np.abs(tr.rest_positions - ref.rest_position))),
+        float(np.max(np.abs(tr.rest_times - ref.rest_time))),
     )
 
 

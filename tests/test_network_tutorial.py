@@ -58,7 +58,7 @@ def test_after_the_impact_the_string_is_never_taut_again() -> None:
     tr = simulate_network(net, 0.8, 2e-4)
     taut = np.flatnonzero(tr.rigid[:, 0])
     assert taut.tolist() == [taut[0], taut[0] + 1]  # one impact: the reaching step and the stopping step
-    assert np.all(tr.x[taut[-1] + 1 :, 0] < 0.2)
+    assert np.all(tr.positions[taut[-1] + 1 :, 0] < 0.2)
     exact = L.solve_exact(L.Oscillator.bingham(1.0, 100.0, 5.0, 1.0), 1.5, x0=0.2)
     assert exact.evaluate(np.linspace(1e-3, 1.5, 3000))["x"].max() < 0.2
 
@@ -74,10 +74,10 @@ def test_the_lock_is_reached_once_and_held_without_interruption() -> None:
         [Spring("k", ("ground", "m"), k), LockingBingham("lock", ("ground", "m"), tau, math.inf, v_lock)],
     )
     tr = simulate_network(net, 1.0, 2e-4)
-    at_lock = np.flatnonzero(np.abs(tr.v[:, 0]) == v_lock)
+    at_lock = np.flatnonzero(np.abs(tr.velocities[:, 0]) == v_lock)
     assert at_lock.size > 0 and np.all(np.diff(at_lock) == 1)
     assert np.all(tr.rigid[at_lock, 1])
-    v_after = tr.v[at_lock[-1] + 1 :, 0]
+    v_after = tr.velocities[at_lock[-1] + 1 :, 0]
     turn = np.argmax(v_after > 0)  # the first reversal after the lock
     assert turn > 0
     after = np.abs(v_after[turn:])
@@ -93,7 +93,7 @@ def test_maxwell_relaxation_never_goes_below_the_threshold(f0: float) -> None:
         [Mass("m", 1.0, 0.05)],
         [Bingham("glue", ("ground", "m"), 1e6, math.inf), MaxwellBingham("mx", ("ground", "m"), 100.0, 1.0, 1.0, f0)],
     )
-    f = simulate_network(net, 1.0, 1e-3).force[:, 1]
+    f = simulate_network(net, 1.0, 1e-3).forces[:, 1]
     assert np.all(f >= min(f0, 1.0)) and np.all(np.diff(f) <= 0)
 
 
@@ -107,7 +107,7 @@ def chain(n: int, push: float) -> Network:
 
 
 def first_moves(tr) -> np.ndarray:
-    moving = tr.v != 0
+    moving = tr.velocities != 0
     return np.where(moving.any(axis=0), tr.t[np.argmax(moving, axis=0)], np.nan)
 
 
@@ -132,13 +132,13 @@ def test_masses_ahead_of_the_front_are_exactly_still_and_the_linear_chain_is_not
     first = first_moves(tr)
     for i in range(6):
         before = tr.t < first[i] if np.isfinite(first[i]) else np.ones(tr.t.size, bool)
-        assert np.all(tr.x[before, i] == 0.0)
+        assert np.all(tr.positions[before, i] == 0.0)
     assert np.isnan(first[-1])
     names = [f"m{i}" for i in range(6)]
     springs = [Spring(f"k{i}", (a, b), 100.0) for i, (a, b) in enumerate(zip(names, names[1:]))]
     load = Load("m0", L.SwitchedSine(amplitude=6.0, omega=0.0, phase=math.pi / 2))
     linear = simulate_network(Network([Mass(n, 1.0) for n in names], springs, [load]), 0.1, 1e-3)
-    assert np.all(linear.x[-1] > 0)
+    assert np.all(linear.positions[-1] > 0)
 
 
 # -- the plot helpers --------------------------------------------------------------
@@ -157,7 +157,7 @@ def test_stick_map_draws_exactly_the_moving_masses(close) -> None:
     tr = simulate_network(chain(4, 6.0), 0.3, 1e-3)
     fig = plotting.stick_map(tr)
     image = fig.axes[0].get_images()[0].get_array()
-    np.testing.assert_array_equal(np.asarray(image), (tr.v != 0).T.astype(float))
+    np.testing.assert_array_equal(np.asarray(image), (tr.velocities != 0).T.astype(float))
 
 
 def test_network_history_draws_the_run_and_the_reference(close) -> None:
@@ -166,7 +166,7 @@ def test_network_history_draws_the_run_and_the_reference(close) -> None:
     t = np.linspace(0, 0.2, 50)
     fig = plotting.network_history({"run": tr}, "x", "m", references={"cos": (t, 0.5 * np.cos(10 * t))})
     run, ref = fig.axes[0].lines[:2]
-    np.testing.assert_array_equal(run.get_ydata(), tr.x[:, 0])
+    np.testing.assert_array_equal(run.get_ydata(), tr.positions[:, 0])
     np.testing.assert_array_equal(ref.get_xdata(), t)
     with pytest.raises(ValueError, match="no column 'q'"):
         plotting.network_history({"run": tr}, "x", "q")

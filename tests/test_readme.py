@@ -132,8 +132,8 @@ def test_the_example_system_file_is_the_papers_figure_3() -> None:
     network = load_system(ROOT / "examples" / "figure3.toml")
     run = simulate_network(network, 4.0, 1e-4)
     reference = L.backward_euler(L.Oscillator.bingham(mass=1, stiffness=100, threshold=1, gamma=1), 4.0, 1e-4, x0=0.5)
-    assert np.array_equal(run.x[:, 0], reference.x) and np.array_equal(run.v[:, 0], reference.v)
-    assert np.array_equal(run.force[:, 1], reference.F_d)
+    assert np.array_equal(run.positions[:, 0], reference.x) and np.array_equal(run.velocities[:, 0], reference.v)
+    assert np.array_equal(run.forces[:, 1], reference.F_d) and np.array_equal(run.F_d, reference.F_d)
 
 
 def test_the_readme_is_at_most_200_lines_and_keeps_its_two_commands() -> None:

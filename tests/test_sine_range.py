@@ -79,7 +79,7 @@ def test_the_sweep_refuses_before_any_work(monkeypatch):
     def no_work(*args, **kwargs):
         raise AssertionError("the kernel ran")
 
-    monkeypatch.setattr("lumped.drivers.sweep.batch_backward_euler", no_work)
+    monkeypatch.setattr("lumped.drivers.sweep.run.batch_backward_euler", no_work)
     with pytest.raises(ValueError, match="^force_omega"):
         sweep.sweep({"force_omega": [1.0, 3e8]}, t_end=1.0, dt=0.5, force_amplitude=1.0, periods=1)
     with pytest.raises(ValueError, match="^force_phase must be within"):

@@ -260,7 +260,7 @@ def test_csv_and_npz_columns(tmp_path):
 def test_progress_goes_to_stderr_only(tmp_path, capsys, monkeypatch):
     monkeypatch.setattr("lumped.kernels.batched.CALL_SIZE", 2)
     # an estimate long enough to show progress (50 s), not so long as to be refused
-    monkeypatch.setattr("lumped.drivers.sweep.SECONDS_PER_BATCHED_ROW", 10.0)
+    monkeypatch.setattr("lumped.drivers.sweep.limits.SECONDS_PER_BATCHED_ROW", 10.0)
     out = tmp_path / "s.csv"
     assert main(["sweep", "--vary", "x0=0:1:5", "--t-end", "0.1", "--output", str(out)]) == 0
     assert "sweep: 5/5 rows" in capsys.readouterr().err

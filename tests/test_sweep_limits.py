@@ -16,8 +16,7 @@ import pytest
 
 import lumped as L
 from lumped.cli import main
-from lumped.drivers import sweep as sweep_module
-from lumped.drivers.sweep import MAX_ROWS, SweepSpec, axis, chunk_slice, parse_vary, sweep
+from lumped.drivers.sweep import MAX_ROWS, SweepSpec, axis, chunk_slice, grid, limits, parse_vary, summaries, sweep
 
 
 @pytest.fixture
@@ -27,9 +26,9 @@ def no_value_check(monkeypatch):
     def called(*args, **kwargs):
         raise AssertionError("a value was built or checked before the size was")
 
-    monkeypatch.setattr(sweep_module, "_check_values", called)
-    monkeypatch.setattr(sweep_module, "axis", called)
-    monkeypatch.setattr(sweep_module.np, "linspace", called)
+    monkeypatch.setattr(grid, "_check_values", called)
+    monkeypatch.setattr(grid, "axis", called)  # read from grid by sweep() and by VaryText.axis
+    monkeypatch.setattr(np, "linspace", called)
 
 
 def _one_line(capsys, status: int, start: str) -> str:
@@ -71,14 +70,14 @@ def test_memory_is_estimated_per_row_and_column(tmp_path, capsys, no_value_check
 
 def test_the_file_is_bounded_by_25_bytes_a_value_in_csv(monkeypatch):
     """The file's bound (25 bytes a value in .csv, 8 in .npz) is checked apart from the memory's."""
-    monkeypatch.setattr(sweep_module, "MAX_MEMORY_BYTES", math.inf)
-    monkeypatch.setattr(sweep_module.validate, "MAX_SECONDS", math.inf)
+    monkeypatch.setattr(limits, "MAX_MEMORY_BYTES", math.inf)
+    monkeypatch.setattr(limits.validate, "MAX_SECONDS", math.inf)
     counts = [10, 10, 10, 100, 100]  # 1e7 rows of 9 columns: 2.1 GiB in .csv, 0.7 in .npz
-    assert sweep_module.check_size(counts, n_steps=1, method="backward-euler", forced=False, output=".csv") == 10**7
-    monkeypatch.setattr(sweep_module.validate, "MAX_OUTPUT_BYTES", 2 * 1024**3)
+    assert limits.check_size(counts, n_steps=1, method="backward-euler", forced=False, output=".csv") == 10**7
+    monkeypatch.setattr(limits.validate, "MAX_OUTPUT_BYTES", 2 * 1024**3)
     with pytest.raises(ValueError, match=r"^vary: the \.csv file could reach 2\.1 GiB \(10000000 rows of 9 values"):
-        sweep_module.check_size(counts, n_steps=1, method="backward-euler", forced=False, output=".csv")
-    assert sweep_module.check_size(counts, n_steps=1, method="backward-euler", forced=False, output=".npz") == 10**7
+        limits.check_size(counts, n_steps=1, method="backward-euler", forced=False, output=".csv")
+    assert limits.check_size(counts, n_steps=1, method="backward-euler", forced=False, output=".npz") == 10**7
 
 
 def test_a_long_exact_sweep_is_refused_before_its_values(tmp_path, capsys, no_value_check):
@@ -137,7 +136,7 @@ def test_the_estimate_counts_every_event_the_runs_have(method, kw):
     """
     spec = spec_of(method, kw)
     rows = np.arange(spec.rows)
-    assert rows.size <= sweep_module.EVENT_SAMPLE
+    assert rows.size <= limits.EVENT_SAMPLE
     estimated = spec._events(rows)
     p = spec.parameters()
     for j in rows:
@@ -146,7 +145,7 @@ def test_the_estimate_counts_every_event_the_runs_have(method, kw):
         osc = L.Oscillator.bingham(row["mass"], row["stiffness"], row["threshold"], row["gamma"])
         counted = len(L.solve_exact(osc, spec.n_steps * spec.dt, x0=row["x0"], v0=row["v0"], force=force).events)
         assert counted <= estimated[j], (j, counted, estimated[j])
-    cost = sweep_module.SECONDS_PER_RUN[method]
+    cost = limits.SECONDS_PER_RUN[method]
     event = cost["forced event" if spec.forced else "free event"]
     row = cost["row"] + (spec.n_steps + 1) * cost["sample"] + event * float(np.mean(estimated))
     assert spec.seconds() == pytest.approx(spec.rows * row, rel=1e-12)  # no output file: no writing term
@@ -212,4 +211,4 @@ def test_stops_counts_the_samples_stops_as_documented():
     solution = L.solve_exact(L.Oscillator.bingham(), 4.0, x0=0.5)
     stops = [e for e in solution.events if e.kind == "stop"]
     assert be.tolist() == [3] and exact.tolist() == [len(stops)] == [1]
-    assert "the exact solution's stop events" in sweep_module.__doc__
+    assert "the exact solution's stop events" in summaries.__doc__

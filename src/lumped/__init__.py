@@ -10,14 +10,15 @@ below it: :mod:`~lumped.numerics` (validation, the sine, the root finder),
 :mod:`~lumped.model` (the oscillator, networks, loads, parameters,
 trajectories), :mod:`~lumped.kernels` (the compiled loops),
 :mod:`~lumped.solvers` (one module per method), :mod:`~lumped.drivers`
-(:func:`simulate`, :func:`simulate_network`, the method registry, the
-sweep), :mod:`~lumped.studies`, :mod:`~lumped.plotting` and
+(:func:`solve`, which runs any :class:`Problem` by any method, with
+:func:`simulate` for one oscillator and :func:`simulate_network` for
+backward Euler's choice of step solver; the method registry; the sweep), :mod:`~lumped.studies`, :mod:`~lumped.plotting` and
 :mod:`~lumped.cli`.  The names below are the public API.
 """
 
 from lumped.drivers.methods import METHODS
 from lumped.drivers.network import simulate_network
-from lumped.drivers.simulation import simulate
+from lumped.drivers.simulation import simulate, solve
 from lumped.laws import (
     Bingham,
     BinghamDashpot,
@@ -39,8 +40,8 @@ from lumped.laws import (
 from lumped.model.files import load_system, parse_system
 from lumped.model.forcing import SwitchedSine
 from lumped.model.network import Load, Mass, Network
-from lumped.model.network_trajectory import NetworkTrajectory
 from lumped.model.oscillator import Oscillator
+from lumped.model.problem import Problem
 from lumped.model.trajectory import COLUMNS, EnergyBalance, Trajectory
 from lumped.solvers.backward_euler import algorithm1, backward_euler
 from lumped.solvers.event_capturing import CapturedRun, event_capturing
@@ -72,10 +73,10 @@ __all__ = [
     "Monotone",
     "MonotoneDashpot",
     "Network",
-    "NetworkTrajectory",
     "Oscillator",
     "PapanastasiouDashpot",
     "Phase",
+    "Problem",
     "Spring",
     "SpringString",
     "SwitchedSine",
@@ -89,6 +90,7 @@ __all__ = [
     "simulate",
     "simulate_network",
     "solve_event_driven",
+    "solve",
     "solve_exact",
     "theta_method",
 ]

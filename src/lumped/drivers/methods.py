@@ -4,8 +4,10 @@ Each method is declared here once, with what it can run and its options.
 Everything that chooses a method by name reads this table:
 :func:`lumped.simulate` (one mass), the command line (``--method``'s choices
 and help, the option flags such as ``--rtol``, which methods run a
-``--system`` network), :mod:`lumped.drivers.sweep` (the methods a sweep runs) and
-:func:`lumped.simulate_network` (the step solvers of a network run).
+``--system`` network), :mod:`lumped.drivers.sweep` (the methods a sweep runs),
+:func:`lumped.simulate_network` (the step solvers of a network run) and the
+studies (:mod:`lumped.studies.accuracy` compares every method, grouped by
+``fixed_step`` and ``bingham_only``; :mod:`lumped.studies.rest` two of them).
 
 Adding a method
 ---------------
@@ -17,7 +19,8 @@ Adding a method
    (``--help`` shows it), whether it needs the Bingham form of the law
    (``bingham_only``), whether a sweep runs it (``batch``), the step solvers
    by which it runs any network (``network_solvers``; none: one-mass
-   networks only, as an oscillator) and its :class:`Option` s.
+   networks only, as an oscillator), its solver in continuous time if it
+   has one (``solution``; none: a fixed-step scheme) and its :class:`Option` s.
 
 A method asked to run what it cannot says so in one line that names the
 method and the reason (:meth:`Method.refusal`).
@@ -37,7 +40,7 @@ from lumped.model.trajectory import Trajectory
 from lumped.solvers.backward_euler import backward_euler
 from lumped.solvers.event_capturing import event_capturing
 from lumped.solvers.event_driven import DEFAULT_RTOL, solve_event_driven, validate_rtol
-from lumped.solvers.exact import solve_exact
+from lumped.solvers.exact import ExactSolution, solve_exact
 from lumped.solvers.theta import theta_method
 
 __all__ = ["METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", "NETWORK_SOLVERS", "OPTIONS"]
@@ -95,9 +98,18 @@ class Method:
     options: tuple[Option, ...] = ()
     #: Why a sweep does not run it (when ``batch`` is false), for its refusal.
     not_batch: str = "a sweep does not run it"
+    #: Its solver in continuous time, ``(osc, t_end, *, x0, v0, force, **options) -> ExactSolution``
+    #: (the events, the rest, the motion at any time), which ``run`` samples on the grid; ``None``
+    #: for a fixed-step scheme, whose ``dt`` is its step.
+    solution: Callable[..., ExactSolution] | None = None
 
     def __call__(self, *args: object, **options: object) -> Trajectory:
         return self.run(*args, **options)
+
+    @property
+    def fixed_step(self) -> bool:
+        """True if ``dt`` is its step, so that its error falls with ``dt``; false if ``dt`` only samples its solution."""
+        return self.solution is None
 
     @property
     def runs_networks(self) -> bool:
@@ -178,7 +190,14 @@ METHODS: Mapping[str, Method] = MappingProxyType(
                 batch=True,
                 network_solvers=("auto", "active-set", "compiled", "python"),
             ),
-            Method("exact", _exact, "Exact event-driven solution, sampled on the grid", bingham_only=True, batch=True),
+            Method(
+                "exact",
+                _exact,
+                "Exact event-driven solution, sampled on the grid",
+                bingham_only=True,
+                batch=True,
+                solution=solve_exact,
+            ),
             Method(
                 "event-driven",
                 _event_driven,
@@ -186,6 +205,7 @@ METHODS: Mapping[str, Method] = MappingProxyType(
                 "sampled on the grid",
                 batch=True,
                 options=(_RTOL,),
+                solution=solve_event_driven,
             ),
             Method(
                 "event-capturing",

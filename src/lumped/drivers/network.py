@@ -1,4 +1,4 @@
-"""Backward Euler for a network: the integrator (its result is :mod:`lumped.model.network_trajectory`'s).
+"""Backward Euler for a network: the integrator, returning a :class:`~lumped.model.trajectory.Trajectory`.
 
 Each step takes the states of the step's start (positions, velocities,
 element states), asks every element for its step graph, solves the one-step
@@ -23,15 +23,16 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.drivers.methods import NETWORK_SOLVERS
-from lumped.drivers.one_mass import OneMass, network_trajectory, one_mass_form
+from lumped.drivers.one_mass import network_trajectory
+from lumped.model.problem import OneMass, one_mass_form
 from lumped.model.forcing import SwitchedSine
 from lumped.model.network import Network
-from lumped.model.network_trajectory import NetworkTrajectory
+from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 from lumped.solvers import network_compiled as kernel
 from lumped.solvers.network_step import StepError, default_bound, solve_step, unsettled
 
-__all__ = ["NetworkTrajectory", "simulate_network", "SOLVERS"]
+__all__ = ["simulate_network", "SOLVERS"]
 
 #: Step solvers by name (see :func:`simulate_network`): a view of the registry
 #: (:data:`lumped.drivers.methods.NETWORK_SOLVERS`, those of the method that runs any network).
@@ -62,7 +63,7 @@ def _paper_form(net: Network) -> OneMass | None:
         return None
 
 
-def _via_algorithm1(net: Network, form: OneMass, t_end: float, dt: float, save_every: int) -> NetworkTrajectory:
+def _via_algorithm1(net: Network, form: OneMass, t_end: float, dt: float, save_every: int) -> Trajectory:
     """Backward Euler of :func:`lumped.backward_euler`: Algorithm 1, or the law's resolvent."""
     from lumped.solvers.backward_euler import backward_euler
 
@@ -117,7 +118,7 @@ def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str):
 
 def simulate_network(
     network: Network, t_end: float, dt: float, *, save_every: int = 1, solver: str = "auto"
-) -> NetworkTrajectory:
+) -> Trajectory:
     """Integrate a network with backward Euler on the grid ``t_n = n*dt``.
 
     Parameters
@@ -136,7 +137,7 @@ def simulate_network(
 
     Returns
     -------
-    NetworkTrajectory
+    Trajectory
 
     Raises
     ------
@@ -205,7 +206,7 @@ class _Start(NamedTuple):
     rest: np.ndarray
 
 
-def _march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, path: str) -> NetworkTrajectory:
+def _march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, path: str) -> Trajectory:
     first, second = net.incidence()
     x, v, state, f = _initial(net, first, second, path)
     inertia = np.array([m.mass / dt for m in net.masses])
@@ -217,8 +218,23 @@ def _march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, pa
     still = v != 0
     rest_time = np.where(still, np.nan, np.minimum(start.rest, n_steps) * dt)
     rest_position = np.where(still, np.nan, rec.x[rec.row - 1])
-    return NetworkTrajectory(
-        rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid, rest_time, rest_position, net, dt, path, most
+    applied = net.load_table(rec.t)  # the loads at the saved times, as the steps evaluated them
+    rest = (rest_time, rest_position)
+    return Trajectory(
+        t=rec.t,
+        positions=rec.x,
+        velocities=rec.v,
+        forces=rec.force,
+        applied=applied,
+        network=net,
+        method="backward-euler",
+        dt=dt,
+        save_every=save_every,
+        states=rec.state,
+        rigid=rec.rigid,
+        final_rest=rest,
+        solver=path,
+        iterations=most,
     )
 
 

@@ -1,27 +1,36 @@
-"""The driver: one entry point for every method, ``simulate(...) -> Trajectory``.
+"""The driver: every method of the registry takes a :class:`~lumped.model.problem.Problem`.
 
-The methods are those of the one registry, :data:`lumped.drivers.methods.METHODS`
-(re-exported here and as ``lumped.METHODS``); :func:`simulate` looks the
-method up there, checks its options and refuses what it cannot run.  (The
-module is not called ``simulate``: ``lumped/__init__.py`` exports the
-function under that name, so ``import lumped.simulate`` would hand back the
-function, not a module.)
+:func:`solve` is the one entry point: ``solve(problem, dt, method=...)``
+runs any problem by any registered method (:data:`lumped.drivers.methods.METHODS`,
+re-exported as ``lumped.METHODS``) and returns the network's
+:class:`~lumped.model.trajectory.Trajectory`.  A method that
+runs any network (backward Euler) gets the whole system, and the paper's
+system goes to Algorithm 1's kernel by itself; a method that runs one mass
+gets the system as an oscillator, or refuses it in one line.
+:func:`simulate` is the paper's system seen directly: one oscillator, its
+initial state and force, and the one-mass :class:`~lumped.model.trajectory.Trajectory`
+with the dashpot's force and the energy balance.  (The module is not called
+``simulate``: ``lumped/__init__.py`` exports the function under that name.)
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
+from dataclasses import replace
 
 import numpy as np
 
 from lumped.drivers import methods
 from lumped.drivers.methods import METHODS
+from lumped.drivers.network import simulate_network
+from lumped.drivers.one_mass import network_trajectory
 from lumped.model.forcing import SwitchedSine
+from lumped.model.problem import Problem, oscillator_network
 from lumped.model.oscillator import Oscillator
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 
-__all__ = ["METHODS", "simulate", "method_options"]
+__all__ = ["METHODS", "method_options", "simulate", "solve"]
 
 Force = SwitchedSine | Callable[[np.ndarray], np.ndarray] | None
 
@@ -70,4 +79,62 @@ def simulate(
     run = METHODS[method]
     if isinstance(oscillator, Oscillator) and (reason := run.refusal(oscillator)) is not None:
         raise ValueError(reason)
-    return run(oscillator, t_end, dt, x0, v0, force, save_every, **options)
+    tr = run(oscillator, t_end, dt, x0, v0, force, save_every, **options)
+    if force is None:
+        return tr
+    return replace(tr, network=oscillator_network(oscillator, x0, v0, force))  # the system with its load
+
+
+def solve(
+    problem: Problem, dt: float, *, method: str = "backward-euler", save_every: int = 1, **options: object
+) -> Trajectory:
+    """Solve ``problem`` on the grid ``t_n = n*dt`` by ``method``.
+
+    Parameters
+    ----------
+    problem : Problem
+        The system, its loads and initial state, and the span.
+    dt : float, s
+        The grid step (the methods that locate events still report on this grid).
+    method : str
+        A key of :data:`METHODS`; ``options`` are its own (``rtol`` for
+        ``"event-driven"``).
+    save_every : int
+        Stride between the computed grid and the saved points.
+
+    Returns
+    -------
+    Trajectory
+        Positions and velocities of every mass, the force of every element, the events.
+
+    Raises
+    ------
+    ValueError
+        For a bad argument (named), or a method that cannot run the problem:
+        one line naming the method and the reason (a single-mass method and a
+        network that is not the paper's form, ``exact`` and a law with no
+        Bingham form).
+    """
+    run = methods.get(method)
+    options = run.check_options(options)
+    if not isinstance(problem, Problem):
+        raise ValueError(f"problem must be a Problem, got {type(problem).__name__}")
+    if run.runs_networks:
+        return simulate_network(problem.system, problem.t_end, dt, save_every=save_every)
+    try:
+        form = problem.one_mass()
+    except ValueError as err:
+        raise ValueError(f"method {method!r} needs a one-mass system; the network {err}") from None
+    mass = problem.system.masses[0]
+    tr = simulate(
+        form.oscillator,
+        problem.t_end,
+        dt,
+        x0=mass.x0,
+        v0=mass.v0,
+        force=problem.force,
+        method=method,
+        save_every=save_every,
+        **options,
+    )
+    return network_trajectory(problem.system, form, tr, method)

@@ -14,11 +14,12 @@
  * no forcing skip the forcing and the addition of that +0.0 altogether, for
  * the same reason.
  *
- * Layout: the trajectories are cut into blocks of BLOCK; the blocks are shared
- * among the threads (OpenMP); within a block the time loop is outside, in
- * chunks of CHUNK steps, and the loop over the block's trajectories inside,
- * written in vector lanes (_batch_lanes.h) with the stick test, the switch of
- * the forcing and the sine's quadrant as blends: GROUP vectors at a time,
+ * Layout: the trajectories are cut into blocks of BLOCK (_batch_block.h); the
+ * blocks are shared among the threads (OpenMP); within a block the time loop
+ * is outside, in chunks of CHUNK steps, and the loop over the block's
+ * trajectories inside, written in vector lanes (_batch_lanes.h) with the
+ * stick test, the switch of the forcing and the sine's quadrant as blends:
+ * GROUP vectors at a time,
  * their state kept in registers over the chunk and their independent chains
  * interleaved.  Four variants (forced or not, window bookkeeping or not) are
  * compiled; the window's is used from the block's first window step on.  The
@@ -51,79 +52,7 @@
 #include <omp.h>
 #endif
 
-#define BLOCK 128 /* trajectories per block: the block's state (16 KB) stays in the L1 data cache */
-#define CHUNK 2 /* time steps taken per pass over the block, state held in registers */
-#define NPAR 10
-#define NSUM 7
-#define INLINE static inline __attribute__((always_inline))
-
-typedef struct {
-    double mdt[BLOCK], eta_c[BLOCK], dtk[BLOCK], tau[BLOCK], nw[BLOCK];
-    double amp[BLOCK], omega[BLOCK], phase[BLOCK], until[BLOCK]; /* the switched sine */
-    double v[BLOCK], fs[BLOCK];
-    double rest[BLOCK], stops[BLOCK], wstops[BLOCK], mx[BLOCK], mw[BLOCK];
-    double dt;
-} Block;
-
-/* The block's parameters, and its state: the initial one, or (sums != NULL)
- * the one a previous call stored. */
-INLINE void load(Block *b, const double *par, Py_ssize_t n, Py_ssize_t j0, Py_ssize_t w, double dt, const double *nw,
-                 const double *sums) {
-    memset(b, 0, sizeof *b); /* lanes past w: everything 0, they stick at x = 0, unforced */
-    b->dt = dt;
-    for (Py_ssize_t i = w; i < BLOCK; i++) b->eta_c[i] = 1.0;
-    for (Py_ssize_t i = 0; i < w; i++) {
-        const Py_ssize_t j = j0 + i;
-        const double m = par[j], k = par[n + j], c = par[3 * n + j];
-        const double eta = m / dt + k * dt;
-        b->mdt[i] = m / dt;
-        b->eta_c[i] = eta + c;
-        b->dtk[i] = dt * k;
-        b->tau[i] = par[2 * n + j];
-        b->nw[i] = nw[j];
-        b->fs[i] = k * par[4 * n + j]; /* spring.force(x0) */
-        b->v[i] = par[5 * n + j];
-        b->rest[i] = b->v[i] == 0.0 ? 0.0 : 1.0;
-        b->amp[i] = par[6 * n + j], b->omega[i] = par[7 * n + j];
-        b->phase[i] = par[8 * n + j], b->until[i] = par[9 * n + j];
-        if (sums != NULL) {
-            b->v[i] = sums[j], b->fs[i] = sums[n + j], b->rest[i] = sums[2 * n + j];
-            b->stops[i] = sums[3 * n + j], b->wstops[i] = sums[4 * n + j];
-            b->mx[i] = sums[5 * n + j], b->mw[i] = sums[6 * n + j];
-        }
-    }
-}
-
-INLINE void store(const Block *b, double *sums, Py_ssize_t n, Py_ssize_t j0, Py_ssize_t w) {
-    for (Py_ssize_t i = 0; i < w; i++) {
-        const Py_ssize_t j = j0 + i;
-        sums[j] = b->v[i];
-        sums[n + j] = b->fs[i];
-        sums[2 * n + j] = b->rest[i];
-        sums[3 * n + j] = b->stops[i];
-        sums[4 * n + j] = b->wstops[i];
-        sums[5 * n + j] = b->mx[i];
-        sums[6 * n + j] = b->mw[i];
-    }
-}
-
-/* Steps to take in one chunk from step s: CHUNK, cut at the window's first
- * step (the window's bookkeeping starts there), at a saved step and at the
- * call's last step. */
-INLINE int chunk_steps(Py_ssize_t s, Py_ssize_t last, Py_ssize_t window_from, int saving, Py_ssize_t save_every) {
-    Py_ssize_t end = s + CHUNK - 1;
-    if (end > last) end = last;
-    if (s < window_from && end >= window_from) end = window_from - 1;
-    if (saving) { /* stop at the next saved step */
-        const Py_ssize_t saved = s + (save_every - s % save_every) % save_every;
-        if (end > saved) end = saved;
-    }
-    return (int)(end - s + 1);
-}
-
-#define SIGN ((long long)0x8000000000000000ULL)
-#define PASTE2(a, b) a##b
-#define PASTE(a, b) PASTE2(a, b)
+#include "_batch_block.h" /* BLOCK, NPAR, NSUM; first, so that its helpers are compiled for the baseline */
 
 /* The same loop compiled three times: for AVX-512 (eight lanes in one
  * register), AVX2 (four) and the baseline x86-64 (two, SSE2); all give the

@@ -1,12 +1,31 @@
-/* The vector loop of _batch_kernel.c, included there once per instruction
- * set: LANES doubles to a vector (GCC vector extensions: 8 for one AVX-512
- * register, 4 for one AVX2 register, 2 for one SSE2 register).  Every lane
- * operation is the IEEE operation of the scalar code; fabs and copysign are
- * the same sign-bit masks as the C library's, the branches of the corrector
- * and of the switched sine are blends of both sides, and the sine is the
- * project's (_sine.h, instantiated here for LANES lanes), so the forcing is
- * computed in the lanes too.  Each name below gets the suffix LANES
- * (run_block -> run_block4). */
+/* The vector loop of the batched kernel over one block (_batch_block.h):
+ * LANES doubles to a vector (GCC vector extensions: 8 for one AVX-512
+ * register, 4 for one AVX2 register, 2 for one SSE2 register), GROUP vectors
+ * interleaved.  Every lane operation is the IEEE operation of the scalar
+ * code; fabs and copysign are the same sign-bit masks as the C library's, the
+ * branches of the corrector and of the switched sine are blends of both
+ * sides, and the sine is the project's (_sine.h, instantiated here for LANES
+ * lanes), so the forcing is computed in the lanes too.
+ *
+ * Use: define LANES and GROUP and include; this defines run_block<LANES> (one
+ * block's steps first..last) and sine_buffer<LANES> (a test hook), each name
+ * below with the suffix LANES (run_block -> run_block4).  _batch_kernel.c
+ * includes it once per instruction set, under that set's target pragma. */
+#if !defined(LANES) || !defined(GROUP)
+#error "_batch_lanes.h: define LANES (doubles to a vector) and GROUP (vectors interleaved) before including it"
+#endif
+#include <math.h>
+#include <string.h>
+
+#include "_batch_block.h" /* Block and its helpers (load, store, chunk_steps), BLOCK, CHUNK, INLINE */
+
+#ifndef LUMPED_BATCH_LANES_ONCE
+#define LUMPED_BATCH_LANES_ONCE
+#define SIGN ((long long)0x8000000000000000ULL)
+#define PASTE2(a, b) a##b
+#define PASTE(a, b) PASTE2(a, b)
+#endif
+
 #define SINE_LANES LANES
 #include "_sine.h"
 #undef SINE_LANES

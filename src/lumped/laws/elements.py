@@ -284,7 +284,7 @@ class Element(ABC):
     7. ``step_stiffness``: the stiffness (N/m) of the spring the element puts
        between its points, which scales the mode test of the one-step problem
        (``0.0`` by default: none).
-    8. The one-mass form (:func:`lumped.drivers.one_mass.one_mass_form`):
+    8. The one-mass form (:func:`lumped.model.problem.one_mass_form`):
        ``linear_stiffness``, ``k`` if the element is the linear spring ``f =
        k e`` and nothing more (``None`` by default); ``one_mass_law()``, the
        :class:`lumped.laws.Dashpot` a single-mass method runs if the element
@@ -770,6 +770,15 @@ class Monotone(LawElement, Element):
     def _check(self) -> None:
         if not isinstance(self.law, Dashpot):
             raise ValueError(f"law must be a lumped.laws.Dashpot, got {type(self.law).__name__}")
+
+    def one_mass_law(self) -> Dashpot:
+        """The law itself: a single-mass method runs it as it runs any :class:`lumped.laws.Dashpot`."""
+        return self.law
+
+    @property
+    def auto_one_mass(self) -> bool:
+        """True: the law's resolvent solves the one-mass step, which the active-set step only linearises."""
+        return True
 
 
 @dataclass(frozen=True)

@@ -1,20 +1,32 @@
-"""Named results: a trajectory on a time grid and the quantities derived from it."""
+"""What every run returns: :class:`Trajectory`, one type for one mass or many, with its events.
+
+A trajectory holds the motion of every mass of its system (a
+:class:`~lumped.model.network.Network`) and the force of every element on
+the saved grid points.  A run of the paper's system (one mass, springs and
+one dashpot) also reads as the paper writes it: ``x``, ``v``, the spring
+force ``F_s``, the dashpot force ``F_d`` and the external force ``F``, with
+the stick intervals, the final rest and the energy balance; these views
+refuse, in one line, a system of several masses.
+"""
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-from typing import TYPE_CHECKING, NamedTuple
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import NamedTuple
 
 import numpy as np
 
-if TYPE_CHECKING:
-    from lumped.model.oscillator import Oscillator
+from lumped.laws.elements import GROUND
+from lumped.model.network import Network
+from lumped.model.oscillator import Oscillator
+from lumped.model.problem import OneMass, one_mass_form, oscillator_network
 
 __all__ = ["COLUMNS", "Trajectory", "EnergyBalance", "sign_changes"]
 
-#: Output columns, in order: time (s), displacement (m), velocity (m/s),
-#: spring force (N), dashpot force (N), external force (N).
+#: The one-mass output columns, in order: time (s), displacement (m), velocity
+#: (m/s), spring force (N), dashpot force (N), external force (N).
 COLUMNS = ("t", "x", "v", "F_s", "F_d", "F")
 
 
@@ -37,48 +49,214 @@ class EnergyBalance(NamedTuple):
 
 @dataclass(frozen=True, eq=False)
 class Trajectory:
-    """Time histories on a grid.
+    """The motion of a system on the saved grid points.
 
     Attributes
     ----------
-    t, x, v, F_s, F_d, F : ndarray, shape (n,)
-        See :data:`COLUMNS` for units.
-    oscillator : Oscillator
-        The system that produced them.
+    t : ndarray, (N,), s
+    positions, velocities : ndarray, (N, masses), m and m/s
+        In the order of ``network.masses``.
+    forces : ndarray, (N, elements), N
+        Tensions, in the order of ``network.elements``; at ``t = 0`` the
+        consistent initial forces.
+    applied : ndarray, (N, masses), N
+        The external force on each mass.
+    network : Network
+        The system that ran (masses with their initial state, elements, loads).
     method : str
-        ``"backward-euler"``, ``"exact"``, ...
-    dt : float
-        Grid step of the computation (s).
+        The registered method (``"backward-euler"``, ``"exact"``, ...).
+    dt : float, s
+        Grid step of the computation.
     save_every : int
         Stride between the computed grid and the saved points.
-    final_rest : (float, float) or None
-        Start time (s) and position (m) of the stick interval that lasts to
-        the end of the run, found by the method at its full resolution (a
-        grid step for backward Euler, the event time for the exact
-        solution), ``(nan, nan)`` if the mass moves at the end; ``None``
-        derives them from the saved points.
+    states : ndarray, (N, elements), or None
+        Each element's internal variable (a spring's force, a string's
+        elongation, a Maxwell element's force; 0 for none).
+    rigid : ndarray of bool, (N, elements), or None
+        Element on a rigid piece in the step ending there (sticking, taut,
+        locked); False at ``t = 0``.
+    final_rest : (ndarray, ndarray) or None
+        Each mass's start time (s) and position (m) of the stick interval that
+        lasts to the end of the run, found by the method at its full
+        resolution (a grid step for backward Euler, the event time for the
+        exact solution), ``nan`` if it moves at the end; ``None`` derives them
+        from the saved points.
+    solver : str
+        The path that ran: ``"algorithm1"``, ``"resolvent"`` (a law's
+        resolvent), ``"compiled"`` or ``"python"`` (the network's active-set
+        step), or the method's name.
+    iterations : int
+        Largest number of active-set iterations in a step (0 when none ran).
+    events : tuple
+        The events the method located (stops, breakaways, reversals, the
+        forcing's switch-off), in time order; empty for a method that
+        locates none.
     """
 
     t: np.ndarray
-    x: np.ndarray
-    v: np.ndarray
-    F_s: np.ndarray
-    F_d: np.ndarray
-    F: np.ndarray
-    oscillator: Oscillator
+    positions: np.ndarray
+    velocities: np.ndarray
+    forces: np.ndarray
+    applied: np.ndarray
+    network: Network
     method: str
     dt: float
     save_every: int = 1
-    final_rest: tuple[float, float] | None = None
+    states: np.ndarray | None = None
+    rigid: np.ndarray | None = None
+    final_rest: tuple[np.ndarray, np.ndarray] | None = None
+    solver: str = ""
+    iterations: int = 0
+    events: tuple = field(default=())
+
+    @classmethod
+    def of_oscillator(
+        cls,
+        *,
+        t: np.ndarray,
+        x: np.ndarray,
+        v: np.ndarray,
+        F_s: np.ndarray,  # noqa: N803 -- the paper's names
+        F_d: np.ndarray,  # noqa: N803
+        F: np.ndarray,  # noqa: N803
+        oscillator: Oscillator,
+        method: str,
+        dt: float,
+        save_every: int = 1,
+        final_rest: tuple[float, float] | None = None,
+        events: tuple = (),
+    ) -> Trajectory:
+        """A one-mass run of ``oscillator`` from its columns (:data:`COLUMNS`).
+
+        The system is :func:`~lumped.model.problem.oscillator_network`'s (the
+        spring's force is ``F_s``, the dashpot's ``F_d``, both unchanged), with
+        the run's initial state; a driver that knows the load replaces the
+        network by the problem's own.
+        """
+        net = oscillator_network(oscillator, float(x[0]), float(v[0]))
+        rest = None if final_rest is None else (np.array([final_rest[0]]), np.array([final_rest[1]]))
+        forces = np.column_stack([F_s, F_d])
+        rigid = np.column_stack([np.zeros(t.size, dtype=bool), (v == 0) & (t > 0)])
+        states = np.column_stack([F_s, np.zeros_like(F_s)])
+        return cls(
+            t=t,
+            positions=x[:, None],
+            velocities=v[:, None],
+            forces=forces,
+            applied=F[:, None],
+            network=net,
+            method=method,
+            dt=dt,
+            save_every=save_every,
+            states=states,
+            rigid=rigid,
+            final_rest=rest,
+            solver=method,
+            events=events,
+        )
 
     @classmethod
     def from_array(cls, data: np.ndarray, oscillator: Oscillator, **meta: object) -> Trajectory:
-        """Build from an array whose columns are :data:`COLUMNS`."""
+        """A one-mass run from an array whose columns are :data:`COLUMNS` (see :meth:`of_oscillator`)."""
         cols = {name: np.ascontiguousarray(data[:, i]) for i, name in enumerate(COLUMNS)}
-        return cls(**cols, oscillator=oscillator, **meta)  # type: ignore[arg-type]
+        return cls.of_oscillator(**cols, oscillator=oscillator, **meta)  # type: ignore[arg-type]
+
+    # -- every system -------------------------------------------------------
+
+    @property
+    def rest_times(self) -> np.ndarray:
+        """Each mass's start of the stick interval that lasts to the end (s), ``nan`` if it moves at the end."""
+        if self.final_rest is not None:
+            return self.final_rest[0]
+        return np.array([_rest_start(self.t, self.velocities[:, i]) for i in range(self.positions.shape[1])])
+
+    @property
+    def rest_positions(self) -> np.ndarray:
+        """Each mass's position at its final rest (m), ``nan`` if it moves at the end."""
+        if self.final_rest is not None:
+            return self.final_rest[1]
+        return np.where(self.velocities[-1] == 0.0, self.positions[-1], np.nan)
+
+    def system_columns(self, suffix: str) -> dict[str, np.ndarray]:
+        """The system's output arrays: ``.npz`` names or ``.csv`` columns (see book/guide/systems.md)."""
+        net = self.network
+        if suffix == ".npz":
+            return {
+                "t": self.t,
+                "x": self.positions,
+                "v": self.velocities,
+                "force": self.forces,
+                "mass_names": np.array(net.mass_names),
+                "element_names": np.array(net.element_names),
+            }
+        out = {"t": self.t}
+        out |= {f"x_{n}": self.positions[:, i] for i, n in enumerate(net.mass_names)}
+        out |= {f"v_{n}": self.velocities[:, i] for i, n in enumerate(net.mass_names)}
+        out |= {f"F_{n}": self.forces[:, i] for i, n in enumerate(net.element_names)}
+        return out
+
+    def summary(self, shown: int = 10) -> str:
+        """Each mass's rest time and position, or that it still moves (the first ``shown`` masses)."""
+        parts, names = [], self.network.mass_names
+        times, places = self.rest_times, self.rest_positions
+        for i, name in enumerate(names[:shown]):
+            if math.isnan(times[i]):
+                parts.append(f"{name} still moving at t = {self.t[-1]:.6g} s (x = {self.positions[-1, i]:.9g} m)")
+            else:
+                parts.append(f"{name} at rest from t = {times[i]:.10g} s at x = {places[i]:.10g} m")
+        more = f"; ... and {len(names) - shown} more masses" if len(names) > shown else ""
+        return "; ".join(parts) + more
+
+    # -- the paper's system: one mass ------------------------------------------
+
+    @cached_property
+    def one_mass(self) -> OneMass:
+        """The system as an oscillator, or a one-line ``ValueError`` saying why it is not one."""
+        try:
+            return one_mass_form(self.network)
+        except ValueError as err:
+            raise ValueError(
+                f"the one-mass view (x, v, F_s, F_d, F) needs the paper's system; the network {err}"
+            ) from None
+
+    @property
+    def oscillator(self) -> Oscillator:
+        """The system as the paper's oscillator (one mass, springs, one dashpot)."""
+        return self.one_mass.oscillator
+
+    @property
+    def x(self) -> np.ndarray:
+        """Displacement (m) of the one mass."""
+        self.one_mass  # noqa: B018 -- refuses a system that is not one mass
+        return self.positions[:, 0]
+
+    @property
+    def v(self) -> np.ndarray:
+        """Velocity (m/s) of the one mass."""
+        self.one_mass  # noqa: B018
+        return self.velocities[:, 0]
+
+    @property
+    def F_s(self) -> np.ndarray:  # noqa: N802 -- the paper's name
+        """Spring force (N): the springs' tensions, each oriented from the ground to the mass, summed."""
+        springs = [self.network.element_names.index(s.name) for s in self.one_mass.springs]
+        oriented = [_orientation(self.network.elements[i]) * self.forces[:, i] for i in springs]
+        return oriented[0] if len(oriented) == 1 else np.sum(oriented, axis=0)
+
+    @property
+    def F_d(self) -> np.ndarray:  # noqa: N802
+        """Dashpot force (N), oriented from the ground to the mass."""
+        i = self.network.element_names.index(self.one_mass.dashpot.name)
+        return _orientation(self.network.elements[i]) * self.forces[:, i]
+
+    @property
+    def F(self) -> np.ndarray:  # noqa: N802
+        """External force (N) on the one mass."""
+        self.one_mass  # noqa: B018
+        return self.applied[:, 0]
 
     def columns(self) -> dict[str, np.ndarray]:
-        """The arrays by column name, in output order."""
+        """The one-mass arrays by column name, in output order (:data:`COLUMNS`)."""
         return {name: getattr(self, name) for name in COLUMNS}
 
     def as_array(self) -> np.ndarray:
@@ -103,28 +281,23 @@ class Trajectory:
 
     @property
     def rest_time(self) -> float:
-        """Start of the stick interval that lasts to the end of the run (s).
+        """Start of the one mass's stick interval that lasts to the end of the run (s).
 
         ``nan`` if the mass is moving at the last point.  Taken from
         ``final_rest`` when the method supplied it, so that it does not
         depend on ``save_every``.
         """
-        if self.final_rest is not None:
-            return self.final_rest[0]
-        runs = self.stick_intervals()
-        if not runs or runs[-1][1] != self.t[-1]:
-            return math.nan
-        return runs[-1][0]
+        self.one_mass  # noqa: B018
+        return float(self.rest_times[0])
 
     @property
     def rest_position(self) -> float:
-        """Displacement at the final rest (m); ``nan`` if still moving."""
-        if self.final_rest is not None:
-            return self.final_rest[1]
-        return float(self.x[-1]) if self.v[-1] == 0.0 else math.nan
+        """Displacement of the one mass at its final rest (m); ``nan`` if still moving."""
+        self.one_mass  # noqa: B018
+        return float(self.rest_positions[0])
 
     def energy_balance(self) -> EnergyBalance:
-        """Energy bookkeeping on the saved grid.
+        """Energy bookkeeping of the one mass on the saved grid.
 
         For backward Euler on the full grid (``save_every == 1``) the
         discrete identity, obtained by multiplying eq. (13a) by ``v_{n+1}`` and
@@ -133,17 +306,17 @@ class Trajectory:
         methods the integrals use the trapezoidal rule (error ``O(dt^2)``).
         """
         m, k = self.oscillator.mass, self.oscillator.spring.stiffness
-        kinetic, potential = 0.5 * m * self.v**2, 0.5 * self.F_s**2 / k
+        v, F_s, F_d, F = self.v, self.F_s, self.F_d, self.F  # noqa: N806
+        kinetic, potential = 0.5 * m * v**2, 0.5 * F_s**2 / k
+        step = np.diff(self.t)
         if self.method == "backward-euler":
             if self.save_every != 1:
                 raise ValueError("energy_balance needs save_every == 1 for backward Euler")
-            step = np.diff(self.t)
-            power_d, power_f = (step * self.F_d[1:] * self.v[1:], step * self.F[1:] * self.v[1:])
-            numeric = 0.5 * m * np.diff(self.v) ** 2 + 0.5 * np.diff(self.F_s) ** 2 / k
+            power_d, power_f = (step * F_d[1:] * v[1:], step * F[1:] * v[1:])
+            numeric = 0.5 * m * np.diff(v) ** 2 + 0.5 * np.diff(F_s) ** 2 / k
         else:
-            step = np.diff(self.t)
-            power_d = step * 0.5 * (self.F_d[1:] * self.v[1:] + self.F_d[:-1] * self.v[:-1])
-            power_f = step * 0.5 * (self.F[1:] * self.v[1:] + self.F[:-1] * self.v[:-1])
+            power_d = step * 0.5 * (F_d[1:] * v[1:] + F_d[:-1] * v[:-1])
+            power_f = step * 0.5 * (F[1:] * v[1:] + F[:-1] * v[:-1])
             numeric = np.zeros_like(power_d)
         cum = [np.concatenate(([0.0], np.cumsum(p))) for p in (power_d, numeric, power_f)]
         total = kinetic + potential + cum[0] + cum[1] - cum[2]
@@ -153,6 +326,19 @@ class Trajectory:
     def dissipated_energy(self) -> float:
         """Energy dissipated in the dashpot over the run (J)."""
         return float(self.energy_balance().dissipated[-1])
+
+
+def _orientation(el: object) -> float:
+    """+1 if the element's elongation is the mass's position (it starts at the ground), -1 if its negative."""
+    return 1.0 if el.between[0] == GROUND else -1.0  # type: ignore[attr-defined]
+
+
+def _rest_start(t: np.ndarray, v: np.ndarray) -> float:
+    """Start of the final run of ``v == 0`` on the saved points, ``nan`` if ``v[-1] != 0``."""
+    if v[-1] != 0.0:
+        return math.nan
+    moving = np.flatnonzero(v != 0.0)
+    return float(t[moving[-1] + 1]) if moving.size else float(t[0])
 
 
 def sign_changes(v: np.ndarray) -> int:

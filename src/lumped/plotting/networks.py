@@ -17,7 +17,7 @@ from matplotlib.colors import ListedColormap
 from matplotlib.figure import Figure
 
 from lumped.laws import BinghamDashpot, LockingBingham
-from lumped.model.network_trajectory import NetworkTrajectory
+from lumped.model.trajectory import Trajectory
 from lumped.plotting._base import legend_above, new_axes, styled
 
 __all__ = ["chain_positions", "locking_graph", "network_history", "network_panels", "stick_map"]
@@ -28,19 +28,20 @@ QUANTITY_LABELS = {"x": "position (m)", "v": "velocity (m/s)", "force": "force (
 _REFERENCE = {"color": "C3", "ls": "--", "lw": 1.2}
 
 
-def _series(tr: NetworkTrajectory, quantity: str, name: str) -> np.ndarray:
+def _series(tr: Trajectory, quantity: str, name: str) -> np.ndarray:
     """Column ``name`` (a mass for ``x``/``v``, an element for ``force``) of ``tr``."""
     names = tr.network.element_names if quantity == "force" else tr.network.mass_names
     if quantity not in QUANTITY_LABELS:
         raise ValueError(f"quantity must be one of {', '.join(QUANTITY_LABELS)}; got {quantity!r}")
     if name not in names:
         raise ValueError(f"{quantity}: no column {name!r}; expected one of {', '.join(names)}")
-    return getattr(tr, quantity)[:, names.index(name)]
+    arrays = {"x": tr.positions, "v": tr.velocities, "force": tr.forces}
+    return arrays[quantity][:, names.index(name)]
 
 
 @styled
 def network_history(
-    runs: Mapping[str, NetworkTrajectory],
+    runs: Mapping[str, Trajectory],
     quantity: str,
     name: str,
     references: Mapping[str, tuple[np.ndarray, np.ndarray]] | None = None,
@@ -52,7 +53,7 @@ def network_history(
 
     Parameters
     ----------
-    runs : mapping of label to NetworkTrajectory
+    runs : mapping of label to Trajectory
         Drawn solid, in the colour cycle, in order.
     quantity : {"x", "v", "force"}
         Position (m) or velocity (m/s) of the mass ``name``, or the tension
@@ -82,7 +83,7 @@ def network_history(
 
 @styled
 def network_panels(
-    runs: Mapping[str, NetworkTrajectory],
+    runs: Mapping[str, Trajectory],
     panels: Sequence[tuple[str, str]],
     references: Mapping[tuple[str, str], Mapping[str, tuple[np.ndarray, np.ndarray]]] | None = None,
     levels: Mapping[tuple[str, str], Mapping[str, float]] | None = None,
@@ -145,14 +146,14 @@ def locking_graph(law: LockingBingham, ax: Axes | None = None, f_max: float | No
 
 
 @styled
-def stick_map(tr: NetworkTrajectory, ax: Axes | None = None) -> Figure:
+def stick_map(tr: Trajectory, ax: Axes | None = None) -> Figure:
     """Space-time picture of a chain: which masses are still (``v == 0``) at each saved time.
 
     Rows are the masses in the network's order (the first at the bottom),
     columns the saved times; still masses are drawn light, moving ones dark.
     """
     fig, ax = new_axes(ax)
-    moving = (tr.v != 0).T.astype(float)
+    moving = (tr.velocities != 0).T.astype(float)
     dt_saved = tr.t[1] - tr.t[0] if tr.t.size > 1 else 1.0
     extent = (tr.t[0] - dt_saved / 2, tr.t[-1] + dt_saved / 2, -0.5, moving.shape[0] - 0.5)
     cmap = ListedColormap(["#e8eef5", "#1f4e79"])
@@ -165,16 +166,16 @@ def stick_map(tr: NetworkTrajectory, ax: Axes | None = None) -> Figure:
 
 
 @styled
-def chain_positions(tr: NetworkTrajectory, spacing: float | None = None, ax: Axes | None = None) -> Figure:
+def chain_positions(tr: Trajectory, spacing: float | None = None, ax: Axes | None = None) -> Figure:
     """Each mass's position against time, mass ``i`` drawn shifted up by ``i * spacing`` (m).
 
     ``spacing`` defaults to the largest displacement of any mass, so the curves
     do not cross.
     """
     fig, ax = new_axes(ax)
-    gap = spacing if spacing is not None else float(np.max(np.abs(tr.x))) or 1.0
-    for i in range(tr.x.shape[1]):
-        ax.plot(tr.t, tr.x[:, i] + i * gap, color=plt.cm.viridis(i / max(1, tr.x.shape[1] - 1)), lw=1.0)
+    gap = spacing if spacing is not None else float(np.max(np.abs(tr.positions))) or 1.0
+    for i in range(tr.positions.shape[1]):
+        ax.plot(tr.t, tr.positions[:, i] + i * gap, color=plt.cm.viridis(i / max(1, tr.positions.shape[1] - 1)), lw=1.0)
     ax.set_xlabel("time $t$ (s)")
     ax.set_ylabel(f"$x_i + {gap:.3g}\\,i$ (m)")
     return fig

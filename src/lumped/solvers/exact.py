@@ -184,13 +184,14 @@ class ExactSolution:
             index = np.append(index, n)
         times = index * dt
         sol = self.extended(float(times[-1]))
-        return Trajectory(
+        return Trajectory.of_oscillator(
             **sol.evaluate(times),
             oscillator=self.oscillator,
             method=self.method,
             dt=dt,
             save_every=save_every,
             final_rest=sol.rest_through(float(times[-1])),
+            events=tuple(e for e in sol.events if e.time <= times[-1]),
         )
 
 

@@ -1,0 +1,99 @@
+"""The output file: ``--output`` checked, written to a temporary file in its folder, then renamed.
+
+The temporary file is created before the run (so an unwritable folder is
+refused at once) and renamed when complete; every failure removes it.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import os
+import stat
+import tempfile
+from typing import BinaryIO
+
+import numpy as np
+
+from lumped.cli.signals import signals_blocked
+
+
+def check_output(path: str) -> str:
+    """Refuse an ``--output`` that cannot name the file to write, with the reason."""
+    name = os.path.basename(path)
+    if not path.strip():
+        raise ValueError("--output expects a file name, got an empty value")
+    if os.path.isdir(path) or not name:
+        raise ValueError(f"--output: {path!r} is a directory; name a .csv or .npz file")
+    if name.lower() in (".csv", ".npz"):
+        raise ValueError(f"--output: {path!r} has no file name before the suffix")
+    if os.path.splitext(name)[1].lower() not in (".csv", ".npz"):
+        raise ValueError(f"--output must end in .csv or .npz, got {path!r}")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise ValueError(f"--output: directory {folder!r} does not exist")
+    return path
+
+
+def _new_file_mode(path: str) -> int:
+    """Mode for the output: that of the file it replaces, else 0o666 less the umask."""
+    with contextlib.suppress(OSError):
+        return stat.S_IMODE(os.stat(path).st_mode)
+    umask = os.umask(0)  # reading the umask means setting it; put it back at once
+    os.umask(umask)
+    return 0o666 & ~umask
+
+
+class Output:
+    """The output file: a temporary file in the target folder, then a rename.
+
+    :meth:`create` makes the temporary file (before the run, so that a folder
+    that cannot be written is refused at once), :meth:`commit` fills and
+    renames it, :meth:`discard` removes it unless committed.  ``written`` tells
+    whether the rename happened.
+    """
+
+    def __init__(self, path: str) -> None:
+        self.path = path
+        self.tmp: str | None = None
+        self.written = False
+
+    def create(self) -> None:
+        """Create the temporary file with the final file's mode."""
+        folder = os.path.dirname(os.path.abspath(self.path))
+        try:
+            fd, self.tmp = tempfile.mkstemp(dir=folder, prefix=os.path.basename(self.path) + ".", suffix=".part")
+            try:
+                os.fchmod(fd, _new_file_mode(self.path))  # mkstemp's 0o600 ignores the umask
+            finally:
+                os.close(fd)
+        except OSError as err:
+            why = err.strerror or str(err)
+            raise ValueError(f"--output: cannot create a file in {folder!r}: {why}") from None
+
+    def commit(self, columns: dict[str, np.ndarray]) -> None:
+        """Write ``columns`` to the temporary file and rename it to the output."""
+        assert self.tmp is not None, "create() first"
+        try:
+            with open(self.tmp, "wb") as fh:
+                _dump(fh, columns, os.path.splitext(self.path)[1].lower())
+            with signals_blocked():
+                os.replace(self.tmp, self.path)
+                self.written = True
+        except OSError as err:
+            why = err.strerror or str(err)
+            raise ValueError(f"--output: cannot write {self.path!r}: {why}") from None
+
+    def discard(self) -> None:
+        """Remove the temporary file if it is still there."""
+        if self.tmp is not None and not self.written:
+            with contextlib.suppress(FileNotFoundError):
+                os.unlink(self.tmp)
+
+
+def _dump(fh: BinaryIO, columns: dict[str, np.ndarray], suffix: str) -> None:
+    """Write the columns as ``.npz`` arrays or as ``.csv`` with a header line."""
+    if suffix == ".npz":
+        np.savez(fh, **columns)
+    else:
+        data = np.column_stack(list(columns.values()))
+        np.savetxt(fh, data, fmt="%.17g", delimiter=",", header=",".join(columns), comments="")

@@ -1,0 +1,96 @@
+"""``python -m lumped simulate``: one motion of the single mass (or of a ``--system`` file), written to a file."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from typing import TYPE_CHECKING
+
+from lumped.cli import system
+from lumped.cli.options import HelpFormatter, add_method_options, check_method, method_options
+from lumped.cli.output import Output, check_output
+from lumped.drivers.methods import METHODS, OPTIONS
+from lumped.model.parameters import PARAMETERS
+from lumped.numerics import validate
+
+if TYPE_CHECKING:
+    from lumped.model.trajectory import Trajectory
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    """The ``simulate`` subcommand: the parameters, ``--system``, ``--method`` and its options, ``--output``."""
+    sim = sub.add_parser(
+        "simulate",
+        help="integrate one motion and write it to a file",
+        description="Integrate one motion and write it to a .csv or .npz file.",
+        allow_abbrev=False,
+        formatter_class=HelpFormatter,
+    )
+    for p in PARAMETERS.values():
+        sim.add_argument(p.option, default=p.default_text, help=f"{p.help} [default: {p.default_text}]")
+    sim.add_argument(
+        "--system",
+        default=None,
+        metavar="FILE.toml",
+        help="a network of masses and elements described in a TOML file (see "
+        "book/guide/systems.md, example examples/figure3.toml); only --t-end, --dt, --save-every, --method, "
+        f"{', '.join(o.flag for o, _ in OPTIONS.values())}, --output go with it "
+        f"(a method other than {', '.join(n for n, m in METHODS.items() if m.runs_networks)} needs one mass)",
+    )
+    add_method_options(sim)
+    required = sim.add_argument_group("required arguments")
+    required.add_argument("--output", required=True, help="output file, .csv or .npz")
+
+
+def run(args: argparse.Namespace, output: Output) -> str:
+    """Validate, reserve the output file, run, write; returns the summary."""
+    if args.system is not None:
+        return system.run(args, output)
+    values = _clean(args)
+    output.create()
+    traj = _compute(values, args.method)
+    output.commit(traj.columns())
+    return _summary(traj)
+
+
+def _clean(args: argparse.Namespace) -> dict[str, object]:
+    """Parse and validate every option; the messages use the API's names."""
+    values: dict[str, object] = {}
+    for name, p in PARAMETERS.items():
+        parse = validate.parse_int if p.integer else validate.parse_float
+        values[name] = p.check(name, parse(name, getattr(args, name)))
+    check_method(args.method)
+    values["options"] = method_options(args)
+    check_output(args.output)
+    n = validate.step_count(values["t_end"], values["dt"])  # type: ignore[arg-type]
+    validate.output_size(n, values["save_every"])  # type: ignore[arg-type]
+    return values
+
+
+def _compute(values: dict[str, object], method: str) -> Trajectory:
+    """Run ``method`` through the driver :func:`lumped.drivers.simulation.simulate`."""
+    from lumped.drivers.simulation import simulate
+    from lumped.model.forcing import SwitchedSine
+    from lumped.model.oscillator import Oscillator
+
+    v = values
+    osc = Oscillator.bingham(v["mass"], v["stiffness"], v["threshold"], v["gamma"])  # type: ignore[arg-type]
+    force = SwitchedSine(v["force_amplitude"], v["force_omega"], v["force_phase"], v["force_until"])  # type: ignore[arg-type]
+    return simulate(
+        osc,
+        v["t_end"],
+        v["dt"],
+        x0=v["x0"],
+        v0=v["v0"],  # type: ignore[arg-type]
+        force=None if force.is_zero else force,
+        method=method,
+        save_every=v["save_every"],
+        **v["options"],  # type: ignore[arg-type]
+    )  # type: ignore[arg-type]
+
+
+def _summary(traj: Trajectory) -> str:
+    """Rest time and position as the method found them, or the last state."""
+    if math.isnan(traj.rest_time):
+        return f"still moving at t = {traj.t[-1]:.6g} s (x = {traj.x[-1]:.9g} m)"
+    return f"at rest from t = {traj.rest_time:.10g} s at x = {traj.rest_position:.10g} m"

@@ -1,0 +1,102 @@
+"""``python -m lumped simulate --system FILE.toml``: a network read from a system file, run and written.
+
+A one-mass file may be run by any method through the single-mass API; its
+errors then name the file's entry and key, not an option (:func:`_system_message`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+
+from lumped.cli.messages import LEADING_NAME
+from lumped.cli.options import check_method, method_options
+from lumped.cli.output import Output, check_output
+from lumped.drivers.methods import METHODS
+from lumped.model.parameters import PARAMETERS
+from lumped.numerics import validate
+
+
+def run(args: argparse.Namespace, output: Output) -> str:
+    """``--system``: read the file, reserve the output, run the network, write; returns the summary."""
+    from lumped.drivers.simulation import solve
+    from lumped.model.problem import Problem
+    from lumped.model.files import load_system
+
+    values = _grid(args)
+    check_method(args.method)
+    options = method_options(args)
+    check_output(args.output)
+    network = load_system(args.system)
+    if not METHODS[args.method].runs_networks:
+        _one_mass(network, args)
+    output.create()
+    try:
+        problem = Problem(network, values["t_end"])
+        traj = solve(problem, values["dt"], method=args.method, save_every=values["save_every"], **options)
+    except ValueError as err:
+        raise ValueError(_system_message(str(err), args.system, network)) from None
+    output.commit(traj.system_columns(os.path.splitext(args.output)[1].lower()))
+    return traj.summary()
+
+
+def _grid(args: argparse.Namespace) -> dict[str, float]:
+    """``--t-end``, ``--dt`` and ``--save-every``, the options that go with ``--system``, checked."""
+    return {
+        name: PARAMETERS[name].check(name, parse(name, getattr(args, name)))
+        for name, parse in (
+            ("t_end", validate.parse_float),
+            ("dt", validate.parse_float),
+            ("save_every", validate.parse_int),
+        )
+    }
+
+
+#: The single-mass API's parameter names -> (table, key) of a one-mass system file.
+_SYSTEM_ENTRIES = {
+    "mass": ("mass", "mass"),
+    "x0": ("mass", "x0"),
+    "v0": ("mass", "v0"),
+    "stiffness": ("element", "stiffness"),
+    "threshold": ("element", "threshold"),
+    "gamma": ("element", "gamma"),
+    "force_amplitude": ("force", "amplitude"),
+    "force_omega": ("force", "omega"),
+    "force_phase": ("force", "phase"),
+    "force_until": ("force", "until"),
+}
+
+
+def _system_message(message: str, path: str, network: object) -> str:
+    """A run's error in the words of the system file: the entry and key for a single-mass parameter.
+
+    The runs of a one-mass file go through the single-mass API, whose messages
+    begin with its parameter's name (``x0: ...``); ``--x0`` is not an option
+    here, so the file, the entry and its key are named instead.
+    """
+    lead = LEADING_NAME.match(message)
+    if lead is None or lead.group(1) not in _SYSTEM_ENTRIES:
+        return message
+    table, key = _SYSTEM_ENTRIES[lead.group(1)]
+    entries = {
+        "mass": [repr(m.name) for m in network.masses],  # type: ignore[attr-defined]
+        "element": [repr(e.name) for e in network.elements if hasattr(e, key)],  # type: ignore[attr-defined]
+        "force": [f"on {f.on!r}" for f in network.loads],  # type: ignore[attr-defined]
+    }[table]
+    where = " ".join([f"[[{table}]]", ", ".join(entries), key]).replace("  ", " ")
+    return f"system file {path!r}: {where}{message[lead.end() :]}"
+
+
+def _one_mass(network: object, args: argparse.Namespace) -> None:
+    """Refuse a network that the single-mass ``--method`` cannot run (not one mass, or a law
+    the method does not take), naming the file."""
+    from lumped.model.problem import one_mass_form
+
+    try:
+        form = one_mass_form(network)  # type: ignore[arg-type]
+    except ValueError as err:
+        where = f"{args.system} {err}" if str(err).startswith("has ") else f"{args.system}: {err}"
+        raise ValueError(f"--method {args.method} needs a one-mass system; {where}") from None
+    reason = METHODS[args.method].refusal(form.oscillator)
+    if reason is not None:
+        raise ValueError(f"{reason} ({args.system})")

@@ -1,0 +1,225 @@
+/* The one-step problem of a network whose link graph is a forest, solved by
+ * elimination: the modes of the elements (which piece of its step graph each
+ * is on) found by the active-set iteration of lumped.solvers.network_step
+ * (step._iterate at the scales step.SIGMA_SCALES, then step._dual_sweeps;
+ * read its docstring first), and for fixed modes the linear solve.
+ *
+ * Points are the masses and the ground; a *link* joins a point to its parent
+ * in a spanning forest and carries every element between the two (parallel
+ * elements).  Leaf to root, a free link adds its conductance K = sum b and
+ * its load A = sum s a to the parent; a rigid link (one element on a rigid
+ * piece: sticking, taut, locked) merges the child into the parent with the
+ * fixed rate offset o, v_child = v_parent + o (exactly v_parent for a
+ * sticking element).  Root to leaf, the velocities follow, then each free
+ * force f = a + b w and each rigid force from the momentum balance of its
+ * child's subtree.  O(points + elements) per solve, no fill-in; every pivot
+ * D + K is positive (masses > 0, b >= 0).
+ *
+ * Holds net_t (the network's topology and the work arrays of one solve),
+ * allocate and deallocate (those arrays) and solve (one step problem from
+ * the warm start in q->mode).  Included by _network_kernel.c (the marching
+ * loop and its binding); the elements' step graphs are _network_elements.h. */
+#ifndef LUMPED_NETWORK_FOREST_H
+#define LUMPED_NETWORK_FOREST_H
+
+#include <Python.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "_network_elements.h" /* piece, MAX_PIECES, mode_of */
+
+static const double SCALES[] = {1.0, 0.25, 4.0, 1.0 / 16, 16.0}; /* step.SIGMA_SCALES */
+static const int SWEEPS[] = {10, 100, 1000};
+
+/* The network: topology (read only), then the work arrays of one solve. */
+typedef struct {
+    Py_ssize_t n_mass, n_el, n_pt;
+    const int64_t *kind, *first, *second, *order, *parent, *link_start, *link_el, *load_mass;
+    const double *par, *sign, *inertia, *sigma;
+    Py_ssize_t n_load;
+    double dt;
+    piece *graph;     /* n_el * MAX_PIECES */
+    int *count;       /* pieces per element */
+    int *mode, *guess, *next;
+    int64_t *rig;     /* per point: the rigid element of its link, or -1 */
+    double *D, *R, *num, *den, *K, *A, *off, *vall, *w, *f, *rhs, *z;
+    uint64_t *seen;
+    int bound;
+} net_t;
+
+/* q's work arrays for n_mass masses and n_el elements: 0, or -1 if memory ran
+ * out (deallocate frees what was taken either way). */
+static int allocate(net_t *q, Py_ssize_t n_mass, Py_ssize_t n_el) {
+    const Py_ssize_t n_pt = n_mass + 1;
+    q->n_mass = n_mass, q->n_el = n_el, q->n_pt = n_pt;
+    q->bound = 20 + 2 * (int)n_el;
+    q->graph = malloc((n_el * MAX_PIECES + 1) * sizeof(piece));
+    q->count = malloc((4 * n_el + 1) * sizeof(int));
+    q->rig = malloc(n_pt * sizeof(int64_t));
+    q->D = malloc((9 * n_pt + 3 * n_el) * sizeof(double));
+    q->seen = malloc(q->bound * sizeof(uint64_t));
+    if (!q->graph || !q->count || !q->rig || !q->D || !q->seen) return -1;
+    q->mode = q->count + n_el, q->guess = q->mode + n_el, q->next = q->guess + n_el;
+    q->R = q->D + n_pt, q->num = q->R + n_pt, q->den = q->num + n_pt, q->K = q->den + n_pt;
+    q->A = q->K + n_pt, q->off = q->A + n_pt, q->vall = q->off + n_pt, q->rhs = q->vall + n_pt;
+    q->w = q->rhs + n_pt, q->f = q->w + n_el, q->z = q->f + n_el;
+    return 0;
+}
+
+static void deallocate(net_t *q) {
+    free(q->graph), free(q->count), free(q->rig), free(q->D), free(q->seen);
+}
+
+static const piece *chosen(const net_t *q, Py_ssize_t e, const int *mode) {
+    return q->graph + e * MAX_PIECES + mode[e];
+}
+
+/* Leaf to root: fold each point's subtree into its parent. */
+static void eliminate(net_t *q, const int *mode) {
+    for (Py_ssize_t i = 0; i < q->n_pt; i++) {
+        q->D[i] = i < q->n_mass ? q->inertia[i] : 0.0;
+        q->R[i] = i < q->n_mass ? q->rhs[i] : 0.0;
+    }
+    for (Py_ssize_t idx = q->n_pt - 1; idx >= 0; idx--) {
+        const int64_t c = q->order[idx], p = q->parent[c];
+        if (p < 0) continue;
+        int64_t r = -1;
+        double num = q->R[c], den = q->D[c], K = 0.0, A = 0.0;
+        for (int64_t k = q->link_start[c]; k < q->link_start[c + 1]; k++) {
+            const int64_t e = q->link_el[k];
+            const piece *pc = chosen(q, e, mode);
+            if (pc->rigid) {
+                r = e;
+                continue;
+            }
+            num -= q->sign[e] * pc->a;
+            A += q->sign[e] * pc->a;
+            den += pc->b;
+            K += pc->b;
+        }
+        q->rig[c] = r;
+        if (r >= 0) {
+            const double o = q->sign[r] * chosen(q, r, mode)->a;
+            q->off[c] = o;
+            q->R[p] += q->R[c] - q->D[c] * o;
+            q->D[p] += q->D[c];
+        } else {
+            q->num[c] = num, q->den[c] = den, q->K[c] = K, q->A[c] = A;
+            q->R[p] += A + K * num / den;
+            q->D[p] += K * q->D[c] / den;
+        }
+    }
+}
+
+/* The force of a rigid link's rigid element: the subtree's momentum balance
+ * gives the link's tension T, less the parallel free elements' share. */
+static void rigid_force(net_t *q, int64_t c, const int *mode) {
+    const int64_t r = q->rig[c];
+    double free = 0.0;
+    for (int64_t k = q->link_start[c]; k < q->link_start[c + 1]; k++) {
+        const int64_t e = q->link_el[k];
+        if (e != r) free += q->sign[e] * q->f[e];
+    }
+    q->f[r] = q->sign[r] * ((q->R[c] - q->D[c] * q->vall[c]) - free);
+    q->w[r] = chosen(q, r, mode)->a;
+}
+
+/* Root to leaf: velocities, then every element's rate and force. */
+static void substitute(net_t *q, const int *mode) {
+    const Py_ssize_t ground = q->n_mass;
+    for (Py_ssize_t idx = 0; idx < q->n_pt; idx++) {
+        const int64_t c = q->order[idx], p = q->parent[c];
+        if (p < 0)
+            q->vall[c] = c == ground ? 0.0 : q->R[c] / q->D[c];
+        else if (q->rig[c] >= 0)
+            q->vall[c] = q->vall[p] + q->off[c];
+        else
+            q->vall[c] = (q->num[c] + q->K[c] * q->vall[p]) / q->den[c];
+    }
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        const piece *pc = chosen(q, e, mode);
+        if (pc->rigid) continue;
+        q->w[e] = q->vall[q->second[e]] - q->vall[q->first[e]];
+        q->f[e] = pc->a + pc->b * q->w[e];
+    }
+    for (Py_ssize_t c = 0; c < q->n_pt; c++)
+        if (q->parent[c] >= 0 && q->rig[c] >= 0) rigid_force(q, c, mode);
+}
+
+static uint64_t hash_modes(const int *m, Py_ssize_t n) {
+    uint64_t h = 1469598103934665603ULL; /* FNV-1a */
+    for (Py_ssize_t i = 0; i < n; i++) {
+        h ^= (uint64_t)(m[i] + 1);
+        h *= 1099511628211ULL;
+    }
+    return h;
+}
+
+/* step._iterate at one scale: 1 if settled (mode holds the modes), 0 if it
+ * cycles or reaches the bound.  A cycle is a repeated hash of the mode
+ * vector: a collision (odds 2^-64) only costs a restart at the next scale. */
+static int iterate(net_t *q, double scale, int *iterations) {
+    int seen = 0;
+    for (int it = 1; it <= q->bound; it++) {
+        eliminate(q, q->mode);
+        substitute(q, q->mode);
+        int settled = 1;
+        for (Py_ssize_t e = 0; e < q->n_el; e++) {
+            const double s = q->sigma[e] * scale;
+            q->next[e] = mode_of(q->graph + e * MAX_PIECES, q->count[e], q->f[e] + s * q->w[e], s);
+            settled &= q->next[e] == q->mode[e];
+        }
+        if (settled) {
+            *iterations = it;
+            return 1;
+        }
+        const uint64_t h = hash_modes(q->next, q->n_el);
+        for (int j = 0; j < seen; j++)
+            if (q->seen[j] == h) return 0;
+        q->seen[seen++] = h;
+        memcpy(q->mode, q->next, q->n_el * sizeof(int));
+    }
+    return 0;
+}
+
+/* step._dual_sweeps: modes from Gauss-Seidel on the dual (into q->guess). */
+static void dual_sweeps(net_t *q, int sweeps) {
+    double *inv = q->D, *v = q->vall, *f = q->z; /* scratch */
+    for (Py_ssize_t i = 0; i < q->n_pt; i++) {
+        inv[i] = i < q->n_mass ? 1.0 / q->inertia[i] : 0.0;
+        v[i] = i < q->n_mass ? q->rhs[i] * inv[i] : 0.0;
+    }
+    for (Py_ssize_t e = 0; e < q->n_el; e++) f[e] = 0.0, q->guess[e] = q->count[e] / 2;
+    for (int s = 0; s < sweeps; s++) {
+        for (Py_ssize_t e = 0; e < q->n_el; e++) {
+            const int64_t i = q->first[e], j = q->second[e];
+            const double sigma = 1.0 / (inv[i] + inv[j]);
+            const double z = f[e] + sigma * (v[j] - v[i]);
+            const int k = q->guess[e] = mode_of(q->graph + e * MAX_PIECES, q->count[e], z, sigma);
+            const piece *p = q->graph + e * MAX_PIECES + k;
+            const double fresh = p->rigid ? z - sigma * p->a : p->a + p->b * (z - p->a) / (p->b + sigma);
+            const double delta = fresh - f[e];
+            f[e] = fresh;
+            v[j] -= delta * inv[j];
+            v[i] += delta * inv[i];
+            v[q->n_mass] = 0.0;
+        }
+    }
+}
+
+/* step.solve_step from the warm start in q->mode: 1 if settled. */
+static int solve(net_t *q, int *iterations) {
+    memcpy(q->guess, q->mode, q->n_el * sizeof(int));
+    for (int s = 0; s < 5; s++) {
+        memcpy(q->mode, q->guess, q->n_el * sizeof(int));
+        if (iterate(q, SCALES[s], iterations)) return 1;
+    }
+    for (int s = 0; s < 3; s++) {
+        dual_sweeps(q, SWEEPS[s]);
+        memcpy(q->mode, q->guess, q->n_el * sizeof(int));
+        if (iterate(q, 1.0, iterations)) return 1;
+    }
+    return 0;
+}
+#endif

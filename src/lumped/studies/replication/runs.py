@@ -1,0 +1,165 @@
+"""The runs behind the article's numbers: the original's four runs summarised, and the convergence study.
+
+* :func:`paper_run`: one run of the original's section 3, by the exact
+  solution and by Algorithm 1 at the configured and at the original's step,
+  with their differences;
+* :func:`eq19`: Figure 5's run against eq. (19);
+* :func:`convergence`: the differences for each step of
+  :data:`CONVERGENCE_STEPS`, their fitted orders, and how each run ends.
+
+A run not at rest by its end time has :data:`STILL_MOVING` as rest time and
+position.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from lumped.model.trajectory import Trajectory, sign_changes
+from lumped.solvers.exact import ExactSolution
+from lumped.studies import examples
+
+__all__ = [
+    "CONVERGENCE_STEPS",
+    "CURVES",
+    "ORIGINAL_DT",
+    "QUANTITIES",
+    "STILL_MOVING",
+    "convergence",
+    "eq19",
+    "paper_run",
+    "same_side",
+]
+
+#: The original's step (s).
+ORIGINAL_DT = examples.ORIGINAL_DT
+#: Steps of the convergence study (s); the original's is 1e-4.
+CONVERGENCE_STEPS = (1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5, 1e-5)
+#: Rest time and rest position of a run still moving at its end time.
+STILL_MOVING = "still moving"
+#: The quantity each time-history figure shows, per run.
+CURVES = {"forced_large": (6, 7, 8, 9), "free_large": (11, 12, 13, 14)}
+QUANTITIES = ("x", "v", "F_s", "F_d")
+
+
+def _rest(value: float) -> float | str:
+    """A rest time or position, or STILL_MOVING where the trajectory gives ``nan``."""
+    return STILL_MOVING if math.isnan(value) else value
+
+
+def _deviation(be: Trajectory, ref: Trajectory) -> dict[str, float]:
+    """Largest absolute differences over the run, column by column.
+
+    ``int_F_d`` is the time integral of ``|F_d - F_d,exact|`` (N s): the
+    largest difference in ``F_d`` is the jump ``2 mu_s N_f`` seen at a grid
+    point between a reversal of the exact motion and that of Algorithm 1, so
+    it does not shrink with the step, while the integral does.
+    """
+    out = {f"max_{c}": float(np.max(np.abs(getattr(be, c) - getattr(ref, c)))) for c in QUANTITIES}
+    out["int_F_d"] = float(np.sum(np.abs(be.F_d - ref.F_d)[1:]) * be.dt)
+    out["rest_position"] = abs(be.rest_position - ref.rest_position)
+    out["rest_time"] = abs(be.rest_time - ref.rest_time)
+    return out
+
+
+def _exact_summary(ex: ExactSolution, sampled: Trajectory) -> dict[str, Any]:
+    kinds = [e.kind for e in ex.events]
+    moving = [e for e in ex.events if e.kind in ("breakaway", "reversal", "stop")]
+    return {
+        "rest_time": _rest(ex.rest_time),
+        "rest_position": _rest(ex.rest_position),
+        "reversals": kinds.count("reversal"),
+        "breakaways": kinds.count("breakaway"),
+        "first_event_time": moving[0].time if moving else math.nan,
+        "reversal_times": [e.time for e in ex.events if e.kind == "reversal"],
+        "reversal_positions": [e.x for e in ex.events if e.kind == "reversal"],
+        "peak_x": float(np.max(np.abs(sampled.x))),
+        "peak_v": float(np.max(np.abs(sampled.v))),
+        "int_abs_F_d": float(np.sum(np.abs(sampled.F_d)[1:]) * sampled.dt),
+    }
+
+
+def _be_summary(be: Trajectory) -> dict[str, Any]:
+    return {
+        "dt": be.dt,
+        "rest_time": _rest(be.rest_time),
+        "rest_position": _rest(be.rest_position),
+        "peak_x": float(np.max(np.abs(be.x))),
+        "peak_v": float(np.max(np.abs(be.v))),
+        "min_F_d": float(np.min(be.F_d)),
+        "max_F_d": float(np.max(be.F_d)),
+        "stick_fraction": float(np.mean(be.v == 0.0)),
+        "reversals": sign_changes(be.v),
+        "energy_residual": float(np.max(np.abs(be.energy_balance().residual))),
+        "steps": int(be.t.size - 1),
+    }
+
+
+def paper_run(run: examples.Example) -> dict[str, Any]:
+    """Exact solution, and Algorithm 1 at the configured and the original's step."""
+    exact = run.exact()
+    out: dict[str, Any] = {"exact": _exact_summary(exact, exact.sample(run.dt))}
+    for suffix, dt in (("", run.dt), ("_original", ORIGINAL_DT)):
+        be = run.algorithm1(dt)
+        out["be" + suffix], out["error" + suffix] = _be_summary(be), _deviation(be, exact.sample(dt))
+    return out
+
+
+def eq19(run: examples.Example, dt: float) -> dict[str, float]:
+    """Figure 5 against eq. (19): F_d = F_1, and x = v = F_s = 0."""
+    be = run.algorithm1(dt)
+    return {
+        "max_F1": float(np.max(np.abs(be.F))),
+        "eq19_max_F_d": float(np.max(np.abs(be.F_d - be.F))),
+        "eq19_max_x": float(np.max(np.abs(be.x))),
+        "eq19_max_v": float(np.max(np.abs(be.v))),
+        "eq19_max_F_s": float(np.max(np.abs(be.F_s))),
+    }
+
+
+# ------------------------------------------------------------------ convergence
+def _order(steps: list[float], errors: list[float]) -> float:
+    """Least-squares slope of log(error) against log(step); ``nan`` unless every error is > 0."""
+    if not all(e > 0 and math.isfinite(e) for e in errors):
+        return math.nan  # a zero error (exact at that step) or a run still moving
+    return float(np.polyfit(np.log(steps), np.log(errors), 1)[0])
+
+
+def convergence(runs: dict[str, examples.Example]) -> tuple[dict[str, Any], dict[str, Any]]:
+    """Differences from the exact solution for each step, and how each run ends."""
+    steps = list(CONVERGENCE_STEPS)
+    table: dict[str, Any] = {"steps": steps}
+    ends: dict[str, Any] = {"steps": steps}
+    for name in CURVES:
+        exact = runs[name].exact()
+        trajectories = [runs[name].algorithm1(dt) for dt in steps]
+        rows = [_deviation(be, exact.sample(be.dt)) for be in trajectories]
+        table[name] = {key: [r[key] for r in rows] for key in rows[0]}
+        for col, key in (("x", "max_x"), ("v", "max_v"), ("int_F_d", "int_F_d")):
+            table[name][f"order_{col}"] = _order(steps, table[name][key])
+        ends[name] = _ends(trajectories, exact)
+    return table, ends
+
+
+def _ends(trajectories: list[Trajectory], exact: ExactSolution) -> dict[str, Any]:
+    """Rest position and reversals of each run, and the steps at which it ends differently."""
+    n_exact = [e.kind for e in exact.events].count("reversal")
+    same = [same_side(be.rest_position, exact.rest_position) for be in trajectories]
+    reversals = [sign_changes(be.v) for be in trajectories]
+    return {
+        "rest_position": [_rest(be.rest_position) for be in trajectories],
+        "reversals": reversals,
+        "same_side": same,
+        "fewer_reversals": [be.dt for be, n in zip(trajectories, reversals) if n < n_exact],
+        "other_side": [be.dt for be, s in zip(trajectories, same) if s is False],
+    }
+
+
+def same_side(x: float, x_exact: float) -> bool | None:
+    """Whether two rest positions lie on the same side of zero; ``None`` if either is missing."""
+    if math.isnan(x) or math.isnan(x_exact):
+        return None
+    return bool(np.sign(x) == np.sign(x_exact))
