@@ -110,7 +110,7 @@ def test_the_graph_is_read():
     """The reader finds imports of every kind: module level, lazy and relative (a test that cannot fail is none)."""
     assert "lumped.drivers.sweep" in GRAPH["lumped.cli.sweep"]  # lazy, inside a function
     assert "lumped.drivers.methods" in GRAPH["lumped.cli.options"]  # module level
-    assert "lumped.laws.elements" in GRAPH["lumped.laws"]  # a package's __init__
+    assert "lumped.laws.element" in GRAPH["lumped.laws"]  # a package's __init__
     assert "lumped.model.parameters" in GRAPH["lumped.drivers.sweep.grid"]  # from lumped.model import parameters
     assert _circles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
 

@@ -1,7 +1,7 @@
 """Installing the package: where ``lumped.studies.config.load()`` finds the paper's values.
 
 ``config/config.yaml`` is the one file holding them; ``setup.py`` copies it into
-the built package (``lumped/paper_config.yaml``), so that a plain ``pip install
+the built package (``lumped/studies/paper_config.yaml``), so that a plain ``pip install
 .`` works away from the checkout.  The fast tests check the order ``load()``
 follows in this checkout.  The one marked ``slow`` builds a wheel from a copy
 of the tracked files, installs it into a folder of its own and runs it from
@@ -66,9 +66,9 @@ def test_a_named_file_that_is_missing_is_an_error_not_a_fallback(tmp_path, monke
 
 def test_no_configuration_anywhere_is_one_line(tmp_path, monkeypatch, no_env):
     # the package seen as installed outside any src/ folder, without its packaged copy
-    # (an editable install imports from src/lumped, which holds no paper_config.yaml)
-    assert not (ROOT / "src" / "lumped" / lumped.studies.config.PACKAGED_CONFIG).exists()
-    monkeypatch.setattr(lumped.studies.config, "__file__", str(tmp_path / "site" / "lumped" / "config.py"))
+    # (an editable install imports from src/lumped, whose studies/ holds no paper_config.yaml)
+    assert not (ROOT / "src" / "lumped" / "studies" / lumped.studies.config.PACKAGED_CONFIG).exists()
+    monkeypatch.setattr(lumped.studies.config, "__file__", str(tmp_path / "site" / "lumped" / "studies" / "config.py"))
     with pytest.raises(ValueError, match=r"^config: no configuration found \(.*\); pass a path or set LUMPED_CONFIG$"):
         lumped.studies.config.load()
 
@@ -105,7 +105,7 @@ def test_a_built_wheel_works_away_from_the_checkout(tmp_path):
     (wheel,) = (tmp_path / "wheel").glob("lumped-*.whl")
     site = tmp_path / "site"
     _pip("install", "--no-deps", "--target", str(site), str(wheel))
-    assert (site / "lumped" / "paper_config.yaml").read_bytes() == PAPER.read_bytes()
+    assert (site / "lumped" / "studies" / "paper_config.yaml").read_bytes() == PAPER.read_bytes()
 
     work = tmp_path / "work"
     _decoy(work, mass=7.0)  # an unrelated project's file in the current folder: not read

@@ -1,8 +1,9 @@
 """The table of the single-mass parameters (issue 20, item 5) and its readers agree.
 
 ``lumped.model.parameters.PARAMETERS`` is read by the command line, the sweep and the
-configuration's schema; the constructors of ``laws.py`` and ``system.py`` keep
-their own defaults for now, held here to the table's.
+configuration's schema and the oscillator's constructors (``Oscillator``,
+``Oscillator.bingham``).  The laws sit a layer below the table and keep their own
+defaults (a law is defined before any system); they are held here to the table's.
 """
 
 from __future__ import annotations
@@ -19,7 +20,7 @@ import yaml
 import lumped.studies.config
 from lumped.cli import build_parser
 from lumped.drivers import sweep
-from lumped.laws import BinghamDashpot
+from lumped.laws import BinghamDashpot, LinearSpring
 from lumped.model.oscillator import Oscillator
 from lumped.model.parameters import PARAMETERS, PER_ROW, shown
 from lumped.numerics import validate
@@ -47,6 +48,18 @@ def test_oscillator_bingham_defaults_are_the_tables():
     defaults = {n: p.default for n, p in inspect.signature(Oscillator.bingham).parameters.items() if n != "cls"}
     assert defaults == {name: PARAMETERS[name].default for name in defaults}
     assert set(defaults) == {"mass", "stiffness", "threshold", "gamma"}
+
+
+def test_the_default_oscillator_is_the_tables():
+    assert (
+        Oscillator()
+        == Oscillator.bingham()
+        == Oscillator(
+            PARAMETERS["mass"].default,
+            LinearSpring(PARAMETERS["stiffness"].default),
+            BinghamDashpot(PARAMETERS["threshold"].default, PARAMETERS["gamma"].default),
+        )
+    )
 
 
 def test_bingham_dashpot_defaults_are_the_tables():

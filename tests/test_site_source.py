@@ -75,7 +75,7 @@ def test_a_sentence_does_not_end_at_an_equation_number():
         ("README.md", "see [`figures/README.md`](figures/README.md)", "see [`figures/README.md`](figures/index.md)"),
         ("README.md", "the [article](paper/README.md#build)", "the [article](article.md)"),
         ("paper/README.md", "[figures](../figures/README.md)", "[figures](figures/index.md)"),
-        ("README.md", "[setup.py](setup.py) and [x](src/lumped/laws/dashpots.py)", "setup.py and x"),
+        ("README.md", "[setup.py](setup.py) and [x](src/lumped/laws/contract.py)", "setup.py and x"),
         ("README.md", "[home](https://example.org/lumped)", "[home](https://example.org/lumped)"),
         ("README.md", "[below](#the-package)", "[below](#the-package)"),
         ("README.md", "[`book/guide/cli.md`](book/guide/cli.md)", "[`book/guide/cli.md`](guide/cli.md)"),

@@ -15,7 +15,7 @@ import pytest
 import lumped as L
 from lumped import Bingham, Mass, MaxwellBingham, Network, Spring, simulate_network
 from lumped.cli import main
-from lumped.laws.elements import MAX_NAME_LENGTH
+from lumped.laws.element import MAX_NAME_LENGTH
 from lumped.model.files import MAX_FILE_BYTES, load_system, parse_system
 from lumped.model.network import MAX_ELEMENTS, MAX_MASSES
 

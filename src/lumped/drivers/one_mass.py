@@ -12,7 +12,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from lumped.laws.elements import GROUND, Element
+from lumped.laws.element import GROUND, Element
 from lumped.model.network import Network
 from lumped.model.problem import OneMass
 from lumped.model.trajectory import Trajectory

@@ -1,5 +1,5 @@
 /* The elements of a network as the compiled step reads them: their kind codes
- * (SPRING .. LOCKING, the codes of lumped.laws.elements), the pieces of a
+ * (SPRING .. LOCKING, the codes of the element modules of lumped.laws), the pieces of a
  * step graph (piece: free, f = a + b w on lo <= w <= hi, or rigid, w = a for
  * lo <= f <= hi), each kind's step graph (Element.step_graph), its state
  * update (Element.next_state) and the mode test (step._mode: which piece

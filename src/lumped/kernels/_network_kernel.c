@@ -5,7 +5,7 @@
  * The one-step problem, its modes, its mode test and its cycle handling are
  * those of lumped.solvers.network_step (read its docstring first), solved by
  * elimination on the forest (_network_forest.h); the element step graphs and
- * state updates are those of lumped.laws.elements, repeated by kind code
+ * state updates are those of lumped.laws.*_elements, repeated by kind code
  * (_network_elements.h).  Change both together: tests/test_network_kernel.py
  * compares this loop with the Python step.  What differs is the linear solve
  * with the modes fixed.

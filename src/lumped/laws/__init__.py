@@ -1,47 +1,41 @@
 """Layer 1, the constitutive laws: what each element of a system says about its force and its motion.
 
-* :mod:`~lumped.laws.dashpots`: the dashpot contract :class:`Dashpot` (the
-  only way a solver asks a law anything), the linear spring, the Bingham law
-  with Algorithm 1's stick test and corrector, and the monotone laws
-  (Herschel-Bulkley and any ``w = phi(f)``);
+Dashpot laws, each a graph ``v = phi(F_d)`` and its implicit step:
+
+* :mod:`~lumped.laws.contract`: the dashpot contract :class:`Dashpot` (the
+  only way a solver asks a law anything), the values its step returns and
+  the linear spring;
+* :mod:`~lumped.laws.bingham`: the Bingham law with Algorithm 1's stick test
+  and corrector, and Coulomb friction;
+* :mod:`~lumped.laws.monotone`: the monotone laws (any ``w = phi(f)``, and
+  Herschel-Bulkley), solved by Brent's method through
+  :mod:`~lumped.laws.monotone_graph`;
 * :mod:`~lumped.laws.regularised`: the Papanastasiou law, a new law in one
-  file that no solver names;
-* :mod:`~lumped.laws.elements`: the element kinds of a network, each a
-  constitutive graph between its force and its elongation.
+  file that no solver names.
+
+Elements of a network, each a constitutive graph between its force and its
+elongation:
+
+* :mod:`~lumped.laws.element`: the element contract :class:`Element`;
+* :mod:`~lumped.laws.step_graph`: how one backward-Euler step sees an
+  element (:class:`Piece`, the graph contract :class:`StepGraph`);
+* :mod:`~lumped.laws.spring_elements` and
+  :mod:`~lumped.laws.dashpot_elements`: the kinds, listed by name in
+  :mod:`~lumped.laws.kinds`.
 
 Nothing here imports a solver, a driver or the model above it.
 """
 
-from lumped.laws.dashpots import (
-    MONOTONE_SAMPLE,
-    BinghamDashpot,
-    BinghamForm,
-    Dashpot,
-    DashpotState,
-    HerschelBulkleyDashpot,
-    LinearSpring,
-    MonotoneDashpot,
-    StepBound,
-    bingham_corrector,
-    coulomb,
-    sticks,
-)
-from lumped.laws.elements import (
-    GROUND,
-    KINDS,
-    Bingham,
-    Element,
-    HerschelBulkley,
-    LawElement,
-    LinearDashpot,
-    LockingBingham,
-    MaxwellBingham,
-    Monotone,
-    Piece,
-    Spring,
-    SpringString,
-)
+from lumped.laws.bingham import BinghamDashpot, bingham_corrector, coulomb, sticks
+from lumped.laws.contract import BinghamForm, Dashpot, DashpotState, LinearSpring, StepBound
+from lumped.laws.dashpot_elements import Bingham, HerschelBulkley, LawElement, LinearDashpot, LockingBingham, Monotone
+from lumped.laws.element import GROUND, Element
+from lumped.laws.kinds import KINDS
+from lumped.laws.monotone import HerschelBulkleyDashpot, MonotoneDashpot
+from lumped.laws.monotone_graph import MONOTONE_SAMPLE
 from lumped.laws.regularised import PapanastasiouDashpot
+from lumped.laws.spring_elements import MaxwellBingham, Spring, SpringString
+from lumped.laws.step_graph import Piece
 
 __all__ = [
     "GROUND",

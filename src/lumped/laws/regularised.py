@@ -18,7 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from lumped.laws.dashpots import Dashpot, DashpotState, StepBound
+from lumped.laws.contract import Dashpot, DashpotState, StepBound
 from lumped.numerics import validate
 
 __all__ = ["PapanastasiouDashpot"]

@@ -9,7 +9,7 @@ the file, the entry and the problem (non-ASCII characters in it escaped).
 
 Names of masses and elements are 1 to 64 ASCII letters, digits, ``_``,
 ``.`` and ``-``, starting with a letter or ``_``
-(:data:`~lumped.laws.elements.NAME_PATTERN`): they become column names
+(:data:`~lumped.laws.element.NAME_PATTERN`): they become column names
 of the output.  A file holds at most
 :data:`~lumped.model.network.MAX_MASSES` (10,000) masses,
 :data:`~lumped.model.network.MAX_ELEMENTS` (30,000) elements and
@@ -26,7 +26,8 @@ import os
 import tomllib
 from pathlib import Path
 
-from lumped.laws.elements import KINDS, Element
+from lumped.laws.element import Element
+from lumped.laws.kinds import KINDS
 from lumped.model.forcing import SwitchedSine
 from lumped.model.network import Load, Mass, Network, check_count
 

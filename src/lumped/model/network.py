@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from lumped.laws.elements import GROUND, NAME_PATTERN, Element, check_name
+from lumped.laws.element import GROUND, NAME_PATTERN, Element, check_name
 from lumped.model.forcing import SwitchedSine, evaluate, validate_force
 from lumped.numerics import validate
 
@@ -67,6 +67,13 @@ class Mass:
         object.__setattr__(self, "x0", validate.finite("x0", self.x0))
         object.__setattr__(self, "v0", validate.finite("v0", self.v0))
 
+    @staticmethod
+    def check(value: object, name: str, message: str = "{name} must be a Mass, got {got}") -> Mass:
+        """``value`` if it is a :class:`Mass`, else a ``ValueError`` (as :meth:`Element.check`)."""
+        if not isinstance(value, Mass):
+            raise ValueError(message.format(name=name, got=type(value).__name__))
+        return value
+
 
 @dataclass(frozen=True)
 class Load:
@@ -79,6 +86,13 @@ class Load:
         check_name("on", self.on)
         if validate_force(self.force) is None:
             raise ValueError("force must be a SwitchedSine or a callable of time, got None")
+
+    @staticmethod
+    def check(value: object, name: str, message: str = "{name} must be a Load, got {got}") -> Load:
+        """``value`` if it is a :class:`Load`, else a ``ValueError`` (as :meth:`Element.check`)."""
+        if not isinstance(value, Load):
+            raise ValueError(message.format(name=name, got=type(value).__name__))
+        return value
 
 
 @dataclass(frozen=True)
@@ -142,8 +156,7 @@ class Network:
         for what, cls in (("masses", Mass), ("elements", Element), ("loads", Load)):
             check_count(what, len(getattr(self, what)))
             for item in getattr(self, what):
-                if not isinstance(item, cls):
-                    raise ValueError(f"{what} must hold {cls.__name__} objects, got {type(item).__name__}")
+                cls.check(item, what, f"{{name}} must hold {cls.__name__} objects, got {{got}}")
         if not self.masses:
             raise ValueError("masses: a network needs at least one mass")
 

@@ -9,6 +9,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from lumped.laws import BinghamDashpot, Dashpot, LinearSpring
+from lumped.model.parameters import PARAMETERS
 from lumped.numerics import validate
 
 __all__ = ["Oscillator", "initial_dashpot_force", "check_magnitudes", "magnitude_failures", "MAGNITUDE_LIMIT", "TINY"]
@@ -36,26 +37,27 @@ class Oscillator:
         ``mu_s N_f = 1`` N and ``gamma = 1`` m/(N s) by default.
     """
 
-    mass: float = 1.0
-    spring: LinearSpring = field(default_factory=lambda: LinearSpring(100.0))
-    dashpot: Dashpot = field(default_factory=lambda: BinghamDashpot(1.0, 1.0))
+    mass: float = PARAMETERS["mass"].default
+    spring: LinearSpring = field(default_factory=lambda: LinearSpring(PARAMETERS["stiffness"].default))
+    dashpot: Dashpot = field(
+        default_factory=lambda: BinghamDashpot(PARAMETERS["threshold"].default, PARAMETERS["gamma"].default)
+    )
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass", validate.positive("mass", self.mass))
-        if not isinstance(self.spring, LinearSpring):
-            raise ValueError("spring must be a LinearSpring")
-        if not isinstance(self.dashpot, Dashpot):
-            raise ValueError("dashpot must be a Dashpot")
+        LinearSpring.check(self.spring, "spring")
+        Dashpot.check(self.dashpot, "dashpot")
 
     @classmethod
     def bingham(
         cls,
-        mass: float = 1.0,
-        stiffness: float = 100.0,
-        threshold: float = 1.0,
-        gamma: float = 1.0,
+        mass: float = PARAMETERS["mass"].default,
+        stiffness: float = PARAMETERS["stiffness"].default,
+        threshold: float = PARAMETERS["threshold"].default,
+        gamma: float = PARAMETERS["gamma"].default,
     ) -> Oscillator:
-        """The system of the paper with its parameter names (section 3 defaults)."""
+        """The system of the paper with its parameter names; the defaults are the table's
+        (:data:`lumped.model.parameters.PARAMETERS`, the paper's section 3 values)."""
         return cls(mass, LinearSpring(stiffness), BinghamDashpot(threshold, gamma))
 
     @property

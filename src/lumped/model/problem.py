@@ -45,7 +45,7 @@ def one_mass_form(net: Network) -> OneMass:
     The network must have one mass, at most one load, and elements that all
     join the mass to the ground: one or more ``spring`` s and exactly one
     element with a ``one_mass_law`` (point 8 of
-    :class:`~lumped.laws.elements.Element`).  The message completes "the
+    :class:`~lumped.laws.element.Element`).  The message completes "the
     network ..." (``"has 3 masses"``, ``"element 'x' ..."``).
     """
     if len(net.masses) != 1:

@@ -18,7 +18,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.laws.elements import GROUND
+from lumped.laws import GROUND
 from lumped.model.network import Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import OneMass, one_mass_form, oscillator_network

@@ -1,83 +1,104 @@
-"""Brent's method on a bracket, in Python floats (the algorithm of SciPy's ``brentq``).
+"""Brent's method on a bracket, in Python floats (the algorithm of SciPy's ``brentq``), and its tolerances.
 
 Brent (1973), *Algorithms for Minimization without Derivatives*, ch. 4, in
 the form of SciPy's ``scipy/optimize/Zeros/brentq.c`` (C. Harris): inverse
-quadratic extrapolation or secant steps, safeguarded by bisection.  The
-solvers find their events with it (the stops of ``exact`` and
-``event-driven``, the switches of ``event-capturing``), with the tolerances
-:data:`XTOL`, :data:`RTOL` and :data:`MAXITER` unless a method needs its own;
-importing ``scipy.optimize`` for a stop on a polynomial would cost more than
-the whole solve.
+quadratic extrapolation or secant steps, safeguarded by bisection.  It is the
+package's one root finder: the laws' resolvents and inverses and every
+solver's events (the stops of ``exact`` and ``event-driven``, the switches of
+``event-capturing``) use it, with the tolerances below unless they say
+otherwise; importing ``scipy.optimize`` for it would cost more than a whole
+solve.
 """
 
 from __future__ import annotations
 
 import math
-import sys
 from collections.abc import Callable
 
-__all__ = ["MAXITER", "RTOL", "XTOL", "brentq"]
+__all__ = ["brentq", "NoConvergence", "EPS", "RTOL", "XTOL", "MAXITER"]
 
-#: Absolute tolerance on the root: below every scale of the package, so that ``RTOL`` decides.
-XTOL = 1e-300
+#: Machine epsilon of a double, ``2^-52`` (``numpy.finfo(float).eps``).
+EPS = 2.0**-52
 #: Relative tolerance on the root: ``4 eps``, the least SciPy's ``brentq`` accepts.
-RTOL = 4 * sys.float_info.epsilon
-#: Bound on the iterations.
+RTOL = 4 * EPS
+#: Absolute tolerance on the root (m, s, N: the unit of ``x``): tiny, so that
+#: :data:`RTOL` decides everywhere but within about ``1e-285`` of zero.
+XTOL = 1e-300
+#: Iterations allowed before :class:`NoConvergence`.
 MAXITER = 200
+
+
+class NoConvergence(ValueError):
+    """Brent's method used up its ``maxiter`` iterations (a ``ValueError``, so callers may name it)."""
 
 
 def _trial(xcur: float, xpre: float, xblk: float, fcur: float, fpre: float, fblk: float) -> float:
     """The secant step (when the bracket end is the previous point) or inverse quadratic extrapolation.
 
-    A division by zero (a difference or a product of tiny values that
-    underflows) gives ``+-inf`` or NaN in C, which the caller refuses for a
-    bisection; Python raises instead, so the step is ``inf`` then.
+    A zero denominator (an underflow) gives ``inf``, as the C division
+    gives ``+-inf`` or ``nan``: either fails the step test, so the method
+    bisects, as SciPy's does.
     """
-    try:
-        if xpre == xblk:
-            return -fcur * (xcur - xpre) / (fcur - fpre)
-        dpre = (fpre - fcur) / (xpre - xcur)
-        dblk = (fblk - fcur) / (xblk - xcur)
-        return -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
-    except ZeroDivisionError:
-        return math.inf
+    if xpre == xblk:
+        return -fcur * (xcur - xpre) / (fcur - fpre)  # |fcur| < |fpre|: never 0 / 0
+    dpre = (fpre - fcur) / (xpre - xcur)
+    dblk = (fblk - fcur) / (xblk - xcur)
+    denominator = dblk * dpre * (fblk - fpre)
+    return -fcur * (fblk * dblk - fpre * dpre) / denominator if denominator != 0 else math.inf
 
 
 def _value(f: Callable[[float], float], x: float) -> float:
-    """``f(x)``, refused if NaN (as SciPy's ``brentq`` refuses it: no sign, no bracket)."""
-    fx = f(x)
-    if fx != fx:
-        raise ValueError(f"brentq: f({x!r}) is NaN")
+    """``f(x)`` as a float; a NaN refused, as SciPy refuses it."""
+    fx = float(f(x))
+    if math.isnan(fx):
+        raise ValueError(f"brentq: the function value at x = {x!r} is NaN")
     return fx
 
 
-def brentq(
-    f: Callable[[float], float], a: float, b: float, xtol: float = XTOL, rtol: float = RTOL, maxiter: int = MAXITER
-) -> float:
-    """A zero of ``f`` in ``[a, b]`` (``f(a) f(b) <= 0``) to ``xtol + rtol |x|``.
+def _opposite(u: float, w: float) -> bool:
+    """True if ``u`` and ``w`` lie on opposite sides of zero (their sign bits, never their product, which may underflow)."""
+    return math.copysign(1.0, u) != math.copysign(1.0, w)
 
-    The iterates are those of SciPy's C code, bit for bit: signs are
-    compared, not multiplied (a product of two values below about 1e-162
-    underflows to zero; SciPy compares sign bits since scipy/scipy#17664),
-    and a division by zero in a trial step leads to bisection, as C's
-    ``inf`` does (:func:`_trial`).
+
+def brentq(
+    f: Callable[[float], float],
+    a: float,
+    b: float,
+    xtol: float = XTOL,
+    rtol: float = RTOL,
+    maxiter: int = MAXITER,
+) -> float:
+    """A zero of ``f`` in ``[a, b]`` (``f(a)`` and ``f(b)`` of opposite signs, or one zero) to ``xtol + rtol |x|``.
+
+    The iterates are SciPy's, operation for operation (``tests/test_brent.py``
+    requires the same root bit for bit); the signs of ``f(a)`` and ``f(b)``
+    are compared by their sign bits, as SciPy does, so values whose product
+    underflows are still seen to bracket a root.
 
     Raises
     ------
     ValueError
-        If ``f(a)`` and ``f(b)`` have the same sign, ``f`` is NaN, or ``maxiter`` passes.
+        If ``f(a)`` and ``f(b)`` have the same sign, ``f`` returns NaN, or a
+        tolerance is below what SciPy accepts (``xtol > 0``, ``rtol >=``
+        :data:`RTOL`).
+    NoConvergence
+        If ``maxiter`` iterations pass (a ``ValueError``).
     """
-    xpre, xcur = a, b
+    if not xtol > 0:
+        raise ValueError(f"brentq: xtol must be > 0, got {xtol!r}")
+    if not rtol >= RTOL:
+        raise ValueError(f"brentq: rtol must be >= 4 eps = {RTOL!r}, got {rtol!r}")
+    xpre, xcur = float(a), float(b)
     fpre, fcur = _value(f, xpre), _value(f, xcur)
     if fpre == 0:
         return xpre
     if fcur == 0:
         return xcur
-    if (fpre < 0) == (fcur < 0):
+    if not _opposite(fpre, fcur):
         raise ValueError("brentq: f(a) and f(b) must have opposite signs")
     xblk = fblk = spre = scur = 0.0
     for _ in range(maxiter):
-        if fpre != 0 and fcur != 0 and (fpre < 0) != (fcur < 0):  # the bracket is [xpre, xcur]
+        if fpre != 0 and fcur != 0 and _opposite(fpre, fcur):  # the bracket is [xpre, xcur]
             xblk, fblk = xpre, fpre
             spre = scur = xcur - xpre
         if abs(fblk) < abs(fcur):  # keep the better end as xcur
@@ -98,4 +119,4 @@ def brentq(
         xpre, fpre = xcur, fcur
         xcur += scur if abs(scur) > delta else (delta if sbis > 0 else -delta)
         fcur = _value(f, xcur)
-    raise ValueError(f"brentq: no convergence in {maxiter} iterations")
+    raise NoConvergence(f"brentq: no convergence in {maxiter} iterations")

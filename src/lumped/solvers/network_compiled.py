@@ -4,8 +4,8 @@ The *link graph* has the masses and the ground as points and one link per
 pair of points joined by at least one element (parallel elements share a
 link).  When it is a forest and every element is piecewise linear with a C
 copy of its step graph (a ``kernel_form``, point 9 of
-:class:`~lumped.laws.elements.Element`: every kind but the law elements,
-:class:`~lumped.laws.elements.Monotone` and Herschel-Bulkley), the one-step problem
+:class:`~lumped.laws.element.Element`: every kind but the law elements,
+:class:`~lumped.laws.dashpot_elements.Monotone` and Herschel-Bulkley), the one-step problem
 with its modes fixed is solved by elimination along the forest, leaf to
 root, and back-substitution: a free link adds its conductance to its parent,
 a rigid link merges its child into the parent with a fixed rate offset.
@@ -16,8 +16,8 @@ active-set iteration, state updates, saving), block by block.
 
 The active-set iteration, its warm start, its mode test, its cycle handling
 and its bound are those of :func:`lumped.solvers.network_step.solve_step`, and the
-step graphs those of :mod:`lumped.laws.elements`, repeated in C by kind
-code.  Only the rounding of the linear solve differs from the Python step
+step graphs those of :mod:`lumped.laws.spring_elements` and
+:mod:`lumped.laws.dashpot_elements`, repeated in C by kind code.  Only the rounding of the linear solve differs from the Python step
 (a band or dense factorisation there); ``tests/test_network_kernel.py``
 bounds the difference.  For the paper's one-mass system both reduce to
 Algorithm 1's operations in Algorithm 1's order.
@@ -31,7 +31,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.laws.elements import Piece
+from lumped.laws.step_graph import Piece
 from lumped.model.network import Network, listed, rigid_loop
 from lumped.solvers.network_step import StepError, StepSolution, default_bound, unsettled
 

@@ -32,12 +32,12 @@ scales ``sigma``; if none settles, or the bound on iterations is reached, a
 mode test Algorithm 1's ``|F~| <= mu_s N_f``.)
 
 A graph that is not piecewise linear (a
-:class:`~lumped.laws.elements.LawGraph`, the step graph of a
-:class:`~lumped.laws.elements.Monotone` or Herschel-Bulkley element) is
+:class:`~lumped.laws.step_graph.LawGraph`, the step graph of a
+:class:`~lumped.laws.dashpot_elements.Monotone` or Herschel-Bulkley element) is
 given instead the line of slope ``sigma`` through its resolvent point of
 ``z``; the fixed point of that iteration lies on its graph, reached to a
 relative 8 ulps.  The step asks each graph through the graph contract of
-:class:`~lumped.laws.elements.StepGraph` (its pieces, its modes), never
+:class:`~lumped.laws.step_graph.StepGraph` (its pieces, its modes), never
 for its class.
 """
 
@@ -48,7 +48,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.laws.elements import Piece, StepGraph, as_step_graph
+from lumped.laws.step_graph import Piece, StepGraph, as_step_graph
 
 __all__ = ["StepError", "StepSolution", "solve_step", "SIGMA_SCALES", "default_bound", "unsettled"]
 
@@ -103,8 +103,8 @@ def solve_step(
     rhs : ndarray, (masses,)
     graphs : sequence
         Each element's step graph: its pieces, or a
-        :class:`~lumped.laws.elements.StepGraph` (a law's
-        :class:`~lumped.laws.elements.LawGraph`).
+        :class:`~lumped.laws.step_graph.StepGraph` (a law's
+        :class:`~lumped.laws.step_graph.LawGraph`).
     sigma : ndarray, (elements,)
         Scale of each element's mode test (> 0).
     modes : sequence of int, optional

@@ -1,0 +1,251 @@
+"""The dashpot contract: what a law must provide, and the values its step returns.
+
+A dashpot here is a *graph* relating velocity and force, written the way the
+paper writes eq. (6): the velocity as a function of the force, ``v = phi(F_d)``.
+When ``phi`` is flat (the Bingham band ``|F_d| <= mu_s N_f``) the inverse is
+set-valued, so ``F_d`` cannot be computed from ``v`` and becomes an unknown of
+the differential-algebraic system (8).
+
+One backward-Euler step (eqs. 13 to 15) reduces to a scalar equation for the
+dashpot force.  With ``eta = m/dt + k*dt`` eq. (15a) reads
+
+    F_d + eta * phi(F_d) = F~,          v = (F~ - F_d) / eta,
+
+that is ``F_d = (I + eta*phi)^{-1}(F~)``: the *resolvent* of the monotone graph
+``phi`` applied to the predictor ``F~`` of eq. (15b).  Each law provides that
+resolvent; Algorithm 1 is its closed form for the Bingham graph
+(:mod:`lumped.laws.bingham`).
+
+This module holds the linear spring of eq. (5), the :class:`Dashpot` base
+class with its numbered extension contract, and the named values a law
+returns (:class:`DashpotState`, :class:`BinghamForm`, :class:`StepBound`).
+The laws themselves are in :mod:`lumped.laws.bingham`,
+:mod:`lumped.laws.monotone` and :mod:`lumped.laws.regularised`.
+"""
+
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from lumped.laws import monotone_graph
+from lumped.numerics import validate
+
+__all__ = ["LinearSpring", "Dashpot", "DashpotState", "BinghamForm", "StepBound"]
+
+
+@dataclass(frozen=True)
+class LinearSpring:
+    """Linear spring, eq. (5): ``x = F_s / k``.
+
+    Parameters
+    ----------
+    stiffness : float, N/m
+        Spring constant ``k > 0``.
+    """
+
+    stiffness: float
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stiffness", validate.positive("stiffness", self.stiffness))
+
+    def force(self, x: np.ndarray | float) -> np.ndarray | float:
+        """Spring force ``F_s = k x`` (N) for displacement ``x`` (m)."""
+        return self.stiffness * x
+
+    def displacement(self, force: np.ndarray | float) -> np.ndarray | float:
+        """Displacement ``x = F_s / k`` (m), eq. (5)."""
+        return force / self.stiffness
+
+    def energy(self, force: np.ndarray | float) -> np.ndarray | float:
+        """Stored energy ``F_s**2 / (2k)`` (J)."""
+        return 0.5 * force * force / self.stiffness
+
+    @staticmethod
+    def check(value: object, name: str) -> LinearSpring:
+        """``value`` if it is a :class:`LinearSpring`, else a ``ValueError`` naming ``name``."""
+        if not isinstance(value, LinearSpring):
+            raise ValueError(f"{name} must be a LinearSpring")
+        return value
+
+
+class DashpotState(NamedTuple):
+    """Solution of one implicit dashpot step: ``force`` (N), ``velocity`` (m/s)."""
+
+    force: float
+    velocity: float
+
+
+class BinghamForm(NamedTuple):
+    """A law that *is* the Bingham graph of eq. (6): ``tau`` (N) and ``c = 1/gamma`` (N s/m, ``0`` for Coulomb)."""
+
+    threshold: float
+    viscosity: float
+
+
+class StepBound(NamedTuple):
+    """A bound on what a law's step forms (contract point 9).
+
+    ``value`` (``inf`` if it may overflow) is compared with
+    :data:`lumped.model.oscillator.MAGNITUDE_LIMIT`; ``term`` names it in the message
+    and ``parameter`` is the law's argument blamed when it alone is too large.
+    """
+
+    value: float
+    term: str
+    parameter: str
+
+
+class Dashpot(ABC):
+    """A dashpot given by its velocity-force graph ``v = phi(F_d)``.
+
+    A new dashpot law must provide:
+
+    1. ``velocity(force)``: the graph ``phi``, vectorised over NumPy arrays.
+       It must be monotone non-decreasing with ``phi(0) = 0`` (a dashpot
+       dissipates: ``F_d * v >= 0``).  It may be flat on an interval, where the
+       force is not a function of the velocity.
+    2. ``force_interval(velocity)``: the inverse graph, the closed interval
+       ``(lo, hi)`` of forces compatible with a velocity (``lo == hi`` off the
+       flat parts).  Used for plots and for the Filippov set of eq. (11).
+    3. ``_resolvent_impl(predictor, eta)``: the solution ``F_d`` of
+       ``F_d + eta*phi(F_d) = predictor`` together with ``v = phi(F_d)``,
+       returned as a :class:`DashpotState`.  ``eta > 0`` is finite.
+    4. ``threshold``: the largest ``|F_d|`` for which ``phi(F_d) = 0`` (the
+       static band), ``0`` if there is none.
+    5. Optionally ``slip_force(velocity)``: the force carried while slipping,
+       vectorised, ``0`` at ``v = 0``.  The default inverts the graph point by
+       point through ``force_interval``; a law with a closed form should
+       override it (the event-driven integrator calls it at every stage).
+
+    What a solver may ask of a law beyond its graph is a method here, with a
+    generic default that any law meeting points 1 to 4 satisfies; a law
+    overrides one only to be faster or more exact.  No solver asks a law for
+    its class.
+
+    6. ``bingham_form()``: the :class:`BinghamForm` ``(tau, c)`` if the law is
+       the Bingham graph of eq. (6), else ``None`` (the default).  Only such a
+       law has the closed forms: Algorithm 1's compiled loop
+       (:mod:`lumped.solvers.backward_euler`), the exact solution
+       (:mod:`lumped.solvers.exact`) and the textbook ODE
+       (:mod:`lumped.solvers.textbook`).  Every other method needs only points 1 to 5.
+    7. ``viscous_part()``: ``v -> F_d(v) - sgn(v) tau``, the slip force
+       without its static part, as a scalar function continuous through
+       ``v = 0`` (the event-driven integrator's right-hand side).  The default
+       subtracts from :meth:`slip_force`.
+    8. ``band_free_resolvent()``: the resolvent ``(u, v)`` of the graph with
+       its band cut out, ``psi(u) = phi(u + sgn(u) tau)``, as a function of
+       ``(predictor, eta)`` (the event-capturing scheme's slip step).  The
+       default is the bracketed root of :class:`~lumped.laws.MonotoneDashpot` on ``psi``.
+    9. ``step_bound(force, speed, eta)``: a :class:`StepBound` on the
+       magnitudes the law's resolvent forms for predictors ``|F~| <= force``
+       and its slip force at speeds up to ``speed``, beyond those forces
+       themselves (:func:`lumped.model.oscillator.check_magnitudes` refuses a run whose
+       bound passes :data:`lumped.model.oscillator.MAGNITUDE_LIMIT`).  The default,
+       ``0``, says it forms none: true of a resolvent whose root lies between
+       ``0`` and ``F~`` and whose law is checked finite where it is called
+       (:class:`~lumped.laws.MonotoneDashpot`); a law that multiplies (``c F~``, ``K
+       |v|^n``) overrides it.
+
+    The public :meth:`resolvent` checks its arguments and calls the hook.
+    """
+
+    threshold: float
+
+    @abstractmethod
+    def velocity(self, force: np.ndarray | float) -> np.ndarray | float:
+        """Velocity ``phi(F_d)`` (m/s) carried by a dashpot force (N)."""
+
+    @abstractmethod
+    def force_interval(self, velocity: float) -> tuple[float, float]:
+        """Interval of dashpot forces (N) compatible with ``velocity`` (m/s)."""
+
+    @abstractmethod
+    def _resolvent_impl(self, predictor: float, eta: float) -> DashpotState:
+        """Solve ``F_d + eta*phi(F_d) = predictor`` (see the class docstring)."""
+
+    def slip_force(self, velocity: np.ndarray | float) -> np.ndarray | float:
+        """Force (N) while slipping at ``velocity`` (m/s), 0 at ``v = 0`` (point 5)."""
+
+        def one(v: float) -> float:
+            return 0.0 if v == 0 else self.force_interval(v)[0]
+
+        if np.ndim(velocity) == 0:
+            return one(float(velocity))
+        return np.array([one(float(v)) for v in np.ravel(velocity)]).reshape(np.shape(velocity))
+
+    def bingham_form(self) -> BinghamForm | None:
+        """``(tau, c)`` if this law is the Bingham graph of eq. (6), else ``None`` (point 6)."""
+        return None
+
+    def viscous_part(self) -> Callable[[float], float]:
+        """``v -> F_d(v) - sgn(v) tau`` (N) as a scalar function, ``0`` at ``v = 0`` (point 7)."""
+        tau, slip = self.threshold, self.slip_force
+        return lambda v: float(slip(v)) - math.copysign(tau, v) if v != 0 else 0.0
+
+    def band_free_resolvent(self) -> Callable[[float, float], DashpotState]:
+        """Resolvent ``(u, v)`` of ``u + eta psi(u) = predictor``, ``psi`` the law without its band (point 8).
+
+        Notes
+        -----
+        In slip with direction ``s`` the dashpot force is ``F_d = s tau + u``
+        with ``v = psi(u) = phi(u + sgn(u) tau)`` (``psi(0) = 0``): the graph
+        with the band ``[-tau, tau]`` cut out.  ``psi`` is single valued,
+        continuous and monotone, and it continues the slip branch through
+        ``v = 0`` (the root search of a stop in :func:`lumped.solvers.schemes.event_capturing`
+        evaluates the step past it).  The default is the bracketed root of
+        :class:`lumped.laws.MonotoneDashpot` on ``psi``: ``psi`` checked as
+        that class checks its law (:func:`lumped.laws.monotone_graph.check_monotone`
+        with no threshold) and solved by the same
+        :func:`lumped.laws.monotone_graph.resolvent`.
+        """
+        tau, phi = self.threshold, self.velocity
+
+        def psi(u: float) -> float:
+            return float(phi(u + math.copysign(tau, u))) if u != 0 else 0.0
+
+        def checked(u: float) -> float:
+            return monotone_graph.checked(psi, u)
+
+        monotone_graph.check_monotone(checked, 0.0)
+        return lambda predictor, eta: DashpotState(*monotone_graph.resolvent(checked, predictor, eta))
+
+    def step_bound(self, force: float, speed: float, eta: float) -> StepBound:
+        """Bound on the magnitudes the law's step forms for ``|F~| <= force`` (N), ``|v| <= speed`` (m/s) (point 9)."""
+        return StepBound(0.0, "viscous term of the dashpot law", "dashpot")
+
+    def resolvent(self, predictor: float, eta: float) -> DashpotState:
+        """Implicit dashpot step: ``F_d = (I + eta*phi)^{-1}(predictor)``.
+
+        Parameters
+        ----------
+        predictor : float, N
+            ``F~`` of eq. (15b).
+        eta : float, kg/s
+            ``m/dt + k*dt``, the factor of eq. (15a) divided by ``dt/m``.
+
+        Returns
+        -------
+        DashpotState
+            Dashpot force and velocity at the new time level.
+        """
+        predictor = validate.finite("predictor", predictor)
+        eta = validate.positive("eta", eta)
+        return self._resolvent_impl(predictor, eta)
+
+    @staticmethod
+    def check(value: object, name: str, message: str = "{name} must be a Dashpot") -> Dashpot:
+        """``value`` if it is a dashpot law, else a ``ValueError``.
+
+        The one test of "is this a law?", so that no other module asks for a
+        law's class: ``message`` is formatted with ``name`` and ``got``, the
+        name of ``value``'s type.
+        """
+        if not isinstance(value, Dashpot):
+            raise ValueError(message.format(name=name, got=type(value).__name__))
+        return value
