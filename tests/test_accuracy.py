@@ -19,7 +19,7 @@ from scipy.integrate import solve_ivp
 
 import lumped as L
 from lumped.solvers.event_driven import RTOL_RANGE
-from lumped.solvers.exact import Event
+from lumped.solvers.events import Event
 from lumped.drivers.methods import METHODS
 from lumped.studies import accuracy as A
 from lumped.studies.accuracy import methods as M
@@ -160,7 +160,7 @@ def forced_orders() -> dict:
 
 def test_event_capturing_is_second_order_per_event_type(forced_orders):
     # Trapezoidal within modes, switches located to O(h^3) locally: O(dt^2)
-    # for the state, the rest and every located event (schemes.py's Notes).
+    # for the state, the rest and every located event (event_capturing's Notes).
     # Measured 1.998 to 2.000; the band +-0.1 leaves room for the next term.
     o = forced_orders["event-capturing"]
     for q in ("position", "rest_time", "max_x", "stop", "reversal", "forcing-off"):
@@ -181,7 +181,7 @@ def test_algorithm1_is_first_order(forced_orders):
 
 
 def test_theta_method_is_not_second_order_through_switches(forced_orders):
-    # schemes.theta_method's Notes: a step across a switch averages G over
+    # theta.theta_method's Notes: a step across a switch averages G over
     # the jump of F_d, an O(dt) momentum error whose factor depends on where
     # the switch falls in its step, so the error is not smooth in dt: over
     # these three steps the slope of max|x - x_ref| measures 0.63 (over five

@@ -45,7 +45,7 @@ from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
 import lumped
-import lumped.solvers.schemes
+import lumped.solvers.event_capturing
 import lumped.studies.config
 import lumped.studies.replication as R
 
@@ -744,7 +744,7 @@ def test_accuracy_headline_original_step(accuracy_headline: dict[str, Any]) -> N
     be = literal_algorithm1(t_end, 1e-4, x0, lambda t: 0.0)
     got = accuracy_headline["original_step"]
     assert got["backward-euler"] == pytest.approx(abs(rest_of(be)[1] - rest) / abs(rest), rel=1e-9)
-    ec = lumped.solvers.schemes.event_capturing(lumped.Oscillator.bingham(M, K, TAU, GAMMA), t_end, 1e-4, x0=x0)
+    ec = lumped.solvers.event_capturing.event_capturing(lumped.Oscillator.bingham(M, K, TAU, GAMMA), t_end, 1e-4, x0=x0)
     assert got["event-capturing"] == pytest.approx(abs(ec.trajectory.rest_position - rest) / abs(rest), rel=1e-6)
     assert got["event-capturing"] <= 1e-3  # the target: 0.1 % at the original's step
     assert accuracy_headline["dt"] == references.PAPER["dt"]

@@ -31,7 +31,8 @@ from references import PAPER, order
 from scipy.integrate import solve_ivp
 
 import lumped as L
-from lumped.solvers.schemes import event_capturing, theta_method
+from lumped.solvers.event_capturing import event_capturing
+from lumped.solvers.theta import theta_method
 
 HALVING = [1e-3, 5e-4, 2.5e-4, 1.25e-4]
 # name of references.CASES -> t_end (long enough for the free decay to rest: 3.15 s)

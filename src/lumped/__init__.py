@@ -44,9 +44,11 @@ from lumped.model.oscillator import Oscillator
 from lumped.model.problem import Problem
 from lumped.model.trajectory import COLUMNS, EnergyBalance, Trajectory
 from lumped.solvers.backward_euler import algorithm1, backward_euler
+from lumped.solvers.event_capturing import CapturedRun, event_capturing
 from lumped.solvers.event_driven import IntegratedSolution, solve_event_driven
-from lumped.solvers.exact import Event, ExactSolution, Phase, solve_exact
-from lumped.solvers.schemes import CapturedRun, event_capturing, theta_method
+from lumped.solvers.events import Event, Phase
+from lumped.solvers.exact import ExactSolution, solve_exact
+from lumped.solvers.theta import theta_method
 
 __all__ = [
     "Bingham",

@@ -38,9 +38,10 @@ from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator
 from lumped.model.trajectory import Trajectory
 from lumped.solvers.backward_euler import backward_euler
+from lumped.solvers.event_capturing import event_capturing
 from lumped.solvers.event_driven import DEFAULT_RTOL, solve_event_driven, validate_rtol
 from lumped.solvers.exact import ExactSolution, solve_exact
-from lumped.solvers.schemes import event_capturing, theta_method
+from lumped.solvers.theta import theta_method
 
 __all__ = ["METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", "NETWORK_SOLVERS", "OPTIONS"]
 

@@ -67,7 +67,7 @@ def simulate(
     ``"event-driven"`` integrates the slip phases of any dashpot law
     (:func:`~lumped.solvers.event_driven.solve_event_driven`) and takes the
     option ``rtol``; ``"event-capturing"`` and ``"theta"`` are the schemes of
-    :mod:`lumped.solvers.schemes` (the latter at ``theta = 1/2``).  ``method`` is a
+    :mod:`lumped.solvers.event_capturing` and :mod:`lumped.solvers.theta` (the latter at ``theta = 1/2``).  ``method`` is a
     key of :data:`METHODS`; ``options`` are the method's own
     (:func:`method_options` checks them and refuses any other).  A method
     that cannot run ``oscillator`` (``exact`` with a law that has no Bingham

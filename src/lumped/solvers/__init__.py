@@ -2,10 +2,16 @@
 
 * :mod:`~lumped.solvers.backward_euler`: Algorithm 1 (the ``backward-euler``
   method) and the generic backward-Euler loop for any law;
-* :mod:`~lumped.solvers.schemes`: the ``theta`` and ``event-capturing`` schemes;
-* :mod:`~lumped.solvers.exact`: the ``exact`` piecewise solution;
+* :mod:`~lumped.solvers.theta`: the ``theta`` method (the θ-method);
+* :mod:`~lumped.solvers.event_capturing`: the ``event-capturing`` scheme;
+* :mod:`~lumped.solvers.grid`: what those two fixed-step schemes share (the
+  grid's checks);
+* :mod:`~lumped.solvers.exact`: the ``exact`` piecewise solution, with its
+  closed-form slip phases in :mod:`~lumped.solvers.closed_form`;
 * :mod:`~lumped.solvers.event_driven`: the ``event-driven`` method (slip
   phases integrated, events located);
+* :mod:`~lumped.solvers.events`: the one event machinery (events, phases,
+  switching rules, the march through phases) of the last three;
 * :mod:`~lumped.solvers.textbook`: the ``sgn(0) = 0`` model of the textbooks;
 * :mod:`~lumped.solvers.network_step`: backward Euler's step for a network
   (active set).

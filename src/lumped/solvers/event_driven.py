@@ -2,7 +2,8 @@
 
 The motion is the same sequence of phases as in :mod:`lumped.solvers.exact`
 (slip, stick, and the events stop, reversal, breakaway, forcing-off, rest),
-and the same march decides between them; only the slip phases differ.
+and the same march (:class:`~lumped.solvers.events.PhaseMarch`) decides
+between them; only the slip phases differ.
 There is no closed form for a general law, so a slip phase with direction
 ``s = +-1`` integrates
 
@@ -60,7 +61,8 @@ from lumped.model.oscillator import MAGNITUDE_LIMIT, Oscillator
 from lumped.numerics import validate
 from lumped.numerics.dop853 import Dop853, Piece, PiecewiseDense, piece_value
 from lumped.numerics.roots import brentq
-from lumped.solvers.exact import ExactSolution, _Builder, check_scales
+from lumped.solvers.events import PhaseMarch, SlipFactory
+from lumped.solvers.exact import ExactSolution, check_scales
 
 __all__ = [
     "DEFAULT_RTOL",
@@ -80,7 +82,6 @@ RTOL_RANGE = (100 * float(np.finfo(float).eps), 1e-2)
 #: Factor between ``rtol`` and the absolute tolerance, relative to the motion's scale.
 _ATOL_FACTOR = 1e-3
 _SAMPLES = 64  # points of the dense output searched for the first motion from rest
-_RTOL_ROOT = 4 * float(np.finfo(float).eps)  # Brent's relative tolerance on a stop's time: the least SciPy's allows
 #: Largest displacement (m) or speed (m/s) the energy bound may allow: DOP853's
 #: error norms square the scaled state and its derivative.
 _LARGEST_STATE = 1e100
@@ -127,7 +128,7 @@ class _Settings:
 
 
 class IntegratedSlip:
-    """One slip phase integrated by DOP853 (:mod:`lumped.numerics.dop853`); the interface of :class:`~lumped.solvers.exact.SlipMotion`.
+    """One slip phase integrated by DOP853 (:mod:`lumped.numerics.dop853`); the interface of :class:`~lumped.solvers.closed_form.SlipMotion`.
 
     ``first_stop`` integrates (once) from ``t0`` and returns the first zero of
     ``v`` before ``t_lim``, or ``None``; ``state`` then evaluates the dense
@@ -207,20 +208,13 @@ class IntegratedSlip:
             a = first
             if not g(b) < 0:
                 return b
-        return brentq(g, a, b, xtol=1e-300, rtol=_RTOL_ROOT, maxiter=200)
+        return brentq(g, a, b)
 
 
-class _IntegratingBuilder(_Builder):
-    """The exact solver's march with slip phases from :class:`IntegratedSlip`."""
-
-    def __init__(self, osc: Oscillator, force: SwitchedSine, t_end: float, max_events: int, settings: _Settings):
-        super().__init__(osc, force, t_end, max_events)
-        self.settings = settings
-
-    def motion(
-        self, t: float, x: float, v: float, direction: int, forcing: tuple[float, float, float]
-    ) -> IntegratedSlip:  # type: ignore[override]
-        return IntegratedSlip(self.m, self.k, direction * self.tau, forcing, (t, x, v), self.settings)
+def _integrated(osc: Oscillator, settings: _Settings) -> SlipFactory:
+    """The event-driven method's slip phases: :class:`IntegratedSlip`."""
+    m, k, tau = osc.mass, osc.stiffness, osc.threshold
+    return lambda t, x, v, direction, forcing: IntegratedSlip(m, k, direction * tau, forcing, (t, x, v), settings)
 
 
 @dataclass(frozen=True, eq=False)
@@ -356,7 +350,7 @@ def solve_event_driven(
     x_scale, v_scale = _motion_scale(oscillator, force, t_end, x0, v0)
     atol = (_ATOL_FACTOR * rtol * x_scale, _ATOL_FACTOR * rtol * v_scale)
     settings = _Settings(viscous_part(oscillator.dashpot), rtol, atol, _Budget(max_steps, max_steps))
-    build = _IntegratingBuilder(oscillator, force, t_end, max_events, settings)
+    build = PhaseMarch(oscillator, force, t_end, max_events, _integrated(oscillator, settings))
     build.run(x0, v0)
     events = tuple(sorted(build.events, key=lambda e: e.time))
     if not all(math.isfinite(p.x_start) for p in build.phases):

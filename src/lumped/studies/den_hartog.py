@@ -36,7 +36,8 @@ from lumped.drivers.sweep import chunk_slice
 from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator
 from lumped.numerics import validate
-from lumped.solvers.exact import Event, ExactSolution, solve_exact
+from lumped.solvers.events import Event
+from lumped.solvers.exact import ExactSolution, solve_exact
 
 __all__ = [
     "coulomb_boundary",

@@ -19,7 +19,8 @@ from lumped.laws import HerschelBulkleyDashpot, LinearSpring
 from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator
 from lumped.solvers.event_driven import RTOL_RANGE
-from lumped.solvers.exact import Event, ExactSolution
+from lumped.solvers.events import Event
+from lumped.solvers.exact import ExactSolution
 from lumped.studies import config, examples
 from lumped.studies.accuracy.events import KINDS
 from lumped.studies.accuracy.methods import CLOSED_FORM, TOLERANCED

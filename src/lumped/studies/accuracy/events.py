@@ -13,7 +13,7 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 
-from lumped.solvers.exact import Event
+from lumped.solvers.events import Event
 
 __all__ = ["KINDS", "grid_events", "match_events"]
 

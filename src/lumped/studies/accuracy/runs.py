@@ -25,8 +25,8 @@ from lumped.drivers.methods import METHODS
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 from lumped.solvers import textbook
-from lumped.solvers.exact import Event
-from lumped.solvers.schemes import event_capturing
+from lumped.solvers.event_capturing import event_capturing
+from lumped.solvers.events import Event
 from lumped.studies.accuracy.cases import CASE_NAMES, Case, Reference, cases, reference
 from lumped.studies.accuracy.events import KINDS, grid_events, match_events
 from lumped.studies.accuracy.methods import CLOSED_FORM, SCHEMES, STUDY_METHODS, TANH, TOLERANCED
