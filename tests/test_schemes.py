@@ -296,3 +296,13 @@ def test_save_every_keeps_the_same_points(scheme):
     index = np.append(np.arange(0, len(full.t), 7), len(full.t) - 1)
     assert np.array_equal(thin.as_array(), full.as_array()[index])
     assert (thin.rest_time, thin.rest_position) == (full.rest_time, full.rest_position)
+
+
+def test_event_capturing_stops_at_once_when_the_band_kills_the_speed():
+    """A threshold of 1e300 N stops v0 = 1 m/s within 1e-300 s (exact): the stop is at the
+    substep's start, where the mass still is (once a division by the zero substep)."""
+    osc = L.Oscillator.bingham(threshold=1e300)
+    run = L.event_capturing(osc, 2.0, 2e-3, v0=1.0).trajectory
+    exact = L.solve_exact(osc, 2.0, v0=1.0)
+    assert run.rest_position == exact.rest_position == 0.0
+    assert abs(run.rest_time - exact.rest_time) <= EPS * 2e-3  # the stop's resolution: an ulp of the step

@@ -197,7 +197,7 @@ class Dashpot(ABC):
         with ``v = psi(u) = phi(u + sgn(u) tau)`` (``psi(0) = 0``): the graph
         with the band ``[-tau, tau]`` cut out.  ``psi`` is single valued,
         continuous and monotone, and it continues the slip branch through
-        ``v = 0`` (the root search of a stop in :func:`lumped.solvers.schemes.event_capturing`
+        ``v = 0`` (the root search of a stop in :func:`lumped.solvers.event_capturing.event_capturing`
         evaluates the step past it).  The default is the bracketed root of
         :class:`lumped.laws.MonotoneDashpot` on ``psi``: ``psi`` checked as
         that class checks its law (:func:`lumped.laws.monotone_graph.check_monotone`

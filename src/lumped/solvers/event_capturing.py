@@ -34,6 +34,7 @@ from typing import NamedTuple
 
 import numpy as np
 
+from lumped.laws import sticks
 from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator, check_magnitudes
 from lumped.model.trajectory import COLUMNS, Trajectory
@@ -139,7 +140,7 @@ class _Capture(EventMarch):
         """Stick to ``t_next`` unless the net force leaves the band first (located on the closed form)."""
         x = st.x
         net = p(t_next) - self.k * x
-        if abs(net) <= self.tau or t_next <= st.hold:
+        if sticks(net, -self.tau, self.tau) or t_next <= st.hold:
             return _State(t_next, x, 0.0, net, STICK, st.hold)
         s = 1 if net > 0 else -1
         excess = lambda t: s * (p(t) - self.k * x) - self.tau
@@ -156,7 +157,10 @@ class _Capture(EventMarch):
         if lo is None:  # the slip from rest ends at once: stick to the grid point
             return self.enter_stick(st.t, st.x, p(st.t) - self.k * st.x, hold=t_next)
         h_stop = h if v == 0 else _root(lambda a: self.speed(s, st, a, p), lo, h, xtol=_EPS * t_next)
-        x = self.slip_step(s, st, h_stop, p)[0] if h_stop != h else x
+        if h_stop == 0.0:  # stopped where the substep starts (a speed the band kills at once)
+            x = st.x
+        elif h_stop != h:
+            x = self.slip_step(s, st, h_stop, p)[0]
         return self.at_zero_velocity(_State(st.t + h_stop, x, 0.0, f_d, s), s)
 
     def speed(self, s: int, st: _State, a: float, p: Piece) -> float:

@@ -37,6 +37,7 @@ from typing import Protocol
 
 import numpy as np
 
+from lumped.laws import sticks
 from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator
 from lumped.numerics import sine
@@ -152,7 +153,7 @@ class EventMarch:
         """:data:`STICK` or the slip direction ``+-1`` of a mass moving at ``v`` under the net force ``net``."""
         if v != 0:
             return 1 if v > 0 else -1
-        if abs(net) <= self.tau:
+        if sticks(net, -self.tau, self.tau):  # the one stick test: |net| <= tau
             return STICK
         return 1 if net > 0 else -1
 
