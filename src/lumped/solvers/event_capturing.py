@@ -296,7 +296,8 @@ def event_capturing(
     out = np.empty((validate.output_rows(n_steps, stride), len(COLUMNS)))
     st = _capture_rows(run, run.initial(x0, v0), dt, n_steps, stride, out)
     final = (run.stick_since, st.x) if st.mode == STICK else (math.nan, math.nan)
+    events = tuple(sorted(run.events, key=lambda e: e.time))
     traj = Trajectory.from_array(
-        out, oscillator, method="event-capturing", dt=dt, save_every=save_every, final_rest=final
+        out, oscillator, method="event-capturing", dt=dt, save_every=save_every, final_rest=final, events=events
     )
-    return CapturedRun(traj, tuple(sorted(run.events, key=lambda e: e.time)))
+    return CapturedRun(traj, events)
