@@ -38,10 +38,11 @@ from lumped.laws import (
     coulomb,
 )
 from lumped.model.files import load_system, parse_system
-from lumped.model.forcing import SwitchedSine
+from lumped.model.forcing import Constant, LoadSum, SwitchedSine, Table
 from lumped.model.network import Load, Mass, Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import Problem
+from lumped.model.tables import read_table
 from lumped.model.trajectory import COLUMNS, EnergyBalance, Trajectory
 from lumped.solvers.backward_euler import algorithm1, backward_euler
 from lumped.solvers.event_driven import IntegratedSolution, solve_event_driven
@@ -53,6 +54,7 @@ __all__ = [
     "BinghamDashpot",
     "COLUMNS",
     "CapturedRun",
+    "Constant",
     "Dashpot",
     "DashpotState",
     "EnergyBalance",
@@ -64,6 +66,7 @@ __all__ = [
     "LinearDashpot",
     "LinearSpring",
     "Load",
+    "LoadSum",
     "LockingBingham",
     "METHODS",
     "Mass",
@@ -78,6 +81,7 @@ __all__ = [
     "Spring",
     "SpringString",
     "SwitchedSine",
+    "Table",
     "Trajectory",
     "algorithm1",
     "backward_euler",
@@ -85,6 +89,7 @@ __all__ = [
     "event_capturing",
     "load_system",
     "parse_system",
+    "read_table",
     "simulate",
     "simulate_network",
     "solve_event_driven",
