@@ -253,7 +253,7 @@ def test_command_line_one_mass_system_file(tmp_path, capsys):
     assert main([*argv, "--output", str(out)]) == 0
     assert "m1 at rest from t = " in capsys.readouterr().err
     with open(out) as fh:
-        assert fh.readline().strip() == "t,x_m1,v_m1,F_spring,F_hb"
+        assert fh.readline().strip() == "t,x_m1,v_m1,F_spring,F_hb,load_m1"
     data = np.loadtxt(out, delimiter=",", skiprows=1)
     ref = L.solve_event_driven(_hb(2.0), 4.0, x0=0.5).sample(1e-3)
     assert np.array_equal(data[:, 1], ref.x)

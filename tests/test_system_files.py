@@ -101,7 +101,7 @@ def test_npz_has_the_arrays_of_the_contract(tmp_path, capsys) -> None:
 def test_csv_columns(tmp_path) -> None:
     assert run(tmp_path, CHAIN, "out.csv")[0] == 0
     header = (tmp_path / "out.csv").read_text().splitlines()[0]
-    assert header == "t,x_a,x_b,v_a,v_b,F_s,F_mx,F_lock"
+    assert header == "t,x_a,x_b,v_a,v_b,F_s,F_mx,F_lock,load_a,load_b"
 
 
 def test_paper_file_is_algorithm1(tmp_path) -> None:

@@ -92,7 +92,7 @@ def test_good_names_make_a_header_that_matches_the_columns(tmp_path, name: str) 
     assert simulate(tmp_path, ONE.format(mass="m1", element=name)) == 0
     lines = (tmp_path / "out.csv").read_text(encoding="ascii").splitlines()
     header = lines[0].split(",")
-    assert header == ["t", "x_m1", "v_m1", f"F_{name}", "F_d"]
+    assert header == ["t", "x_m1", "v_m1", f"F_{name}", "F_d", "load_m1"]
     assert all(len(line.split(",")) == len(header) for line in lines[1:])
 
 

@@ -38,10 +38,11 @@ from lumped.laws import (
     coulomb,
 )
 from lumped.model.files import load_system, parse_system
-from lumped.model.forcing import SwitchedSine
+from lumped.model.forcing import Constant, LoadSum, SwitchedSine, Table
 from lumped.model.network import Load, Mass, Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import Problem
+from lumped.model.tables import read_table
 from lumped.model.trajectory import COLUMNS, EnergyBalance, Trajectory
 from lumped.solvers.backward_euler import algorithm1, backward_euler
 from lumped.solvers.event_capturing import CapturedRun, event_capturing
@@ -55,6 +56,7 @@ __all__ = [
     "BinghamDashpot",
     "COLUMNS",
     "CapturedRun",
+    "Constant",
     "Dashpot",
     "DashpotState",
     "EnergyBalance",
@@ -66,6 +68,7 @@ __all__ = [
     "LinearDashpot",
     "LinearSpring",
     "Load",
+    "LoadSum",
     "LockingBingham",
     "METHODS",
     "Mass",
@@ -80,6 +83,7 @@ __all__ = [
     "Spring",
     "SpringString",
     "SwitchedSine",
+    "Table",
     "Trajectory",
     "algorithm1",
     "backward_euler",
@@ -87,6 +91,7 @@ __all__ = [
     "event_capturing",
     "load_system",
     "parse_system",
+    "read_table",
     "simulate",
     "simulate_network",
     "solve_event_driven",

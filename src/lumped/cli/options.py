@@ -13,15 +13,16 @@ from __future__ import annotations
 import argparse
 from collections.abc import Sequence
 
+from lumped.cli.loads import FLAGS as LOAD_FLAGS
 from lumped.cli.messages import API_TO_OPTION
 from lumped.drivers.methods import METHODS, OPTIONS, SWEEP_METHODS
 from lumped.model.parameters import PARAMETERS, PER_ROW
 from lumped.numerics import validate
 
 #: Options that take a value (the rest of the command line is names and values).
-TAKES_VALUE = frozenset(API_TO_OPTION.values()) - {"--t-end/--dt"} | {"--method", "--output", "--system"}
+TAKES_VALUE = frozenset(API_TO_OPTION.values()) - {"--t-end/--dt"} | {"--method", "--output", "--system", *LOAD_FLAGS}
 #: Options that describe the single mass, refused with ``--system``.
-SINGLE_MASS = frozenset(PARAMETERS[name].option for name in PER_ROW)
+SINGLE_MASS = frozenset(PARAMETERS[name].option for name in PER_ROW) | frozenset(LOAD_FLAGS)
 
 
 class Parser(argparse.ArgumentParser):

@@ -6,7 +6,7 @@ import argparse
 import math
 from typing import TYPE_CHECKING
 
-from lumped.cli import system
+from lumped.cli import loads, system
 from lumped.cli.options import HelpFormatter, add_method_options, check_method, method_options
 from lumped.cli.output import Output, check_output
 from lumped.drivers.methods import METHODS, OPTIONS
@@ -28,6 +28,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     for p in PARAMETERS.values():
         sim.add_argument(p.option, default=p.default_text, help=f"{p.help} [default: {p.default_text}]")
+    loads.add_options(sim)
     sim.add_argument(
         "--system",
         default=None,
@@ -64,25 +65,24 @@ def _clean(args: argparse.Namespace) -> dict[str, object]:
     check_output(args.output)
     n = validate.step_count(values["t_end"], values["dt"])  # type: ignore[arg-type]
     validate.output_size(n, values["save_every"])  # type: ignore[arg-type]
+    values["force"] = loads.force(args, values)
     return values
 
 
 def _compute(values: dict[str, object], method: str) -> Trajectory:
     """Run ``method`` through the driver :func:`lumped.drivers.simulation.simulate`."""
     from lumped.drivers.simulation import simulate
-    from lumped.model.forcing import SwitchedSine
     from lumped.model.oscillator import Oscillator
 
     v = values
     osc = Oscillator.bingham(v["mass"], v["stiffness"], v["threshold"], v["gamma"])  # type: ignore[arg-type]
-    force = SwitchedSine(v["force_amplitude"], v["force_omega"], v["force_phase"], v["force_until"])  # type: ignore[arg-type]
     return simulate(
         osc,
         v["t_end"],
         v["dt"],
         x0=v["x0"],
         v0=v["v0"],  # type: ignore[arg-type]
-        force=None if force.is_zero else force,
+        force=v["force"],
         method=method,
         save_every=v["save_every"],
         **v["options"],  # type: ignore[arg-type]

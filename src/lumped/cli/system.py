@@ -72,8 +72,12 @@ def _system_message(message: str, path: str, network: object) -> str:
 
     The runs of a one-mass file go through the single-mass API, whose messages
     begin with its parameter's name (``x0: ...``); ``--x0`` is not an option
-    here, so the file, the entry and its key are named instead.
+    here, so the file, the entry and its key are named instead; a load the
+    method does not run (``force: ...``) is named by its mass.
     """
+    if message.startswith("force: "):  # Method.force_refusal: the loads of [[force]] and [ground]
+        masses = ", ".join(dict.fromkeys(repr(load.on) for load in network.loads))  # type: ignore[attr-defined]
+        return f"system file {path!r}: the loads on {masses}{message[len('force') :]}"
     lead = LEADING_NAME.match(message)
     if lead is None or lead.group(1) not in _SYSTEM_ENTRIES:
         return message

@@ -20,7 +20,9 @@ Adding a method
    (``bingham_only``), whether a sweep runs it (``batch``), the step solvers
    by which it runs any network (``network_solvers``; none: one-mass
    networks only, as an oscillator), its solver in continuous time if it
-   has one (``solution``; none: a fixed-step scheme) and its :class:`Option` s.
+   has one (``solution``; none: a fixed-step scheme), whether its forcing
+   must be a :class:`~lumped.model.forcing.SwitchedSine` (``sine_forcing``)
+   and its :class:`Option` s.
 
 A method asked to run what it cannot says so in one line that names the
 method and the reason (:meth:`Method.refusal`).
@@ -34,7 +36,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from lumped.model.forcing import SwitchedSine
+from lumped.model.forcing import SwitchedSine, kind_of
 from lumped.model.oscillator import Oscillator
 from lumped.model.trajectory import Trajectory
 from lumped.solvers.backward_euler import backward_euler
@@ -102,6 +104,9 @@ class Method:
     #: (the events, the rest, the motion at any time), which ``run`` samples on the grid; ``None``
     #: for a fixed-step scheme, whose ``dt`` is its step.
     solution: Callable[..., ExactSolution] | None = None
+    #: True if its forcing must be a :class:`~lumped.model.forcing.SwitchedSine` (its closed forms or its
+    #: events use the formula); false if it takes any callable of time.
+    sine_forcing: bool = False
 
     def __call__(self, *args: object, **options: object) -> Trajectory:
         return self.run(*args, **options)
@@ -121,6 +126,17 @@ class Method:
         if self.bingham_only and oscillator.dashpot.bingham_form() is None:
             law = type(oscillator.dashpot).__name__
             return f"method: {self.name!r} cannot run a {law}: its closed forms need a Bingham or Coulomb law"
+        return None
+
+    def force_refusal(self, force: object) -> str | None:
+        """Why this method cannot run the forcing ``force`` (one line naming the method), or ``None`` if it can."""
+        if self.sine_forcing and callable(force) and not isinstance(force, SwitchedSine):
+            *others, last = (n for n, m in METHODS.items() if not m.sine_forcing)
+            anyone = f"{', '.join(others)} and {last}" if others else last
+            return (
+                f"force: method {self.name!r} runs a sine or a constant load from t = 0, "
+                f"not {kind_of(force)}; {anyone} run any load"
+            )
         return None
 
     def takes(self, names: object) -> None:
@@ -197,6 +213,7 @@ METHODS: Mapping[str, Method] = MappingProxyType(
                 bingham_only=True,
                 batch=True,
                 solution=solve_exact,
+                sine_forcing=True,
             ),
             Method(
                 "event-driven",
@@ -206,12 +223,14 @@ METHODS: Mapping[str, Method] = MappingProxyType(
                 batch=True,
                 options=(_RTOL,),
                 solution=solve_event_driven,
+                sine_forcing=True,
             ),
             Method(
                 "event-capturing",
                 _event_capturing,
                 "Event-capturing trapezoidal scheme, order 2 through the switches",
                 not_batch=_STUDY_ONLY,
+                sine_forcing=True,
             ),
             Method(
                 "theta",

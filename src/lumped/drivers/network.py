@@ -6,7 +6,7 @@ problem (:func:`lumped.solvers.network_step.solve_step`), and advances
 ``x_{n+1} = x_n + dt v_{n+1}`` and each element's state.
 
 The paper's system written as a network (one mass, one ``spring`` and one
-``bingham`` to the ground, at most one load) is handed to Algorithm 1
+``bingham`` to the ground, any loads) is handed to Algorithm 1
 (:func:`lumped.backward_euler`) itself when ``solver="auto"``: the same
 numbers bit for bit, at the compiled kernel's speed.  With a
 ``herschel-bulkley`` element instead it goes to the same function, whose
@@ -25,7 +25,7 @@ import numpy as np
 from lumped.drivers.methods import NETWORK_SOLVERS
 from lumped.drivers.one_mass import network_trajectory
 from lumped.model.problem import OneMass, one_mass_form
-from lumped.model.forcing import SwitchedSine
+from lumped.model.forcing import SwitchedSine, one_force, sine_form
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
@@ -50,8 +50,8 @@ _COST = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7)}
 def _paper_form(net: Network) -> OneMass | None:
     """The oscillator if ``net`` is the paper's system: one spring and one dashpot that
     :func:`lumped.backward_euler` runs (a Bingham or Herschel-Bulkley element, its
-    ``auto_one_mass``) to the ground, at most one load."""
-    if len(net.masses) != 1 or len(net.elements) != 2 or len(net.loads) > 1:
+    ``auto_one_mass``) to the ground; several loads are run as their sum."""
+    if len(net.masses) != 1 or len(net.elements) != 2:
         return None
     if sum(e.linear_stiffness is not None for e in net.elements) != 1:
         return None
@@ -68,7 +68,7 @@ def _via_algorithm1(net: Network, form: OneMass, t_end: float, dt: float, save_e
     from lumped.solvers.backward_euler import backward_euler
 
     m = net.masses[0]
-    force = net.loads[0].force if net.loads else None
+    force = sine_form(one_force([load.force for load in net.loads]))
     tr = backward_euler(form.oscillator, t_end, dt, x0=m.x0, v0=m.v0, force=force, save_every=save_every)
     solver = "algorithm1" if form.oscillator.dashpot.bingham_form() is not None else "resolvent"  # as backward_euler
     return network_trajectory(net, form, tr, solver)

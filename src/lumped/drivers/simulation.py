@@ -24,7 +24,7 @@ from lumped.drivers import methods
 from lumped.drivers.methods import METHODS
 from lumped.drivers.network import simulate_network
 from lumped.drivers.one_mass import network_trajectory
-from lumped.model.forcing import SwitchedSine
+from lumped.model.forcing import SwitchedSine, sine_form
 from lumped.model.problem import Problem, oscillator_network
 from lumped.model.oscillator import Oscillator
 from lumped.model.trajectory import Trajectory
@@ -71,7 +71,11 @@ def simulate(
     key of :data:`METHODS`; ``options`` are the method's own
     (:func:`method_options` checks them and refuses any other).  A method
     that cannot run ``oscillator`` (``exact`` with a law that has no Bingham
-    form) is refused in one line naming it and the reason.  The other parameters are
+    form) is refused in one line naming it and the reason, as is a forcing
+    that is not a sine for a method that needs its formula
+    (:attr:`~lumped.drivers.methods.Method.sine_forcing`); a
+    :class:`~lumped.model.forcing.Constant` on from ``t = 0`` is run as the
+    sine it equals (:func:`~lumped.model.forcing.sine_form`).  The other parameters are
     those of :func:`~lumped.solvers.backward_euler.backward_euler`.
     """
     options = method_options(method, options)
@@ -79,10 +83,13 @@ def simulate(
     run = METHODS[method]
     if isinstance(oscillator, Oscillator) and (reason := run.refusal(oscillator)) is not None:
         raise ValueError(reason)
+    given, force = force, sine_form(force)
+    if (reason := run.force_refusal(force)) is not None:
+        raise ValueError(reason)
     tr = run(oscillator, t_end, dt, x0, v0, force, save_every, **options)
     if force is None:
         return tr
-    return replace(tr, network=oscillator_network(oscillator, x0, v0, force))  # the system with its load
+    return replace(tr, network=oscillator_network(oscillator, x0, v0, given))  # the system with its load
 
 
 def solve(

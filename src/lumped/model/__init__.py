@@ -4,7 +4,8 @@
   dashpot) and the magnitude checks every method shares;
 * :mod:`~lumped.model.network`: masses, loads and the :class:`Network` of
   elements, with its well-posedness check;
-* :mod:`~lumped.model.forcing`: the loads;
+* :mod:`~lumped.model.forcing`: the loads (sine, constant, table, sums);
+* :mod:`~lumped.model.tables`: load histories read from CSV files;
 * :mod:`~lumped.model.parameters`: every parameter's name, default, unit,
   range and help, in one table;
 * :mod:`~lumped.model.files`: system files (TOML);

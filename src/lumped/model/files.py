@@ -2,10 +2,17 @@
 
 The format (book/guide/systems.md, the website's Systems page): ``[[mass]]`` tables with ``name``, ``mass``,
 ``x0``, ``v0``; ``[[element]]`` tables with ``name``, ``kind``, ``between``
-and the kind's parameters; ``[[force]]`` tables with ``on``, ``amplitude``,
-``omega``, ``phase``, ``until``.  ``x0``, ``v0``, ``phase`` default to 0 and
-``until`` to ``inf``.  Every problem is a ``ValueError`` of one line naming
-the file, the entry and the problem (non-ASCII characters in it escaped).
+and the kind's parameters; ``[[force]]`` tables with ``on`` and a ``kind``:
+``"sine"`` (the default: ``amplitude``, ``omega``, ``phase``, ``until``),
+``"constant"`` (``value``, ``from``, ``until``) or ``"table"`` (``file``, a
+CSV file ``t,F`` read by :func:`lumped.model.tables.read_table`, relative to
+the system file); an optional ``[ground]`` table whose ``acceleration`` is
+one of the same kinds (a table's columns ``t,a``), applied as the load
+``-m a_g(t)`` on every mass, whose positions and velocities are then
+relative to the ground.  Several forces on one mass add.  ``x0``, ``v0``,
+``phase`` and ``from`` default to 0 and ``until`` to ``inf``.  Every problem
+is a ``ValueError`` of one line naming the file, the entry and the problem
+(non-ASCII characters in it escaped).
 
 Names of masses and elements are 1 to 64 ASCII letters, digits, ``_``,
 ``.`` and ``-``, starting with a letter or ``_``
@@ -13,7 +20,8 @@ Names of masses and elements are 1 to 64 ASCII letters, digits, ``_``,
 of the output.  A file holds at most
 :data:`~lumped.model.network.MAX_MASSES` (10,000) masses,
 :data:`~lumped.model.network.MAX_ELEMENTS` (30,000) elements and
-:data:`~lumped.model.network.MAX_LOADS` (10,000) forces, and at most
+:data:`~lumped.model.network.MAX_LOADS` (20,000) forces, the ground's
+load on every mass included, and at most
 :data:`MAX_FILE_BYTES` (16 MiB); a larger file is refused before it is
 parsed, one with more entries before any entry is built.
 """
@@ -28,8 +36,9 @@ from pathlib import Path
 
 from lumped.laws.element import Element
 from lumped.laws.kinds import KINDS
-from lumped.model.forcing import SwitchedSine
+from lumped.model.forcing import Constant, SwitchedSine
 from lumped.model.network import Load, Mass, Network, check_count
+from lumped.model.tables import read_table
 
 __all__ = ["MAX_FILE_BYTES", "load_system", "parse_system"]
 
@@ -40,11 +49,19 @@ _COUNTED = {"mass": "masses", "element": "elements", "force": "loads"}
 
 _TABLES = {"mass", "element", "force"}
 _MASS_KEYS = {"name": None, "mass": None, "x0": 0.0, "v0": 0.0}
-_FORCE_KEYS = {"on": None, "amplitude": None, "omega": None, "phase": 0.0, "until": math.inf}
+#: The keys of a load history by ``kind`` (``None``: required); a ``[[force]]`` adds ``on``.
+_HISTORY_KEYS = {
+    "sine": {"kind": "sine", "amplitude": None, "omega": None, "phase": 0.0, "until": math.inf},
+    "constant": {"kind": None, "value": None, "from": 0.0, "until": math.inf},
+    "table": {"kind": None, "file": None},
+}
 
 
 def load_system(path: str | Path) -> Network:
-    """Read a system file; ``ValueError`` naming the file, the entry and the problem."""
+    """Read a system file; ``ValueError`` naming the file, the entry and the problem.
+
+    A table's ``file`` is read relative to the system file's folder.
+    """
     if not isinstance(path, (str, os.PathLike)):
         raise ValueError(f"path must be a str or a path of a system file, got {type(path).__name__}")
     path = Path(path)
@@ -56,27 +73,30 @@ def load_system(path: str | Path) -> Network:
     except (OSError, UnicodeDecodeError) as err:
         why = getattr(err, "strerror", None) or str(err)
         raise ValueError(f"{source}: cannot read it: {why}") from None
-    return parse_system(text, source)
+    return parse_system(text, source, folder=path.parent)
 
 
-def parse_system(text: str, source: str = "<string>") -> Network:
+def parse_system(text: str, source: str = "<string>", *, folder: str | Path = ".") -> Network:
     """A network from the text of a system file (``source`` names it in messages).
 
     Every problem is a one-line ``ValueError`` beginning with ``source``;
     non-ASCII characters of the message are escaped (``\\xe9``), so that
-    printing it never fails on the encoding of a terminal.
+    printing it never fails on the encoding of a terminal.  A table's
+    ``file`` is read relative to ``folder`` (the current one by default).
     """
     if not isinstance(text, str):
         raise ValueError(f"text must be a str (the TOML text of a system file), got {type(text).__name__}")
     if not isinstance(source, str):
         raise ValueError(f"source must be a str naming the text in messages, got {type(source).__name__}")
+    if not isinstance(folder, (str, os.PathLike)):
+        raise ValueError(f"folder must be a str or a path, got {type(folder).__name__}")
     try:
-        return _parse(text, source)
+        return _parse(text, source, Path(folder))
     except ValueError as err:
         raise ValueError(str(err).encode("ascii", "backslashreplace").decode("ascii")) from None
 
 
-def _parse(text: str, source: str) -> Network:
+def _parse(text: str, source: str, folder: Path) -> Network:
     if len(text) > MAX_FILE_BYTES:
         raise ValueError(f"{source}: {len(text)} characters, more than the {MAX_FILE_BYTES} read")
     try:
@@ -85,9 +105,11 @@ def _parse(text: str, source: str) -> Network:
         raise ValueError(f"{source}: not valid TOML: {err}") from None
     except RecursionError:
         raise ValueError(f"{source}: not read: its tables or arrays are nested too deeply") from None
-    unknown = sorted(set(data) - _TABLES)
+    unknown = sorted(set(data) - _TABLES - {"ground"})
     if unknown:
-        raise ValueError(f"{source}: unknown table {unknown[0]!r:.40}; expected [[mass]], [[element]] and [[force]]")
+        raise ValueError(
+            f"{source}: unknown table {unknown[0]!r:.40}; expected [[mass]], [[element]], [[force]] and [ground]"
+        )
     tables = {}
     for key in sorted(_TABLES):
         value = data.get(key, [])
@@ -100,7 +122,8 @@ def _parse(text: str, source: str) -> Network:
         tables[key] = value
     masses = [_entry(source, "mass", i, t, _mass) for i, t in enumerate(tables["mass"], 1)]
     elements = [_entry(source, "element", i, t, _element) for i, t in enumerate(tables["element"], 1)]
-    loads = [_entry(source, "force", i, t, _force) for i, t in enumerate(tables["force"], 1)]
+    loads = [_entry(source, "force", i, t, lambda raw: _force(raw, folder)) for i, t in enumerate(tables["force"], 1)]
+    loads += _ground(source, data.get("ground"), masses, folder)
     try:
         net = Network(masses, elements, loads)
         _initial_check(net)
@@ -150,13 +173,57 @@ def _element(raw: dict) -> Element:
     return cls(**values)
 
 
-def _force(raw: dict) -> Load:
-    values = _fields(raw, _FORCE_KEYS)
+def _force(raw: dict, folder: Path) -> Load:
+    keys = _HISTORY_KEYS[_kind(raw)]
+    values = _fields(raw, {"on": None} | keys)
     on = values.pop("on")
+    return Load(on, _history(values, folder, "F"))
+
+
+def _kind(raw: dict) -> str:
+    kind = raw.get("kind", "sine")
+    if not isinstance(kind, str) or kind not in _HISTORY_KEYS:
+        raise ValueError(f"unknown kind {kind!r:.40}; expected one of {', '.join(_HISTORY_KEYS)}")
+    return kind
+
+
+def _history(values: dict, folder: Path, column: str) -> object:
+    """The load history of an entry's checked ``values``; a table's file is ``folder / file``, column ``column``."""
+    kind = values.pop("kind")
+    if kind == "table":
+        if not isinstance(values["file"], str):
+            raise ValueError(f"file must be a string, the path of a CSV file 't,{column}', got {values['file']!r:.40}")
+        return read_table(folder / values["file"], column)
     try:
-        return Load(on, SwitchedSine(**values))
-    except ValueError as err:  # SwitchedSine names its fields force_amplitude, ...
-        raise ValueError(str(err).removeprefix("force_")) from None
+        if kind == "constant":
+            return Constant(values["value"], values["from"], values["until"])
+        return SwitchedSine(**values)
+    except ValueError as err:  # SwitchedSine names its fields force_amplitude, ..., Constant ``start``
+        raise ValueError(str(err).removeprefix("force_").replace("start", "from")) from None
+
+
+def _ground(source: str, raw: object, masses: list[Mass], folder: Path) -> list[Load]:
+    """The loads ``-m a_g(t)`` of a ``[ground]`` table on every mass (none without it)."""
+    if raw is None:
+        return []
+    where = f"{source}: [ground]"
+    try:
+        if not isinstance(raw, dict):
+            raise ValueError("must be written as a [ground] table")
+        acceleration = _fields(raw, {"acceleration": None})["acceleration"]
+        where += " acceleration"
+        if not isinstance(acceleration, dict):
+            raise ValueError('must be an inline table such as { kind = "table", file = "record.csv" }')
+        history = _history(_fields(acceleration, _HISTORY_KEYS[_kind(acceleration)]), folder, "a")
+    except (ValueError, TypeError) as err:
+        raise ValueError(f"{where}: {err}") from None
+    loads = []
+    for m in masses:
+        try:
+            loads.append(Load(m.name, history.scaled(-m.mass)))
+        except ValueError:  # the product overflows
+            raise ValueError(f"{where}: the load -m a_g on mass {m.name!r} (m = {m.mass:g}) is not finite") from None
+    return loads
 
 
 def _initial_check(net: Network) -> None:

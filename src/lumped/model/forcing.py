@@ -1,15 +1,26 @@
-"""External forcing ``F(t)``.
+"""External forcing ``F(t)``: the load types, each a small frozen dataclass called with an array of times.
 
-:class:`SwitchedSine` is ``P sin(omega t + phi)`` for ``t <= t_off`` and ``0``
-afterwards, which covers both forcings of the paper, eqs. (17a) and (17b).  Any
-other forcing may be passed to the API as a Python callable of time.
+* :class:`SwitchedSine`: ``P sin(omega t + phi)`` for ``t <= t_off`` and ``0``
+  afterwards, which covers both forcings of the paper, eqs. (17a) and (17b);
+* :class:`Constant`: a step load ``P`` switched on at ``start`` and off after ``until``;
+* :class:`Table`: a sampled history (a measured load, a ground-acceleration
+  record), linearly interpolated, zero outside its samples;
+* :class:`LoadSum`: several loads on one mass, added, as one callable.
+
+Any other forcing may be passed to the API as a Python callable of time
+(:func:`evaluate` calls it).  A ground acceleration ``a_g(t)`` is written as
+the loads ``-m a_g(t)`` on every mass (``scaled(-m)`` of its type): positions
+and velocities are then relative to the ground.  The methods whose closed
+forms need the forcing's formula take a :class:`SwitchedSine`;
+:func:`sine_form` writes a :class:`Constant` on from ``t = 0`` as one
+(``P sin(pi/2) = P`` exactly).
 """
 
 from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -17,7 +28,18 @@ import numpy as np
 from lumped.numerics import validate
 from lumped.numerics.sine import sin, sin_array
 
-__all__ = ["SwitchedSine", "evaluate", "validate_force"]
+__all__ = [
+    "Constant",
+    "LoadSum",
+    "SwitchedSine",
+    "Table",
+    "evaluate",
+    "first_bad_sample",
+    "kind_of",
+    "one_force",
+    "sine_form",
+    "validate_force",
+]
 
 
 @dataclass(frozen=True)
@@ -75,6 +97,167 @@ class SwitchedSine:
         if p < 0:
             p, ph = -p, ph + math.pi
         return p, w, math.remainder(ph, 2 * math.pi)
+
+    def scaled(self, factor: float) -> SwitchedSine:
+        """``factor`` times this force (``-m a_g`` from a ground acceleration ``a_g``)."""
+        return SwitchedSine(factor * self.amplitude, self.omega, self.phase, self.until)
+
+
+@dataclass(frozen=True)
+class Constant:
+    """``F(t) = value`` for ``start <= t <= until``, else 0: a step load, switched off after ``until``.
+
+    Parameters
+    ----------
+    value : float, N
+    start : float, s
+        Time ``>= 0`` at which the load comes on (a system file's ``from``).
+    until : float, s
+        Time after which it is zero, later than ``start``; ``inf`` for never.
+    """
+
+    value: float
+    start: float = 0.0
+    until: float = math.inf
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "value", validate.finite("value", self.value))
+        object.__setattr__(self, "start", validate.non_negative("start", self.start))
+        object.__setattr__(self, "until", validate.time_or_inf("until", self.until))
+        if not self.until > self.start:
+            raise ValueError(f"until must be later than start ({self.start:g} s), got {self.until:g}")
+
+    def __call__(self, t: np.ndarray | float) -> np.ndarray | float:
+        """The force at the times ``t`` (N)."""
+        t = np.asarray(t, dtype=float)
+        out = np.where((t >= self.start) & (t <= self.until), self.value, 0.0)
+        return float(out) if out.ndim == 0 else out
+
+    def scaled(self, factor: float) -> Constant:
+        """``factor`` times this force."""
+        return Constant(factor * self.value, self.start, self.until)
+
+
+@dataclass(frozen=True, eq=False)
+class Table:
+    """Samples ``(t_i, F_i)``, linearly interpolated, zero before ``t_0`` and after the last ``t_i``.
+
+    Parameters
+    ----------
+    t : array_like, (n,), s
+        At least two finite times, strictly increasing.
+    values : array_like, (n,), N
+        Finite values at those times.
+
+    Between two samples the force is ``np.interp``'s straight line, so a
+    table of equal values gives that value itself, bit for bit.
+    """
+
+    t: np.ndarray
+    values: np.ndarray
+
+    def __post_init__(self) -> None:
+        t, values = _samples("t", self.t), _samples("values", self.values)
+        if t.shape != values.shape:
+            raise ValueError(f"values must have one value per time: {values.size} values for {t.size} times")
+        if t.size < 2:
+            raise ValueError(f"t must hold at least two times, got {t.size}")
+        bad = first_bad_sample(t, values)
+        if bad is not None:
+            raise ValueError(f"{bad[1]} at index {bad[0]}")
+        for name, array in (("t", t), ("values", values)):
+            array.setflags(write=False)
+            object.__setattr__(self, name, array)
+
+    def __call__(self, t: np.ndarray | float) -> np.ndarray | float:
+        """The force at the times ``t`` (N)."""
+        out = np.interp(np.asarray(t, dtype=float), self.t, self.values, left=0.0, right=0.0)
+        return float(out) if np.ndim(out) == 0 else out
+
+    def scaled(self, factor: float) -> Table:
+        """``factor`` times this force (the values scaled, the times kept)."""
+        return Table(self.t, factor * self.values)
+
+
+def _samples(name: str, raw: object) -> np.ndarray:
+    """``raw`` as a new one-dimensional float array, or a ``ValueError`` naming ``name``."""
+    if not _real_array(raw) or np.ndim(raw) != 1:
+        raise ValueError(f"{name} must be a one-dimensional array of real numbers, got {_short(raw)}")
+    return np.array(raw, dtype=float)
+
+
+def first_bad_sample(
+    t: np.ndarray, values: np.ndarray, names: tuple[str, str] = ("t", "values")
+) -> tuple[int, str] | None:
+    """The first sample a :class:`Table` refuses, as ``(index, why)``; ``None`` if every one is good.
+
+    ``why`` names the column (``names``): a time or value that is not finite,
+    or a time that does not follow the one before it.
+    """
+    for i, (ti, vi) in enumerate(zip(t.tolist(), values.tolist())):
+        if not math.isfinite(ti):
+            return i, f"{names[0]} must be finite, got {ti!r}"
+        if not math.isfinite(vi):
+            return i, f"{names[1]} must be finite, got {vi!r}"
+        if i and not ti > t[i - 1]:
+            return i, f"{names[0]} must increase strictly, got {ti!r} after {float(t[i - 1])!r}"
+    return None
+
+
+@dataclass(frozen=True)
+class LoadSum:
+    """Several forces on one mass, added in their order: one callable of time.
+
+    The sum is formed as :meth:`lumped.model.network.Network.load_table`
+    forms it (``0 + F_1 + F_2 + ...``), so a one-mass system runs the same
+    numbers as a single force or as a network.
+    """
+
+    forces: tuple
+
+    def __post_init__(self) -> None:
+        forces = tuple(self.forces) if isinstance(self.forces, (list, tuple)) else None
+        if not forces or any(validate_force(f) is None for f in forces):
+            raise ValueError("forces must be a non-empty sequence of forces (callables of time)")
+        object.__setattr__(self, "forces", forces)
+
+    def __call__(self, t: np.ndarray | float) -> np.ndarray | float:
+        """The summed force at the times ``t`` (N)."""
+        times = np.asarray(t, dtype=float)
+        flat = times.reshape(-1)
+        out = np.zeros_like(flat)
+        for force in self.forces:
+            out += evaluate(force, flat)
+        return float(out[0]) if times.ndim == 0 else out.reshape(times.shape)
+
+
+def one_force(forces: Sequence[object]) -> object:
+    """The forces on one mass as one: ``None`` for none, the force itself for one, else their :class:`LoadSum`."""
+    if not forces:
+        return None
+    return forces[0] if len(forces) == 1 else LoadSum(tuple(forces))
+
+
+def sine_form(force: object) -> object:
+    """``force`` as a :class:`SwitchedSine` when it is a :class:`Constant` on from ``t = 0``, else ``force``.
+
+    ``Constant(P, 0, t_off)`` is ``SwitchedSine(P, 0, pi/2, t_off)`` at every
+    ``t >= 0``, value for value: ``sin(pi/2)`` is exactly 1 in
+    :mod:`lumped.numerics.sine` (tested), so the methods that need a sine's
+    formula run it.
+    """
+    if isinstance(force, Constant) and force.start == 0:
+        return SwitchedSine(force.value, 0.0, math.pi / 2, force.until)
+    return force
+
+
+def kind_of(force: object) -> str:
+    """A force in words, for messages: ``a sine``, ``a table``, ``a sum of 2 loads``, ..."""
+    if isinstance(force, Constant):
+        return "a constant" + (f" switched on at t = {force.start:g} s" if force.start else "")
+    if isinstance(force, LoadSum):
+        return f"a sum of {len(force.forces)} loads"
+    return {SwitchedSine: "a sine", Table: "a table"}.get(type(force), "a callable of time")
 
 
 def validate_force(force: object) -> SwitchedSine | Callable[[np.ndarray], np.ndarray] | None:

@@ -34,10 +34,10 @@ __all__ = [
 #: at 10,000 masses, measured on one core), so 10,000 masses run a thousand
 #: steps in minutes; a million masses (issue 19) took 4 minutes and 4.1 GB
 #: before their first message, and would take about 14 s a step.  Elements: three per mass (notebook 08's
-#: chain has two, a spring and a friction element); forces: one per mass.
+#: chain has two, a spring and a friction element); forces: two per mass (one, and the ground's ``-m a_g``).
 MAX_MASSES = 10_000
 MAX_ELEMENTS = 3 * MAX_MASSES
-MAX_LOADS = MAX_MASSES
+MAX_LOADS = 2 * MAX_MASSES
 _SHOWN = 5  # names listed in a message before "... and N more"
 
 
@@ -77,7 +77,7 @@ class Mass:
 
 @dataclass(frozen=True)
 class Load:
-    """An external force (N) on the mass ``on``: a :class:`SwitchedSine` or a callable of time."""
+    """An external force (N) on the mass ``on``: a load of :mod:`lumped.model.forcing` or any callable of time."""
 
     on: str
     force: SwitchedSine | Callable[[np.ndarray], np.ndarray]

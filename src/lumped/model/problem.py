@@ -20,7 +20,7 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.laws import GROUND, Element, LinearSpring, Monotone, Spring
-from lumped.model.forcing import SwitchedSine
+from lumped.model.forcing import SwitchedSine, one_force
 from lumped.model.network import Load, Mass, Network
 from lumped.model.oscillator import Oscillator
 from lumped.numerics import validate
@@ -42,7 +42,7 @@ class OneMass(NamedTuple):
 def one_mass_form(net: Network) -> OneMass:
     """The oscillator of a one-mass network, or a ``ValueError`` saying why it is not one.
 
-    The network must have one mass, at most one load, and elements that all
+    The network must have one mass and elements that all
     join the mass to the ground: one or more ``spring`` s and exactly one
     element with a ``one_mass_law`` (point 8 of
     :class:`~lumped.laws.element.Element`).  The message completes "the
@@ -50,8 +50,6 @@ def one_mass_form(net: Network) -> OneMass:
     """
     if len(net.masses) != 1:
         raise ValueError(f"has {len(net.masses)} masses")
-    if len(net.loads) > 1:
-        raise ValueError(f"has {len(net.loads)} [[force]] entries; combine them into one")
     for el in net.elements:
         if GROUND not in el.between:
             raise ValueError(f"element {el.name!r} does not join the mass to the ground")
@@ -130,5 +128,6 @@ class Problem:
 
     @property
     def force(self) -> SwitchedSine | Callable[[np.ndarray], np.ndarray] | None:
-        """The load of a one-mass system (``None`` if it has none)."""
-        return self.system.loads[0].force if self.system.loads else None
+        """The load of a one-mass system: ``None`` if it has none, the load itself if one,
+        else their sum as one callable (:func:`~lumped.model.forcing.one_force`)."""
+        return one_force([load.force for load in self.system.loads])

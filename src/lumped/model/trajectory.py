@@ -186,6 +186,7 @@ class Trajectory:
                 "x": self.positions,
                 "v": self.velocities,
                 "force": self.forces,
+                "load": self.applied,
                 "mass_names": np.array(net.mass_names),
                 "element_names": np.array(net.element_names),
             }
@@ -193,6 +194,7 @@ class Trajectory:
         out |= {f"x_{n}": self.positions[:, i] for i, n in enumerate(net.mass_names)}
         out |= {f"v_{n}": self.velocities[:, i] for i, n in enumerate(net.mass_names)}
         out |= {f"F_{n}": self.forces[:, i] for i, n in enumerate(net.element_names)}
+        out |= {f"load_{n}": self.applied[:, i] for i, n in enumerate(net.mass_names)}
         return out
 
     def summary(self, shown: int = 10) -> str:

@@ -1,0 +1,128 @@
+"""The single mass's load on the command line: a sine, a constant or a table, and no option that does nothing.
+
+* a sine ``P sin(omega t + phase)`` until ``--force-until``: ``--force-amplitude``,
+  ``--force-omega``, ``--force-phase`` (parameters of
+  :data:`lumped.model.parameters.PARAMETERS`, which a sweep varies too);
+* a constant: ``--force-value P`` from ``--force-from T0`` (default 0) to
+  ``--force-until T1`` (:class:`~lumped.model.forcing.Constant`);
+* a table: ``--force-table FILE.csv`` with header ``t,F``
+  (:func:`lumped.model.tables.read_table`).
+
+One kind at a time (a system file adds several loads).  An option that
+cannot change the load is refused in one line, naming it and why: today's
+trap was ``--force-amplitude 10`` alone, a sine of frequency 0 and phase 0,
+which is 0 at all times.
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from lumped.model.parameters import PARAMETERS, shown
+from lumped.numerics import validate
+
+__all__ = ["FLAGS", "add_options", "force"]
+
+#: The options of the constant and table loads, which take a value.
+FLAGS = ("--force-value", "--force-from", "--force-table")
+_SINE = ("force_amplitude", "force_omega", "force_phase")
+
+
+def add_options(parser: argparse.ArgumentParser) -> None:
+    """``--force-value``, ``--force-from`` and ``--force-table`` (the sine's options are parameters)."""
+    parser.add_argument(
+        "--force-value",
+        default=None,
+        metavar="P",
+        help="a constant load P (N) instead of the sine, on from --force-from to --force-until",
+    )
+    parser.add_argument(
+        "--force-from", default=None, metavar="T0", help="time (s) at which --force-value comes on [default: 0]"
+    )
+    parser.add_argument(
+        "--force-table",
+        default=None,
+        metavar="FILE.csv",
+        help="a load history instead of the sine: a CSV file with the header t,F, times in s strictly "
+        "increasing, linearly interpolated, zero outside its times",
+    )
+
+
+def force(args: argparse.Namespace, values: dict[str, object]) -> object | None:
+    """The load the options describe (``None`` for none), from the parsed ``values`` of the sine's options.
+
+    Raises
+    ------
+    ValueError
+        One line naming an option: kinds mixed, an option of another kind,
+        an option that changes nothing, a bad value or table.
+    """
+    given = [o for o in _SINE if values[o] != PARAMETERS[o].default]
+    until = values["force_until"] != math.inf
+    if args.force_table is not None:
+        other = [_flag(o) for o in given] + ["--force-until"] * until + _constant_flags(args)
+        if other:
+            raise ValueError(f"{other[0]} cannot go with --force-table, whose file is the whole load")
+        return _table(args.force_table)
+    if args.force_value is not None:
+        if given:
+            raise ValueError(
+                f"{_flag(given[0])} cannot go with --force-value: one load at a time "
+                "(a system file, --system, adds several)"
+            )
+        return _constant(args, values["force_until"], until)
+    if args.force_from is not None:
+        raise ValueError("--force-from goes with --force-value, the constant load it switches on")
+    return _sine(values, given + ["force_until"] * until)
+
+
+def _flag(name: str) -> str:
+    return PARAMETERS[name].option
+
+
+def _constant_flags(args: argparse.Namespace) -> list[str]:
+    return [flag for flag in FLAGS[:2] if getattr(args, flag[2:].replace("-", "_")) is not None]
+
+
+def _table(path: str) -> object:
+    from lumped.model.tables import read_table
+
+    try:
+        return read_table(path, "F")
+    except ValueError as err:
+        raise ValueError(f"--force-table: {err}") from None
+
+
+def _constant(args: argparse.Namespace, until: float, until_given: bool) -> object:
+    from lumped.model.forcing import Constant
+
+    value = validate.parse_float("--force-value", args.force_value)
+    start = 0.0 if args.force_from is None else validate.parse_float("--force-from", args.force_from)
+    if value == 0 and (args.force_from is not None or until_given):
+        flag = "--force-from" if args.force_from is not None else "--force-until"
+        raise ValueError(f"{flag} does nothing: --force-value is 0")
+    try:
+        return Constant(value, start, until)
+    except ValueError as err:  # Constant names its fields value, start, until
+        words = {"value": "--force-value", "start": "--force-from", "until": "--force-until"}
+        raise ValueError(" ".join(words.get(w, w) for w in str(err).split(" "))) from None
+
+
+def _sine(values: dict[str, object], given: list[str]) -> object | None:
+    """The sine of the parameters, ``None`` if it is zero at all times (refused if an option was given for it)."""
+    from lumped.model.forcing import SwitchedSine
+
+    p, w, ph, until = (values[n] for n in (*_SINE, "force_until"))
+    sine = SwitchedSine(p, w, ph, until)  # type: ignore[arg-type]
+    if not sine.is_zero:
+        return sine
+    if p != 0:  # omega = 0 and sin(phase) = 0: phase 0
+        raise ValueError(
+            f"--force-amplitude {shown(p)} applies no force: with --force-omega 0 and --force-phase 0, "
+            f"P sin(omega t + phase) is 0 at all times; give --force-omega, or --force-value {shown(p)} "
+            "for a constant load"
+        )
+    if given:
+        raise ValueError(f"{_flag(given[0])} does nothing: --force-amplitude is 0, so the sine is 0 at all times")
+    return None
