@@ -150,9 +150,7 @@ class Phase(NamedTuple):
     def rows(self, what: str) -> np.ndarray:
         """The rows of ``out`` for ``"x"``, ``"v"``, ``"a"`` or ``"f"``."""
         n = self.n
-        return {"x": self.out[:n], "v": self.out[n : 2 * n], "a": self.out[2 * n : 3 * n], "f": self.out[3 * n :]}[
-            what
-        ]
+        return {"x": self.out[:n], "v": self.out[n : 2 * n], "a": self.out[2 * n : 3 * n], "f": self.out[3 * n :]}[what]
 
 
 def _load_matrix(p: Parts, t: float, dim: int, base: int) -> np.ndarray:
