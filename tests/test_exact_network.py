@@ -174,7 +174,7 @@ _BETWEEN = ("a", "b")
         (L.MaxwellBingham("s", _BETWEEN, 10.0, 1.0, 1.0), "maxwell-bingham"),
         (L.LockingBingham("s", _BETWEEN, 1.0, 1.0, 1.0), "locking-bingham"),
         (L.HerschelBulkley("s", _BETWEEN, 1.0, 1.0, 2.0), "herschel-bulkley"),
-        (L.Monotone("s", _BETWEEN, L.BinghamDashpot(1.0, 1.0)), "monotone"),
+        (L.Monotone("s", _BETWEEN, L.HerschelBulkleyDashpot(1.0, 1.0, 0.5)), "monotone"),
     ],
 )
 def test_exact_refuses_an_element_without_a_closed_form_in_one_line(element: L.Element, kind: str) -> None:

@@ -35,8 +35,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.linalg import expm
-
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
@@ -127,6 +125,8 @@ def _step_for(ph: Phase, span: float) -> float:
 
 def _next_event(p: Parts, ph: Phase, t_lim: float) -> tuple[float, list[tuple[int, str]]]:
     """The first event of ``ph`` in ``(start, t_lim]``: its time and ``(element, kind)`` fired; none at ``t_lim``."""
+    from scipy.linalg import expm  # here: importing the package loads no SciPy solver
+
     rows, what = _event_rows(p, ph)
     if not what:
         return t_lim, []
@@ -146,6 +146,8 @@ def _next_event(p: Parts, ph: Phase, t_lim: float) -> tuple[float, list[tuple[in
 
 def _locate(ph, rows, what, fired, t0, z, t1, g0) -> tuple[float, list[tuple[int, str]]]:  # noqa: ANN001
     """The earliest root among the rows ``fired`` in ``(t0, t1]``, and every row that fires there."""
+    from scipy.linalg import expm
+
     roots = {}
     for r in fired:
         if g0[r] <= 0:

@@ -25,9 +25,7 @@ import math
 from typing import NamedTuple
 
 import numpy as np
-from scipy.linalg import expm
-
-from lumped.laws import Bingham, LinearDashpot, Spring
+from lumped.laws.element import Element
 from lumped.model.forcing import Constant, SwitchedSine, kind_of
 from lumped.model.network import Network
 
@@ -52,10 +50,27 @@ class Parts(NamedTuple):
     omegas: tuple[float, ...]
 
 
+def linear_parts(el: Element) -> tuple[float, float, float] | None:
+    """``(stiffness, viscosity, threshold)`` of a linear spring, or of a dashpot whose law is Bingham's graph
+    (a Bingham, Coulomb or linear dashpot, by the element's contract: ``linear_stiffness``, its
+    ``one_mass_law()`` and that law's ``bingham_form()``, or a Herschel-Bulkley law of exponent 1); else ``None``."""
+    if el.linear_stiffness is not None:
+        return el.linear_stiffness, 0.0, 0.0
+    law = el.one_mass_law()
+    if law is None:
+        return None
+    form = law.bingham_form()
+    if form is not None:
+        return 0.0, form.viscosity, form.threshold
+    if getattr(law, "exponent", None) == 1:  # Herschel-Bulkley with n = 1: Bingham's graph, c the consistency
+        return 0.0, law.consistency, law.threshold  # type: ignore[attr-defined]
+    return None
+
+
 def refusal(net: Network, method: str = "exact") -> str | None:
     """Why the phases of ``net`` have no closed form (one line naming the element or load), or ``None``."""
     for el in net.elements:
-        if not isinstance(el, (Spring, Bingham, LinearDashpot)):
+        if linear_parts(el) is None:
             return (
                 f"method {method!r} cannot run element {el.name!r} of kind {el.kind!r}: "
                 f"its closed forms per phase need {_TAKES}"
@@ -77,12 +92,7 @@ def parts(net: Network) -> Parts:
             b[second, e] += 1.0
         if first < n:
             b[first, e] -= 1.0
-        if isinstance(el, Spring):
-            k[e] = el.stiffness
-        elif isinstance(el, LinearDashpot):
-            c[e] = el.damping
-        else:
-            c[e], tau[e] = el.viscosity, el.threshold
+        k[e], c[e], tau[e] = linear_parts(el)  # type: ignore[misc]
     loads = tuple((index[load.on], load.force) for load in net.loads)
     omegas = tuple(sorted({abs(f.omega) for _, f in loads if isinstance(f, SwitchedSine) and f.omega != 0}))
     m = np.array([mass.mass for mass in net.masses])
@@ -140,6 +150,8 @@ class Phase(NamedTuple):
     n: int
 
     def z(self, t: float) -> np.ndarray:
+        from scipy.linalg import expm  # here: importing the package loads no SciPy solver
+
         return expm(self.a * (t - self.start)) @ self.z0
 
     def values(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
