@@ -35,6 +35,7 @@ HERSCHEL_BULKLEY = (
     'kind = "herschel-bulkley"\nbetween = ["ground", "m1"]\nthreshold = 1.0\nconsistency = 1.0\nexponent = 2.0'
 )
 TWO_MASSES = ONE_MASS.format(dashpot=BINGHAM) + '[[mass]]\nname = "m2"\nmass = 1.0\n'
+TWO_MASSES_HB = ONE_MASS.format(dashpot=HERSCHEL_BULKLEY) + '[[mass]]\nname = "m2"\nmass = 1.0\n'
 
 
 def _actions(command: str) -> dict[str, argparse.Action]:
@@ -100,10 +101,20 @@ def test_exact_refuses_a_law_without_bingham_form():
     assert methods.METHODS["event-driven"].refusal(osc) is None  # any monotone law
 
 
-def test_exact_refuses_a_network_of_several_masses(tmp_path):
+def test_a_single_mass_method_refuses_a_network_of_several_masses(tmp_path):
     path = tmp_path / "two.toml"
     path.write_text(TWO_MASSES)
-    with pytest.raises(ValueError, match="^method 'exact' needs a one-mass system; the network has 2 masses$"):
+    message = "^method 'event-driven' needs a one-mass system; the network has 2 masses$"
+    with pytest.raises(ValueError, match=message):
+        L.solve(L.Problem(load_system(str(path)), 0.1), 1e-3, method="event-driven")
+    assert L.solve(L.Problem(load_system(str(path)), 0.1), 1e-3, method="exact").positions.shape == (101, 2)
+
+
+def test_exact_refuses_a_network_element_without_a_closed_form(tmp_path):
+    path = tmp_path / "two.toml"
+    path.write_text(TWO_MASSES_HB)
+    message = "^method 'exact' cannot run element 'd' of kind 'herschel-bulkley': its closed forms per phase need "
+    with pytest.raises(ValueError, match=message):
         L.solve(L.Problem(load_system(str(path)), 0.1), 1e-3, method="exact")
 
 
@@ -114,7 +125,7 @@ def test_exact_refuses_a_network_of_several_masses(tmp_path):
             ONE_MASS.format(dashpot=HERSCHEL_BULKLEY),
             "--method: 'exact' cannot run a HerschelBulkleyDashpot: its closed forms need a Bingham or Coulomb law",
         ),
-        (TWO_MASSES, "--method exact needs a one-mass system; "),
+        (TWO_MASSES_HB, "method 'exact' cannot run element 'd' of kind 'herschel-bulkley': "),
     ],
 )
 def test_the_command_line_refuses_exact_in_one_line(tmp_path, capsys, system, message):

@@ -28,7 +28,7 @@ def run(args: argparse.Namespace, output: Output) -> str:
     options = method_options(args)
     check_output(args.output)
     network = load_system(args.system)
-    if not METHODS[args.method].runs_networks:
+    if not METHODS[args.method].runs_networks and not _piecewise(network, args.method, args.system):
         _one_mass(network, args)
     output.create()
     try:
@@ -89,6 +89,23 @@ def _system_message(message: str, path: str, network: object) -> str:
     }[table]
     where = " ".join([f"[[{table}]]", ", ".join(entries), key]).replace("  ", " ")
     return f"system file {path!r}: {where}{message[lead.end() :]}"
+
+
+def _piecewise(network: object, method: str, path: str) -> bool:
+    """True if ``method`` runs ``network`` by its solver of piecewise-linear networks; its refusal there
+    (an element or load with no closed form per phase) names the file."""
+    from lumped.model.problem import one_mass_form
+    from lumped.solvers.network_phase import refusal
+
+    if METHODS[method].piecewise_networks is None:
+        return False
+    try:
+        one_mass_form(network)  # type: ignore[arg-type]
+    except ValueError:
+        if (reason := refusal(network, method)) is not None:  # type: ignore[arg-type]
+            raise ValueError(f"{reason} ({path})") from None
+        return True
+    return False
 
 
 def _one_mass(network: object, args: argparse.Namespace) -> None:

@@ -21,8 +21,10 @@ Adding a method
    by which it runs any network (``network_solvers``; none: one-mass
    networks only, as an oscillator), its solver in continuous time if it
    has one (``solution``; none: a fixed-step scheme), whether its forcing
-   must be a :class:`~lumped.model.forcing.SwitchedSine` (``sine_forcing``)
-   and its :class:`Option` s.
+   must be a :class:`~lumped.model.forcing.SwitchedSine` (``sine_forcing``),
+   its solver of the networks whose every phase is linear, if it has one
+   (``piecewise_networks``: run for a network that is not of the one-mass
+   form), and its :class:`Option` s.
 
 A method asked to run what it cannot says so in one line that names the
 method and the reason (:meth:`Method.refusal`).
@@ -43,6 +45,7 @@ from lumped.solvers.backward_euler import backward_euler
 from lumped.solvers.event_capturing import event_capturing
 from lumped.solvers.event_driven import DEFAULT_RTOL, solve_event_driven, validate_rtol
 from lumped.solvers.exact import ExactSolution, solve_exact
+from lumped.solvers.exact_network import solve_exact_network
 from lumped.solvers.theta import theta_method
 
 __all__ = ["METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", "NETWORK_SOLVERS", "OPTIONS"]
@@ -107,6 +110,10 @@ class Method:
     #: True if its forcing must be a :class:`~lumped.model.forcing.SwitchedSine` (its closed forms or its
     #: events use the formula); false if it takes any callable of time.
     sine_forcing: bool = False
+    #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots; sine and constant
+    #: loads), ``(network, t_end, dt, *, save_every) -> Trajectory``, which refuses any other network in one
+    #: line; ``None`` if it runs one-mass networks only (or any network, by ``network_solvers``).
+    piecewise_networks: Callable[..., Trajectory] | None = None
 
     def __call__(self, *args: object, **options: object) -> Trajectory:
         return self.run(*args, **options)
@@ -214,6 +221,7 @@ METHODS: Mapping[str, Method] = MappingProxyType(
                 batch=True,
                 solution=solve_exact,
                 sine_forcing=True,
+                piecewise_networks=solve_exact_network,
             ),
             Method(
                 "event-driven",

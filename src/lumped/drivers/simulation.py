@@ -120,7 +120,18 @@ def solve(
         For a bad argument (named), or a method that cannot run the problem:
         one line naming the method and the reason (a single-mass method and a
         network that is not the paper's form, ``exact`` and a law with no
-        Bingham form).
+        Bingham form, ``exact`` and a network element or load that has no
+        closed form per phase).
+
+    Notes
+    -----
+    A network of the one-mass form goes to the method's one-mass solver
+    (the paper's system to Algorithm 1's kernel), unchanged bit for bit; any
+    other network goes to a method that runs any network
+    (:attr:`~lumped.drivers.methods.Method.network_solvers`) or to its
+    solver of piecewise-linear networks
+    (:attr:`~lumped.drivers.methods.Method.piecewise_networks`:
+    ``exact``'s :func:`~lumped.solvers.exact_network.solve_exact_network`).
     """
     run = methods.get(method)
     options = run.check_options(options)
@@ -131,6 +142,8 @@ def solve(
     try:
         form = problem.one_mass()
     except ValueError as err:
+        if run.piecewise_networks is not None:  # exact: closed forms per phase, or a refusal naming the element
+            return run.piecewise_networks(problem.system, problem.t_end, dt, save_every=save_every)
         raise ValueError(f"method {method!r} needs a one-mass system; the network {err}") from None
     mass = problem.system.masses[0]
     tr = simulate(

@@ -1,0 +1,269 @@
+"""The ``exact`` method for networks: closed forms per phase, events located, modes chosen.
+
+A network of linear springs, Bingham and Coulomb elements and linear
+dashpots under constant and sine loads (:func:`lumped.solvers.network_phase.refusal`
+says what else blocks it) moves, between events, by the linear ODE of its
+mode (:mod:`lumped.solvers.network_phase`: the matrix exponential of the
+first-order system with the loads' generators).  :func:`solve_exact_network`
+marches from phase to phase:
+
+1. within a phase, every event function is a linear map of the state ``z``:
+   a slipping element's rate times its direction (a *stop* when it reaches
+   0), a sticking element's ``threshold -+ force`` (a *breakaway* when
+   either reaches 0); they are tabulated on a sub-grid of a fiftieth of the
+   phase's shortest period, ``z_{j+1} = expm(A h) z_j``, and the first sign
+   change is located by :func:`lumped.numerics.roots.brentq` on
+   ``expm(A (t - t_j)) z_j``;
+2. a load coming on or going off (``until``, a constant's ``from``) ends a
+   phase too (a *switch*);
+3. at an event the new mode is chosen among the elements at zero rate
+   (those sticking, those that stopped, those slipping at a rate within
+   round-off of zero): all start sticking, those breaking away slip in the
+   direction of their force; while a sticking element's reaction leaves its
+   band (by more than 1e-9 of it), the one furthest out slips in the
+   direction of its force, and a slipping one whose rate would turn back
+   sticks again.  The reactions are those of :func:`~lumped.solvers.network_phase.phase`.
+
+Each mass's final rest is the start of the last run of phases in which a
+path of sticking elements holds it to the ground (as the independent
+reference of ``tests/references.py`` defines it).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from lumped.model.network import Network
+from lumped.model.trajectory import Trajectory
+from lumped.numerics import validate
+from lumped.numerics.roots import brentq
+from lumped.solvers.network_phase import Parts, Phase, load_on, parts, phase, refusal, switch_times
+
+__all__ = ["NetworkEvent", "solve_exact_network", "MAX_EVENTS"]
+
+#: Most phases of one run before it is refused (each costs a few matrix exponentials).
+MAX_EVENTS = 20_000
+#: Sub-steps per shortest period of a phase, for bracketing the events.
+_PER_PERIOD = 50
+#: A sticking element's reaction may exceed its threshold by this fraction (round-off) and still stick.
+_BAND = 1e-9
+
+
+@dataclass(frozen=True)
+class NetworkEvent:
+    """An event at ``time`` (s): ``kind`` ``"stop"``, ``"breakaway"`` or ``"switch"``, the ``elements`` it
+    concerns (names; none for a switch) and the ``mode`` chosen after it (per element: 0 stick, +-1 slip,
+    0 for an element that cannot stick)."""
+
+    time: float
+    kind: str
+    elements: tuple[str, ...]
+    mode: tuple[int, ...]
+
+
+def _initial_mode(p: Parts, v: np.ndarray) -> tuple[np.ndarray, list[int]]:
+    """Slip in the direction of the initial rate; friction elements at zero rate are to be chosen."""
+    w = p.b.T @ v
+    mode = np.where(p.friction, np.sign(w), 0).astype(int)
+    return mode, [int(e) for e in np.flatnonzero(p.friction & (w == 0))]
+
+
+def _consistent(p: Parts, ph: Phase, zero: list[int], forced: set[int]) -> tuple[int, int] | None:
+    """``None`` if the mode of ``ph`` holds at its start, else ``(element, new mode)`` to change."""
+    _, _, acc, f = ph.values(ph.z0)
+    out = [e for e in zero if ph.mode[e] == 0 and abs(f[e]) > p.tau[e] * (1 + _BAND)]
+    if out:
+        e = max(out, key=lambda e: abs(f[e]) / p.tau[e])
+        return e, int(np.sign(f[e]))
+    rel = p.b.T @ acc
+    margin = 1e-12 * float(np.max(p.tau)) / float(np.min(p.m))
+    back = [e for e in zero if ph.mode[e] != 0 and e not in forced and rel[e] * ph.mode[e] < -margin]
+    return (back[0], 0) if back else None
+
+
+def _select(p: Parts, t: float, x: np.ndarray, v: np.ndarray, mode: np.ndarray, zero: list[int], forced: dict) -> Phase:
+    """The phase of the mode chosen at ``t`` for the elements ``zero`` (rule 3 of the module)."""
+    trial = mode.copy()
+    trial[zero] = 0
+    for e, s in forced.items():
+        trial[e] = s
+    for _ in range(3 * len(zero) + 3):
+        ph = phase(p, t, x, v, trial)
+        change = _consistent(p, ph, zero, set(forced))
+        if change is None:
+            return ph
+        trial[change[0]] = change[1]
+    raise ArithmeticError(f"t = {t!r}: no consistent mode found for the elements {zero} at zero rate")
+
+
+def _event_rows(p: Parts, ph: Phase) -> tuple[np.ndarray, list[tuple[int, str]]]:
+    """The event functions of ``ph`` as rows on ``z`` (each starts positive), with ``(element, kind)``."""
+    w = p.b.T @ ph.rows("v")
+    f = ph.rows("f")
+    rows, what = [], []
+    for e in np.flatnonzero(p.friction):
+        if ph.mode[e] != 0:
+            rows.append(ph.mode[e] * w[e])
+            what.append((int(e), "stop"))
+        else:
+            unit = np.zeros(ph.a.shape[0])
+            unit[-1 - 2 * (len(p.omegas))] = p.tau[e]  # the generator "1"
+            rows += [unit - f[e], unit + f[e]]
+            what += [(int(e), "breakaway")] * 2
+    return np.array(rows).reshape(len(rows), ph.a.shape[0]), what
+
+
+def _step_for(ph: Phase, span: float) -> float:
+    """The bracketing sub-step: a fiftieth of the shortest period (of the motion and the loads)."""
+    fastest = float(np.max(np.abs(np.linalg.eigvals(ph.a)), initial=0.0))
+    if fastest == 0:
+        return span / _PER_PERIOD
+    return min(2 * math.pi / fastest / _PER_PERIOD, span / 4)
+
+
+def _next_event(p: Parts, ph: Phase, t_lim: float) -> tuple[float, list[tuple[int, str]]]:
+    """The first event of ``ph`` in ``(start, t_lim]``: its time and ``(element, kind)`` fired; none at ``t_lim``."""
+    from scipy.linalg import expm  # here: importing the package loads no SciPy solver
+
+    rows, what = _event_rows(p, ph)
+    if not what:
+        return t_lim, []
+    h = _step_for(ph, t_lim - ph.start)
+    step = expm(ph.a * h)
+    t0, z = ph.start, ph.z0
+    while t0 < t_lim:
+        t1 = min(t0 + h, t_lim)
+        z1 = step @ z if t1 - t0 == h else expm(ph.a * (t1 - t0)) @ z
+        g0, g1 = rows @ z, rows @ z1
+        fired = np.flatnonzero(g1 <= 0) if t0 > ph.start else np.flatnonzero((g1 <= 0) & ~((g0 <= 0) & (g1 >= g0)))
+        if fired.size:
+            return _locate(ph, rows, what, fired, t0, z, t1, g0)
+        t0, z = t1, z1
+    return t_lim, []
+
+
+def _locate(ph, rows, what, fired, t0, z, t1, g0) -> tuple[float, list[tuple[int, str]]]:  # noqa: ANN001
+    """The earliest root among the rows ``fired`` in ``(t0, t1]``, and every row that fires there."""
+    from scipy.linalg import expm
+
+    roots = {}
+    for r in fired:
+        if g0[r] <= 0:
+            roots[r] = t0
+            continue
+        roots[r] = brentq(lambda s, r=r: float(rows[r] @ (expm(ph.a * (s - t0)) @ z)), t0, t1)
+    first = min(roots.values())
+    near = 1e-12 * max(1.0, abs(first))
+    return first, sorted({what[r] for r, s in roots.items() if s - first <= near})
+
+
+def _zero_set(p: Parts, ph: Phase, v: np.ndarray, fired: list[int]) -> list[int]:
+    """Friction elements sticking, just fired, or slipping at a rate within 1e-9 of the speeds."""
+    w = p.b.T @ v
+    tol = 1e-9 * float(np.max(np.abs(v), initial=0.0))
+    return [int(e) for e in np.flatnonzero(p.friction) if ph.mode[e] == 0 or e in fired or abs(w[e]) <= tol]
+
+
+def _march(net: Network, p: Parts, t_end: float, max_events: int) -> tuple[list[Phase], list[NetworkEvent]]:
+    """The phases to ``t_end`` and the events between them."""
+    x, v = (a[:-1] for a in net.initial_positions())
+    names = net.element_names
+    mode, zero = _initial_mode(p, v)
+    phases = [_select(p, 0.0, x, v, mode, zero, {})]
+    events: list[NetworkEvent] = []
+    breaks = switch_times(p, t_end) + [t_end]
+    while True:
+        ph = phases[-1]
+        t_lim = next(b for b in breaks if b > ph.start)
+        t, fired = _next_event(p, ph, t_lim)
+        if t >= t_end:
+            return phases, events
+        x, v, _, f = ph.values(ph.z(t))
+        elements = [e for e, _ in fired]
+        forced = {e: int(np.sign(f[e])) for e, kind in fired if kind == "breakaway"}
+        zero = _zero_set(p, ph, v, elements)
+        phases.append(_select(p, t, x, v, ph.mode, zero, forced))
+        kind = fired[0][1] if fired else "switch"
+        mode_after = tuple(int(s) for s in phases[-1].mode)
+        events.append(NetworkEvent(t, kind, tuple(names[e] for e in dict.fromkeys(elements)), mode_after))
+        if len(events) > max_events:
+            raise ValueError(f"max_events: more than {max_events} events before t_end = {t_end:g} s")
+
+
+def _sample(phases: list[Phase], times: np.ndarray) -> tuple[np.ndarray, ...]:
+    """Positions, velocities, forces (rows per time) and the rigid flags, from the phase holding each time."""
+    starts = np.array([ph.start for ph in phases])
+    which = np.searchsorted(starts, times, side="right") - 1
+    rows = [[], [], [], []]
+    for i, ph in enumerate(phases):
+        at = times[which == i]
+        if not at.size:
+            continue
+        z = np.array([ph.z(s) for s in at])
+        y = z @ ph.out.T
+        n = ph.n
+        rows[0].append(y[:, :n])
+        rows[1].append(y[:, n : 2 * n])
+        rows[2].append(y[:, 3 * n :])
+        rows[3].append(np.repeat((ph.mode == 0)[None, :], at.size, axis=0))
+    return tuple(np.vstack(r) for r in rows)
+
+
+def _rest(phases: list[Phase], x_end: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Start of each mass's last run of grounded phases (``nan`` if it moves at the end), and its position."""
+    rest = np.full(x_end.size, math.nan)
+    for i in range(x_end.size):
+        for ph in reversed(phases):
+            if not ph.grounded[i]:
+                break
+            rest[i] = ph.start
+    return rest, np.where(np.isnan(rest), math.nan, x_end)
+
+
+def solve_exact_network(
+    network: Network, t_end: float, dt: float, *, save_every: int = 1, max_events: int = MAX_EVENTS
+) -> Trajectory:
+    """The exact motion of ``network`` sampled on the grid ``t_n = n*dt`` (as :meth:`ExactSolution.sample`).
+
+    Raises
+    ------
+    ValueError
+        For a bad argument, or a network whose phases have no closed form
+        (one line naming the element or load that blocks it).
+    """
+    if not isinstance(network, Network):
+        raise ValueError(f"network must be a Network, got {type(network).__name__}")
+    if (reason := refusal(network)) is not None:
+        raise ValueError(reason)
+    t_end, dt = validate.positive("t_end", t_end), validate.positive("dt", dt)
+    save_every = validate.stride("save_every", save_every)
+    n = validate.step_count(t_end, dt)
+    validate.output_size(n, save_every)
+    index = np.arange(0, n + 1, save_every)
+    if index[-1] != n:
+        index = np.append(index, n)
+    times = index * dt
+    p = parts(network)
+    phases, events = _march(network, p, float(times[-1]), max_events)
+    x, v, f, rigid = _sample(phases, times)
+    rigid = rigid & p.friction[None, :]
+    rigid[0] = False
+    states = np.where(p.k[None, :] > 0, f, 0.0)
+    return Trajectory(
+        t=times,
+        positions=x,
+        velocities=v,
+        forces=f,
+        applied=network.load_table(times),
+        network=network,
+        method="exact",
+        dt=dt,
+        save_every=save_every,
+        states=states,
+        rigid=rigid,
+        final_rest=_rest(phases, x[-1]),
+        solver="exact",
+        events=tuple(events),
+    )
