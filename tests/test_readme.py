@@ -6,7 +6,9 @@
 * Every ``bash`` block of the README's quick start runs, command by command, in
   a scratch folder holding a copy of ``examples/``; a comment line right under
   a command shows what it prints, and each number written with a decimal point
-  in such a line must be in the command's output.
+  in such a line must be in the command's output.  The ``python`` blocks
+  between it and the next ``bash`` block then run in that folder (they read
+  the files its commands wrote).
 * The example system file is the paper's Figure 3: it gives Algorithm 1's
   numbers bit for bit.
 * The README stays a front door: at most 200 lines, its two set-up commands,
@@ -22,6 +24,7 @@ import sys
 from pathlib import Path
 from typing import NamedTuple
 
+import matplotlib.pyplot as plt
 import numpy as np
 import pytest
 
@@ -69,11 +72,39 @@ def commands(block: str) -> list[Command]:
     return found
 
 
-EXAMPLES = [(str(README.relative_to(ROOT)), b) for b in python_blocks(README)] + [
+class Step(NamedTuple):
+    """A ``bash`` block of the quick start and the ``python`` blocks that follow it."""
+
+    commands: list[Command]
+    python: list[str]
+
+
+def steps(text: str) -> list[Step]:
+    """The quick start's ``bash`` blocks, each with the ``python`` blocks before the next one."""
+    found: list[Step] = []
+    for language, block in re.findall(r"```(bash|python)\n(.*?)```", text, flags=re.DOTALL):
+        if language == "bash":
+            found.append(Step(commands(block), []))
+        else:
+            assert found, "the quick start's first block must be a bash block"
+            found[-1].python.append(block)
+    return found
+
+
+def check_printed(source: str, block: str, printed: str) -> None:
+    """Every number quoted in a ``# ...`` comment after a ``print(`` of ``block`` is in ``printed``."""
+    for line in block.splitlines():
+        if line.lstrip().startswith("print(") and "#" in line:
+            for number in NUMBER.findall(line.split("#", 1)[1]):
+                assert number in printed, f"{source} claims {number}, the code printed {printed}"
+
+
+#: The README's Python outside the quick start (none today) and the guide pages', run where pytest runs.
+EXAMPLES = [(str(README.relative_to(ROOT)), b) for b in python_blocks(README) if b not in quick_start()] + [
     (str(p.relative_to(ROOT)), b) for p in GUIDE for b in python_blocks(p)
 ]
-BLOCKS = [commands(block) for block in re.findall(r"```bash\n(.*?)```", quick_start(), flags=re.DOTALL)]
-QUICK_START = [command for block in BLOCKS for command in block]
+STEPS = steps(quick_start())
+QUICK_START = [command for step in STEPS for command in step.commands]
 
 
 def test_readme_has_an_example() -> None:
@@ -83,12 +114,7 @@ def test_readme_has_an_example() -> None:
 @pytest.mark.parametrize("source, block", EXAMPLES, ids=[f"{s}-{i}" for i, (s, _) in enumerate(EXAMPLES)])
 def test_readme_example_runs_and_matches_its_comments(source: str, block: str, capsys) -> None:
     exec(compile(block, source, "exec"), {})
-    printed = capsys.readouterr().out
-    # every number quoted in a "# ..." comment after a print( must appear in the output
-    for line in block.splitlines():
-        if line.lstrip().startswith("print(") and "#" in line:
-            for number in NUMBER.findall(line.split("#", 1)[1]):
-                assert number in printed, f"{source} claims {number}, the code printed {printed}"
+    check_printed(source, block, capsys.readouterr().out)
 
 
 def test_the_quick_start_has_its_three_steps() -> None:
@@ -100,13 +126,16 @@ def test_the_quick_start_has_its_three_steps() -> None:
     assert all(c.printed for c in QUICK_START), [c.line for c in QUICK_START if not c.printed]
 
 
-@pytest.mark.parametrize("block", BLOCKS, ids=[block[0].line.split(" --output")[0] for block in BLOCKS])
-def test_a_quick_start_block_runs_and_prints_what_the_readme_shows(block: list[Command], tmp_path: Path) -> None:
+@pytest.mark.parametrize("step", STEPS, ids=[step.commands[0].line.split(" --output")[0] for step in STEPS])
+def test_a_quick_start_block_runs_and_prints_what_the_readme_shows(
+    step: Step, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
+) -> None:
     """The block's commands, in order, in a folder holding a copy of ``examples/``, with this
-    interpreter's ``python`` first on the PATH: each succeeds and prints every number shown under it."""
+    interpreter's ``python`` first on the PATH: each succeeds and prints every number shown under it.
+    Then the Python that follows the block runs in that folder and prints what its comments say."""
     shutil.copytree(ROOT / "examples", tmp_path / "examples")
     env = {**os.environ, "PATH": f"{Path(sys.executable).parent}{os.pathsep}{os.environ['PATH']}"}
-    for command in block:
+    for command in step.commands:
         done = subprocess.run(
             ["bash", "-c", command.line],
             check=False,
@@ -121,6 +150,13 @@ def test_a_quick_start_block_runs_and_prints_what_the_readme_shows(block: list[C
         for line in command.printed:
             for number in NUMBER.findall(line):
                 assert number in output, f"README shows {number} under `{command.line}`; it printed {output!r}"
+    monkeypatch.chdir(tmp_path)
+    for block in step.python:
+        try:
+            exec(compile(block, "README.md", "exec"), {})
+        finally:
+            plt.close("all")
+        check_printed("README.md", block, capsys.readouterr().out)
 
 
 def test_the_example_system_file_is_the_papers_figure_3() -> None:

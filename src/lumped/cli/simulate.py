@@ -34,7 +34,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         default=None,
         metavar="FILE.toml",
         help="a network of masses and elements described in a TOML file (see "
-        "book/guide/systems.md, example examples/figure3.toml); only --t-end, --dt, --save-every, --method, "
+        "book/guide/systems.md; examples in examples/, such as examples/building.toml); only --t-end, --dt, --save-every, --method, "
         f"{', '.join(o.flag for o, _ in OPTIONS.values())}, --output go with it "
         f"(a method other than {', '.join(n for n, m in METHODS.items() if m.runs_networks)} needs one mass)",
     )
