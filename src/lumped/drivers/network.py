@@ -26,7 +26,7 @@ from lumped.drivers.methods import NETWORK_SOLVERS
 from lumped.drivers.one_mass import network_trajectory
 from lumped.model.problem import OneMass, one_mass_form
 from lumped.model.forcing import SwitchedSine
-from lumped.model.network import Network
+from lumped.model.network import Network, listed
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 from lumped.solvers import network_compiled as kernel
@@ -112,8 +112,8 @@ def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str):
     if path == "compiled":
         sol = kernel.solve_graphs(kernel.plan(net), inertia, sigma, graphs, f0)
     else:
-        sol = solve_step(first, second, inertia, f0, graphs, sigma)
-    return x[:-1], v[:-1], state, sol.f
+        sol = solve_step(first, second, inertia, f0, graphs, sigma, ranges=True)
+    return x[:-1], v[:-1], state, sol
 
 
 def simulate_network(
@@ -178,20 +178,33 @@ def _path(net: Network, solver: str) -> str:
 
 
 class _Record:
-    """Saved rows, filled as the run goes."""
+    """Saved rows, filled as the run goes; the intervals of the rows whose forces are not unique."""
 
     def __init__(self, rows: int, masses: int, elements: int) -> None:
         self.t = np.empty(rows)
         self.x, self.v = np.empty((rows, masses)), np.empty((rows, masses))
         self.force, self.state = np.empty((rows, elements)), np.empty((rows, elements))
         self.rigid = np.zeros((rows, elements), dtype=bool)
+        self.ranges: dict[int, tuple[np.ndarray, np.ndarray]] = {}
         self.row = 0
 
-    def save(self, t: float, x, v, f, state, rigid) -> None:  # noqa: ANN001
+    def save(self, t: float, x, v, f, state, rigid, low=None, high=None) -> None:  # noqa: ANN001
         r = self.row
         self.t[r], self.x[r], self.v[r], self.force[r] = t, x, v, f
         self.state[r], self.rigid[r] = state, rigid
+        if low is not None:
+            self.ranges[r] = (low, high)
         self.row += 1
+
+    def intervals(self) -> tuple[np.ndarray | None, np.ndarray | None]:
+        """``force_min``, ``force_max`` of the saved rows (the force itself where it is
+        unique), or ``None`` if every saved row's forces are unique."""
+        if not self.ranges:
+            return None, None
+        low, high = self.force.copy(), self.force.copy()
+        for r, (lo, hi) in self.ranges.items():
+            low[r], high[r] = lo, hi
+        return low, high
 
 
 class _Start(NamedTuple):
@@ -208,10 +221,10 @@ class _Start(NamedTuple):
 
 def _march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, path: str) -> Trajectory:
     first, second = net.incidence()
-    x, v, state, f = _initial(net, first, second, path)
+    x, v, state, sol = _initial(net, first, second, path)
     inertia = np.array([m.mass / dt for m in net.masses])
     rec = _Record(rows, len(net.masses), len(net.elements))
-    rec.save(0.0, x, v, f, state, False)
+    rec.save(0.0, x, v, sol.f, state, False, sol.low, sol.high)
     start = _Start(x, v, state, inertia, _sigma(net, inertia, dt), np.where(v == 0, 0, 1).astype(np.int64))
     run = _run_compiled if path == "compiled" else _run_python
     v, most = run(net, dt, n_steps, save_every, rec, start)
@@ -220,6 +233,7 @@ def _march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, pa
     rest_position = np.where(still, np.nan, rec.x[rec.row - 1])
     applied = net.load_table(rec.t)  # the loads at the saved times, as the steps evaluated them
     rest = (rest_time, rest_position)
+    force_min, force_max = rec.intervals()
     return Trajectory(
         t=rec.t,
         positions=rec.x,
@@ -235,11 +249,21 @@ def _march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, pa
         final_rest=rest,
         solver=path,
         iterations=most,
+        force_min=force_min,
+        force_max=force_max,
     )
 
 
 def _unsettled(n: int, dt: float, elements: int) -> ValueError:
     return ValueError(f"dt: the step to t = {n * dt:.6g} s failed: {unsettled(default_bound(elements))}")
+
+
+def _failed(net: Network, n: int, dt: float, err: StepError) -> ValueError:
+    """The message of a Python step that failed: unsettled, or a loop of rigid pieces whose rates disagree."""
+    if not err.elements:
+        return _unsettled(n, dt, len(net.elements))
+    names = listed([net.elements[e].name for e in err.elements])
+    return ValueError(f"elements {names} {err} at the step to t = {n * dt:.6g} s")
 
 
 def _overflowed(n: int, dt: float) -> ValueError:
@@ -259,10 +283,11 @@ def _run_python(
         for n in range(begin, stop + 1):
             rhs = start.inertia * v + table[n - begin]
             graphs = _graphs(net, state, dt, None)
+            saved = n % save_every == 0 or n == n_steps
             try:
-                sol = solve_step(first, second, start.inertia, rhs, graphs, start.sigma, modes)
-            except StepError:
-                raise _unsettled(n, dt, len(net.elements)) from None
+                sol = solve_step(first, second, start.inertia, rhs, graphs, start.sigma, modes, ranges=saved)
+            except StepError as err:
+                raise _failed(net, n, dt, err) from None
             v, modes, most = sol.v, sol.modes, max(most, sol.iterations)
             x = x + dt * v
             state = [
@@ -272,8 +297,8 @@ def _run_python(
             if not (np.isfinite(v).all() and np.isfinite(sol.f).all()):
                 raise _overflowed(n, dt)
             rest[v != 0] = n + 1
-            if n % save_every == 0 or n == n_steps:
-                rec.save(n * dt, x, v, sol.f, state, sol.rigid)
+            if saved:
+                rec.save(n * dt, x, v, sol.f, state, sol.rigid, sol.low, sol.high)
     return v, most
 
 
