@@ -12,7 +12,7 @@ numbers bit for bit, at the compiled kernel's speed.  With a
 ``herschel-bulkley`` element instead it goes to the same function, whose
 step is then the law's resolvent (a root solve).  Every other network takes
 the active-set step, in C (:mod:`lumped.solvers.network_compiled`) when its elements
-are piecewise linear and its links form a forest, else in Python.
+are piecewise linear and its links form a forest or close one loop, else in Python.
 """
 
 from __future__ import annotations
@@ -109,7 +109,7 @@ def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str):
     inertia = np.array([m.mass for m in net.masses])
     f0 = net.load_table(np.zeros(1))[0]
     graphs, sigma = _graphs(net, state, None, w0), _sigma(net, inertia, 1.0)
-    if path == "compiled":
+    if path == "compiled" and not kernel.has_chord(kernel.plan(net)):  # a loop's intervals: the Python step
         sol = kernel.solve_graphs(kernel.plan(net), inertia, sigma, graphs, f0)
     else:
         sol = solve_step(first, second, inertia, f0, graphs, sigma, ranges=True)
@@ -131,7 +131,7 @@ def simulate_network(
         other network through the active-set step; ``"active-set"`` always
         takes the active-set step.  Both run it compiled when
         :func:`lumped.solvers.network_compiled.ineligible` allows (every element
-        piecewise linear, the link graph a forest, the kernel built) and in
+        piecewise linear, the link graph a forest or one loop, the kernel built) and in
         Python otherwise.  ``"compiled"`` and ``"python"`` force one path
         (``"compiled"`` refuses a network it cannot run).
 
@@ -186,6 +186,8 @@ class _Record:
         self.force, self.state = np.empty((rows, elements)), np.empty((rows, elements))
         self.rigid = np.zeros((rows, elements), dtype=bool)
         self.ranges: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self.low: np.ndarray | None = None  # the compiled loop's intervals, every row
+        self.high: np.ndarray | None = None
         self.row = 0
 
     def save(self, t: float, x, v, f, state, rigid, low=None, high=None) -> None:  # noqa: ANN001
@@ -199,12 +201,14 @@ class _Record:
     def intervals(self) -> tuple[np.ndarray | None, np.ndarray | None]:
         """``force_min``, ``force_max`` of the saved rows (the force itself where it is
         unique), or ``None`` if every saved row's forces are unique."""
-        if not self.ranges:
+        if not self.ranges and self.low is None:
             return None, None
-        low, high = self.force.copy(), self.force.copy()
+        low = self.force.copy() if self.low is None else self.low
+        high = self.force.copy() if self.high is None else self.high
+        low[0], high[0] = self.force[0], self.force[0]
         for r, (lo, hi) in self.ranges.items():
             low[r], high[r] = lo, hi
-        return low, high
+        return (low, high) if np.any(low != high) else (None, None)
 
 
 class _Start(NamedTuple):
@@ -310,7 +314,10 @@ def _run_compiled(
     counters = np.array([rec.row, 0, 0, 0], dtype=np.int64)
     modes = np.full(len(net.elements), -1, dtype=np.int64)
     marching = (start.x.copy(), start.v.copy(), np.array(start.state, dtype=float), modes, start.rest, counters)
-    record = (rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid.view(np.uint8))
+    if kernel.has_chord(topology):
+        rec.low, rec.high = np.empty_like(rec.force), np.empty_like(rec.force)
+    kept = (rec.low, rec.high) if rec.low is not None else (np.empty(0), np.empty(0))
+    record = (rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid.view(np.uint8), *kept)
     block = max(1, min(_BLOCK, _TABLE_VALUES // max(1, loaded.size)))
     for begin in range(1, n_steps + 1, block):
         stop = min(begin + block - 1, n_steps)
