@@ -3,7 +3,7 @@
 Everything else is in pyproject.toml.  The kernels are Algorithm 1's loop
 (``_kernel.c``), the same loop over many parameter sets at once
 (``_batch_kernel.c``, with OpenMP) and the network step on a forest of links
-(``_network_kernel.c``).  If the C compiler is missing, the extensions are
+or one loop of links (``_network_kernel.c``).  If the C compiler is missing, the extensions are
 skipped (``optional=True``) and ``lumped`` runs the pure-Python loops:
 Algorithm 1's gives the same numbers, the network step's the same up to the
 rounding of its linear solve.
@@ -61,6 +61,7 @@ setup(
                     "src/lumped/kernels/_binding_checks.h",
                     "src/lumped/kernels/_network_elements.h",
                     "src/lumped/kernels/_network_forest.h",
+                    "src/lumped/kernels/_network_loop.h",
                     "src/lumped/kernels/_stick.h",
                 ],
             ),

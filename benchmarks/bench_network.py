@@ -17,7 +17,11 @@ Bingham dashpot (threshold 1 N, gamma 1); the last mass is forced by
 3. the cost per step for 10, 100 and 1000 masses on 1e4 steps, less the
    time of a one-step run (so the set-up and the initial forces, solved
    once, drop out), per step and per mass; and the Python step's (200
-   steps, 10 and 100 masses), for comparison.
+   steps, 10 and 100 masses), for comparison;
+4. the same cost for the 100-mass *ring*: the chain with one more spring and
+   Bingham dashpot from its last mass back to the ground, so that its links
+   close one loop (the compiled step's chord, ``_network_loop.h``), per mass
+   and step against the 100-mass chain's (target: at most 2 times).
 """
 
 from __future__ import annotations
@@ -46,6 +50,16 @@ def chain(n: int) -> Network:
         elements.append(Spring(f"k{i}", (a, f"m{i}"), 100.0 + 20 * i))
         elements.append(Bingham(f"b{i}", (a, f"m{i}"), 1.0, 1.0))
     return Network(masses, elements, [Load(f"m{n - 1}", FORCE)])
+
+
+def ring(n: int) -> Network:
+    """:func:`chain` closed into a ring: a spring and a Bingham dashpot from its last mass to the ground."""
+    net = chain(n)
+    closing = [
+        Spring(f"k{n}", (f"m{n - 1}", "ground"), 100.0 + 20 * n),
+        Bingham(f"b{n}", (f"m{n - 1}", "ground"), 1.0, 1.0),
+    ]
+    return Network(net.masses, [*net.elements, *closing], net.loads)
 
 
 def best_of(repeats: int, fn) -> float:  # noqa: ANN001
@@ -107,6 +121,16 @@ def bench_per_step(steps: int, repeats: int) -> None:
         print(f"cost per step, {n:4d} masses, Python step: {cost * 1e3:.3f} ms/step")
 
 
+def bench_ring(n: int, steps: int, repeats: int) -> None:
+    net = ring(n)
+    path = run(net, 10).solver
+    chain_cost, ring_cost = (per_step(make(n), steps, repeats, "active-set") for make in (chain, ring))
+    print(
+        f"cost per step, {n}-mass ring ({path}): {ring_cost * 1e3:.4f} ms/step = {ring_cost / n * 1e6:.4f} us per mass "
+        f"and step, {ring_cost / chain_cost:.2f} x the {n}-mass chain's {chain_cost / n * 1e6:.4f} us (target 2 x)"
+    )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="10 times fewer steps, one repeat")
@@ -117,6 +141,7 @@ def main() -> None:
     bench_chain(100, 10**5 // scale, repeats)
     bench_chain(1000, 10**4 // scale, repeats)
     bench_per_step(10**4 // scale, repeats)
+    bench_ring(100, 10**4 // scale, repeats)
 
 
 if __name__ == "__main__":

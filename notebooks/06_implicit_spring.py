@@ -68,25 +68,28 @@ print("f (N):", forces, " e = min(f/k, L) (m):", np.minimum(forces / k, length))
 # swings towards $+x$; the string stops it at $x = L$. A Bingham dashpot to
 # the ground adds the friction that makes the rest position depend on the
 # history (notebook 05). Written as the obvious network, one mass with a
-# spring-string and a Bingham element both to the ground, `Network` refuses
-# it:
+# spring-string and a Bingham element both to the ground, it runs:
 
 # %%
-try:
-    Network([Mass("m", m, x0)], [element, Bingham("d", ("ground", "m"), tau, gamma)])
-except ValueError as err:
-    print(err)
+obvious = Network([Mass("m", m, x0)], [element, Bingham("d", ("ground", "m"), tau, gamma)])
+run_obvious = simulate_network(obvious, 1.5, dt)
+for r in np.flatnonzero((run_obvious.force_min != run_obvious.force_max).any(axis=1)):
+    print(f"t = {run_obvious.t[r]:.4f} s: v = {run_obvious.velocities[r, 0]}, held {run_obvious.forces[r].sum():.6g} N")
+    for e, name in enumerate(obvious.element_names):
+        lo, hi, f = run_obvious.force_min[r, e], run_obvious.force_max[r, e], run_obvious.forces[r, e]
+        print(f"  {name}: any force in [{lo:.6g}, {hi:.6g}] N; least-norm split {f:.6g} N")
 
 # %% [markdown]
-# The reason is not the motion but the forces. When the string is taut and the
-# dashpot sticks at the same time, both fix their rate ($w = 0$) and together
-# they must balance the mass's momentum: any split of that load between a
-# force $f_s \ge kL$ and a force $|f_d| \le \mu_s N_f$ is a solution. The
-# velocities stay unique (see `Network`'s Notes), the forces do not. The
-# remedy is the engineer's one: the dashpot is mounted on a stiff spring of
-# stiffness $k_m$, a `MaxwellBingham` element (notebook 07), whose force is
-# always a function of the motion. The mount deflects by its force over
-# $k_m$, which bounds what it changes:
+# The motion is unique, the forces are not, on the step where the string is
+# taut and the dashpot sticks at the same time: both fix their rate ($w = 0$)
+# and together they must balance the mass's momentum, so any split of that
+# held force between a force $f_s \ge kL$ and a force $|f_d| \le \mu_s N_f$ is
+# a solution (see `Network`'s Notes). The run says so: each element's
+# admissible interval (`force_min`, `force_max`), and as `forces` the split of
+# least norm. To know the split, model what decides it: the dashpot is mounted
+# on a stiff spring of stiffness $k_m$, a `MaxwellBingham` element (notebook
+# 07), whose force is always a function of the motion. The mount deflects by
+# its force over $k_m$, which bounds what it changes:
 
 # %%
 k_mount = 1e5  # N/m, a thousand times the spring
@@ -245,4 +248,5 @@ _ = P.save_figure(fig, "ext01_spring_string_impact")
 # * With friction, the impact changes the history and so the rest position:
 #   here it moves it from one side of $x = 0$ to the other.
 # * A taut string and a sticking dashpot in parallel leave their forces
-#   undetermined; `Network` refuses that, and a stiff mount is the remedy.
+#   undetermined (the motion is unique); the run reports each one's admissible
+#   interval, and a stiff mount is what determines the split.

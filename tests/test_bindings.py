@@ -169,6 +169,8 @@ def block(**change: object) -> dict[str, object]:
             np.zeros((rows, n_el)),
             np.zeros((rows, n_el)),
             np.zeros((rows, n_el), dtype=np.uint8),
+            np.empty(0),
+            np.empty(0),
         ],
         table=net.load_table(np.arange(1, STEPS + 1) * DT, loaded),
         dt=DT,
@@ -207,7 +209,7 @@ def solve(**change: object) -> dict[str, object]:
 TUPLES = {
     "topology": "kind par first second order parent link_start link_el sign inertia sigma load_mass".split(),
     "marching": "x v state modes rest counters".split(),
-    "record": "t x v force state rigid".split(),
+    "record": "t x v force state rigid low high".split(),
     "solution": "v w f modes rigid".split(),
 }
 

@@ -210,3 +210,19 @@ def test_backward_euler_is_first_order_on_a_chain_against_exact(capsys: pytest.C
             print(f"  dt = {dt:.2e}  max |x - x_exact| = {err:.3e}  err/dt = {err / dt:.3f}")
         print(f"  fitted order {order(steps, np.array(errors)):.3f}")
     assert 0.8 <= order(steps, np.array(errors)) <= 1.2
+
+
+def test_exact_refuses_a_loop_of_elements_that_can_stick_together():
+    """Two Coulomb pads on one mass: the motion is unique, their split is not; exact says so, backward Euler runs it."""
+    pads = L.Network(
+        [L.Mass("m", 1.0, 0.5)],
+        [
+            L.Spring("k", ("ground", "m"), 100.0),
+            L.Bingham("p1", ("ground", "m"), 4.0, math.inf),
+            L.Bingham("p2", ("ground", "m"), 2.0, math.inf),
+        ],
+    )
+    message = r"^method 'exact' cannot run elements 'p1', 'p2': they close a loop of elements that can stick together"
+    with pytest.raises(ValueError, match=message):
+        L.solve(L.Problem(pads, 1.0), 1e-3, method="exact")
+    assert L.solve(L.Problem(pads, 1.0), 1e-3).force_min is not None  # backward Euler reports the intervals

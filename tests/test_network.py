@@ -301,43 +301,51 @@ def test_monotone_element_matches_the_generic_loop() -> None:
 
 
 # -- well-posedness -------------------------------------------------------------------
-def test_parallel_rigid_elements_are_refused_by_name() -> None:
-    with pytest.raises(ValueError, match="'b1', 'b2' close a loop"):
-        Network(
-            [Mass("m", 1.0)], [Bingham("b1", ("ground", "m"), 1.0, math.inf), Bingham("b2", ("m", "ground"), 2.0, 1.0)]
-        )
+def test_parallel_rigid_elements_run() -> None:
+    """Two Coulomb elements in parallel, once refused (issue 21): the motion is unique."""
+    net = Network(
+        [Mass("m", 1.0, 0.3)],
+        [
+            Spring("k", ("ground", "m"), 10.0),
+            Bingham("b1", ("ground", "m"), 1.0, math.inf),
+            Bingham("b2", ("m", "ground"), 2.0, 1.0),
+        ],
+    )
+    tr = simulate_network(net, 0.5, 1e-3)
+    assert tr.solver == "python" and np.isfinite(tr.positions).all()
 
 
 @pytest.mark.parametrize(
-    "law, refused",
+    "law, rigid",
     [(L.BinghamDashpot(5.0, 1.0), True), (L.MonotoneDashpot(lambda f: f), False)],
     ids=["banded-law", "no-band"],
 )
-def test_a_law_with_a_static_band_is_rigid_capable(law: L.Dashpot, refused: bool) -> None:
-    """A Monotone element whose law holds a range of forces at rest sticks like a
-    Bingham element, so beside a string it closes a rigid loop (before, such a
-    network was accepted and its step failed when the string went taut)."""
-    build = lambda: Network(  # noqa: E731
+def test_a_law_with_a_static_band_is_rigid_capable(law: L.Dashpot, rigid: bool) -> None:
+    """A Monotone element whose law holds a range of forces at rest sticks like a Bingham
+    element; beside a string it closes a loop that may be rigid, no longer refused.  (Run
+    here to 0.15 s, before the string goes taut: the impact step of a string beside a law
+    element, banded or not, does not settle within the iteration's bound, as before.)"""
+    net = Network(
         [Mass("m", 1.0, -0.5)],
         [SpringString("s", ("ground", "m"), 100.0, 0.2), Monotone("d", ("ground", "m"), law=law)],
     )
-    if refused:
-        with pytest.raises(ValueError, match="'s', 'd' close a loop"):
-            build()
-    else:
-        assert build().elements[1].rigid_capable is False
+    assert net.elements[1].rigid_capable is rigid
+    assert np.isfinite(simulate_network(net, 0.15, 1e-3).positions).all()
 
 
-def test_ring_through_masses_is_refused() -> None:
-    with pytest.raises(ValueError, match="'c[123]', 'c[123]', 'c3' close a loop"):
-        Network(
-            [Mass("a", 1.0), Mass("b", 1.0)],
-            [
-                Bingham("c1", ("ground", "a"), 1.0, math.inf),
-                Bingham("c2", ("a", "b"), 1.0, 1.0),
-                SpringString("c3", ("b", "ground"), 1.0, 1.0),
-            ],
-        )
+def test_ring_through_masses_runs() -> None:
+    """A ring of rigid-capable elements through two masses and the ground, once refused."""
+    net = Network(
+        [Mass("a", 1.0, 0.1), Mass("b", 1.0)],
+        [
+            Bingham("c1", ("ground", "a"), 1.0, math.inf),
+            Bingham("c2", ("a", "b"), 1.0, 1.0),
+            SpringString("c3", ("b", "ground"), 1.0, 1.0),
+            Spring("k", ("ground", "a"), 10.0),
+        ],
+    )
+    tr = simulate_network(net, 1.0, 1e-3)
+    assert np.all(tr.velocities[-1] == 0)
 
 
 def test_series_coulomb_through_a_mass_is_well_posed() -> None:

@@ -99,8 +99,21 @@ def locking() -> Network:
     )
 
 
+def ring(n: int, tau: float) -> Network:
+    """Masses in a ring through the ground (one loop of links, its chord in C), each link a spring
+    beside a Coulomb element; with ``tau = 4`` it comes to rest stuck all round (a rigid loop)."""
+    points = ["ground", *(f"m{i}" for i in range(n)), "ground"]
+    elements = []
+    for i, (a, b) in enumerate(zip(points, points[1:])):
+        elements += [Spring(f"k{i}", (a, b), 50.0 + 10 * i), Bingham(f"c{i}", (a, b), tau + 0.5 * i, math.inf)]
+    masses = [Mass(f"m{i}", 1.0 + 0.25 * i, 0.05 * (i + 1)) for i in range(n)]
+    return Network(masses, elements, [Load("m0", L.SwitchedSine(30.0, 7.0, 0.3, 1.2))])
+
+
 CASES = {
     "chain-bingham": (chain(6, 1.0, F), 2.5),
+    "ring-slipping": (ring(3, 2.0), 3.0),
+    "ring-stuck": (ring(6, 4.0), 4.0),
     "chain-coulomb": (chain(4, math.inf, F), 2.5),
     "tree": (tree(), 3.0),
     "strings-impacts": (strings(), 2.0),
@@ -131,6 +144,19 @@ def test_compiled_step_agrees_with_the_python_step(case: str) -> None:
     assert np.max(np.abs(py.positions - c.positions)) <= dx
     assert np.max(np.abs(py.forces - c.forces)) <= df
     assert np.array_equal(np.isnan(py.rest_times), np.isnan(c.rest_times))
+
+
+@pytest.mark.parametrize("n", [3, 6])
+def test_a_stuck_ring_reports_the_same_intervals_on_both_paths(n: int) -> None:
+    """A ring at rest, stuck all round: both paths report the least-norm split and each
+    element's interval (to the forces' bound above), on the same rows."""
+    net = ring(n, 4.0)
+    py = simulate_network(net, 4.0, 1e-3, solver="python")
+    c = simulate_network(net, 4.0, 1e-3, solver="compiled")
+    assert c.solver == "compiled" and py.undetermined == c.undetermined == list(range(1, 2 * n + 2, 2))
+    assert np.array_equal(py.force_min != py.force_max, c.force_min != c.force_max)
+    df = _bounds(py)[2]
+    assert np.max(np.abs(py.force_min - c.force_min)) <= df and np.max(np.abs(py.force_max - c.force_max)) <= df
 
 
 @pytest.mark.parametrize("case", list(CASES))
@@ -211,12 +237,22 @@ MONOTONE = Network(
     [Mass("m", 1.0, 0.5)],
     [Spring("k", ("ground", "m"), 100.0), Monotone("d", ("ground", "m"), L.MonotoneDashpot(lambda f: 0.5 * f))],
 )
-RING = Network(
-    [Mass("a", 1.0, 0.1), Mass("b", 1.0)],
+TWO_LOOPS = Network(
+    [Mass("a", 1.0, 0.1), Mass("b", 1.0), Mass("c", 1.0)],
     [
         Spring("k1", ("ground", "a"), 10.0),
         Bingham("b1", ("a", "b"), 1.0, 1.0),
         Spring("k2", ("b", "ground"), 10.0),
+        Spring("k3", ("a", "c"), 10.0),
+        Spring("k4", ("c", "ground"), 5.0),
+    ],
+)
+STRING_RING = Network(
+    [Mass("a", 1.0, 0.1), Mass("b", 1.0)],
+    [
+        Spring("k1", ("ground", "a"), 10.0),
+        SpringString("s", ("a", "b"), 10.0, 0.5),
+        Bingham("b2", ("b", "ground"), 1.0, 1.0),
     ],
 )
 PARALLEL = Network(
@@ -231,8 +267,13 @@ PARALLEL = Network(
 
 @pytest.mark.parametrize(
     "net, reason",
-    [(MONOTONE, "'d' is not piecewise linear"), (RING, "close a loop"), (PARALLEL, "'b0', 'b1' are in parallel")],
-    ids=["monotone", "ring", "parallel-rigid-pieces"],
+    [
+        (MONOTONE, "'d' is not piecewise linear"),
+        (TWO_LOOPS, "close a second loop"),
+        (STRING_RING, "element 's' on the loop of links can be rigid at a rate other than 0"),
+        (PARALLEL, "'b0', 'b1' are in parallel"),
+    ],
+    ids=["monotone", "two-loops", "string-on-the-loop", "parallel-rigid-pieces"],
 )
 def test_ineligible_networks_take_the_python_step(net: Network, reason: str) -> None:
     """The active-set step (``auto`` hands MONOTONE, the paper's form, to the law's resolvent instead)."""

@@ -39,13 +39,18 @@ def close():
 
 
 # -- notebook 06 ---------------------------------------------------------------
-def test_string_in_parallel_with_a_sticking_dashpot_is_refused_by_name() -> None:
-    """06: 'Network refuses it' (a taut string and a sticking dashpot leave their forces open)."""
-    with pytest.raises(ValueError, match="elements 's', 'd' close a loop"):
+def test_string_in_parallel_with_a_sticking_dashpot_runs_with_intervals() -> None:
+    """06: 'the velocities are unique, the split is not': the network runs, and on the step
+    where the string is taut while the dashpot sticks both forces are reported as intervals."""
+    tr = simulate_network(
         Network(
             [Mass("m", 1.0, -0.5)],
             [SpringString("s", ("ground", "m"), 100.0, 0.2), Bingham("d", ("ground", "m"), 5.0, 1.0)],
-        )
+        ),
+        1.5,
+        1e-3,
+    )
+    assert tr.undetermined == [0, 1]
 
 
 def test_after_the_impact_the_string_is_never_taut_again() -> None:

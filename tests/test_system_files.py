@@ -142,10 +142,6 @@ BAD = {
     ),
     "duplicate-name": (GOOD.replace('name = "dashpot"', 'name = "spring"'), "element 'spring': the name is used twice"),
     "string-beyond-length": (CHAIN.replace("x0 = 0.1", "x0 = 0.3"), "beyond the string's length"),
-    "ill-posed": (
-        GOOD + '[[element]]\nname = "c2"\nkind = "bingham"\nbetween = ["m1", "ground"]\nthreshold = 1.0\ngamma = inf\n',
-        "'dashpot', 'c2' close a loop",
-    ),
     "string-value": (GOOD.replace("stiffness = 100.0", 'stiffness = "100"'), "stiffness must be a real number"),
     "force-on-nobody": (GOOD.replace('on = "m1"', 'on = "m9"'), "no mass of that name"),
 }

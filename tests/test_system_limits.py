@@ -120,16 +120,21 @@ def test_file_too_large_refused_before_parsing(tmp_path, capsys) -> None:
         parse_system(text)
 
 
-def test_a_long_loop_is_named_in_one_short_line(tmp_path, capsys) -> None:
-    """A ring of 12 Bingham elements through 11 masses: the message names 5 and counts the rest."""
+def test_a_long_loop_runs_and_writes_the_intervals(tmp_path, capsys) -> None:
+    """A ring of 12 Coulomb elements through 11 masses (once refused, issue 21): it runs, at
+    rest, and the CSV holds each element's admissible interval beside its force."""
     n = 11
     text = "".join(f'[[mass]]\nname = "m{i}"\nmass = 1.0\n' for i in range(n))
     points = ["ground", *(f"m{i}" for i in range(n)), "ground"]
     for i, (a, b) in enumerate(zip(points, points[1:])):
         text += f'[[element]]\nname = "b{i}"\nkind = "bingham"\nbetween = ["{a}", "{b}"]\n'
         text += "threshold = 1.0\ngamma = inf\n"
-    err = assert_refused(tmp_path, capsys, text, "... and 7 more close a loop")
-    assert err.count("'b") == 5
+    assert simulate(tmp_path, text) == 0, capsys.readouterr().err
+    header = (tmp_path / "out.csv").read_text().splitlines()[0].split(",")
+    loads = [f"load_m{i}" for i in range(n)]
+    assert header[-3 - n :] == ["F_b11", "force_min_b11", "force_max_b11", *loads]
+    data = np.loadtxt(tmp_path / "out.csv", delimiter=",", skiprows=1)
+    assert np.all(data[:, header.index("force_min_b0")] == -1.0) and np.all(data[:, header.index("F_b0")] == 0.0)
 
 
 @pytest.mark.parametrize("depth", [100, 100_000])

@@ -12,7 +12,7 @@ numbers bit for bit, at the compiled kernel's speed.  With a
 ``herschel-bulkley`` element instead it goes to the same function, whose
 step is then the law's resolvent (a root solve).  Every other network takes
 the active-set step, in C (:mod:`lumped.solvers.network_compiled`) when its elements
-are piecewise linear and its links form a forest, else in Python.
+are piecewise linear and its links form a forest or close one loop, else in Python.
 """
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from lumped.drivers.methods import NETWORK_SOLVERS
 from lumped.drivers.one_mass import network_trajectory
 from lumped.model.problem import OneMass, one_mass_form
 from lumped.model.forcing import SwitchedSine, one_force, sine_form
-from lumped.model.network import Network
+from lumped.model.network import Network, listed
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 from lumped.solvers import network_compiled as kernel
@@ -109,11 +109,11 @@ def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str):
     inertia = np.array([m.mass for m in net.masses])
     f0 = net.load_table(np.zeros(1))[0]
     graphs, sigma = _graphs(net, state, None, w0), _sigma(net, inertia, 1.0)
-    if path == "compiled":
+    if path == "compiled" and not kernel.has_chord(kernel.plan(net)):  # a loop's intervals: the Python step
         sol = kernel.solve_graphs(kernel.plan(net), inertia, sigma, graphs, f0)
     else:
-        sol = solve_step(first, second, inertia, f0, graphs, sigma)
-    return x[:-1], v[:-1], state, sol.f
+        sol = solve_step(first, second, inertia, f0, graphs, sigma, ranges=True)
+    return x[:-1], v[:-1], state, sol
 
 
 def simulate_network(
@@ -131,7 +131,7 @@ def simulate_network(
         other network through the active-set step; ``"active-set"`` always
         takes the active-set step.  Both run it compiled when
         :func:`lumped.solvers.network_compiled.ineligible` allows (every element
-        piecewise linear, the link graph a forest, the kernel built) and in
+        piecewise linear, the link graph a forest or one loop, the kernel built) and in
         Python otherwise.  ``"compiled"`` and ``"python"`` force one path
         (``"compiled"`` refuses a network it cannot run).
 
@@ -178,20 +178,37 @@ def _path(net: Network, solver: str) -> str:
 
 
 class _Record:
-    """Saved rows, filled as the run goes."""
+    """Saved rows, filled as the run goes; the intervals of the rows whose forces are not unique."""
 
     def __init__(self, rows: int, masses: int, elements: int) -> None:
         self.t = np.empty(rows)
         self.x, self.v = np.empty((rows, masses)), np.empty((rows, masses))
         self.force, self.state = np.empty((rows, elements)), np.empty((rows, elements))
         self.rigid = np.zeros((rows, elements), dtype=bool)
+        self.ranges: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self.low: np.ndarray | None = None  # the compiled loop's intervals, every row
+        self.high: np.ndarray | None = None
         self.row = 0
 
-    def save(self, t: float, x, v, f, state, rigid) -> None:  # noqa: ANN001
+    def save(self, t: float, x, v, f, state, rigid, low=None, high=None) -> None:  # noqa: ANN001
         r = self.row
         self.t[r], self.x[r], self.v[r], self.force[r] = t, x, v, f
         self.state[r], self.rigid[r] = state, rigid
+        if low is not None:
+            self.ranges[r] = (low, high)
         self.row += 1
+
+    def intervals(self) -> tuple[np.ndarray | None, np.ndarray | None]:
+        """``force_min``, ``force_max`` of the saved rows (the force itself where it is
+        unique), or ``None`` if every saved row's forces are unique."""
+        if not self.ranges and self.low is None:
+            return None, None
+        low = self.force.copy() if self.low is None else self.low
+        high = self.force.copy() if self.high is None else self.high
+        low[0], high[0] = self.force[0], self.force[0]
+        for r, (lo, hi) in self.ranges.items():
+            low[r], high[r] = lo, hi
+        return (low, high) if np.any(low != high) else (None, None)
 
 
 class _Start(NamedTuple):
@@ -208,10 +225,10 @@ class _Start(NamedTuple):
 
 def _march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, path: str) -> Trajectory:
     first, second = net.incidence()
-    x, v, state, f = _initial(net, first, second, path)
+    x, v, state, sol = _initial(net, first, second, path)
     inertia = np.array([m.mass / dt for m in net.masses])
     rec = _Record(rows, len(net.masses), len(net.elements))
-    rec.save(0.0, x, v, f, state, False)
+    rec.save(0.0, x, v, sol.f, state, False, sol.low, sol.high)
     start = _Start(x, v, state, inertia, _sigma(net, inertia, dt), np.where(v == 0, 0, 1).astype(np.int64))
     run = _run_compiled if path == "compiled" else _run_python
     v, most = run(net, dt, n_steps, save_every, rec, start)
@@ -220,6 +237,7 @@ def _march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, pa
     rest_position = np.where(still, np.nan, rec.x[rec.row - 1])
     applied = net.load_table(rec.t)  # the loads at the saved times, as the steps evaluated them
     rest = (rest_time, rest_position)
+    force_min, force_max = rec.intervals()
     return Trajectory(
         t=rec.t,
         positions=rec.x,
@@ -235,11 +253,21 @@ def _march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, pa
         final_rest=rest,
         solver=path,
         iterations=most,
+        force_min=force_min,
+        force_max=force_max,
     )
 
 
 def _unsettled(n: int, dt: float, elements: int) -> ValueError:
     return ValueError(f"dt: the step to t = {n * dt:.6g} s failed: {unsettled(default_bound(elements))}")
+
+
+def _failed(net: Network, n: int, dt: float, err: StepError) -> ValueError:
+    """The message of a Python step that failed: unsettled, or a loop of rigid pieces whose rates disagree."""
+    if not err.elements:
+        return _unsettled(n, dt, len(net.elements))
+    names = listed([net.elements[e].name for e in err.elements])
+    return ValueError(f"elements {names} {err} at the step to t = {n * dt:.6g} s")
 
 
 def _overflowed(n: int, dt: float) -> ValueError:
@@ -259,10 +287,11 @@ def _run_python(
         for n in range(begin, stop + 1):
             rhs = start.inertia * v + table[n - begin]
             graphs = _graphs(net, state, dt, None)
+            saved = n % save_every == 0 or n == n_steps
             try:
-                sol = solve_step(first, second, start.inertia, rhs, graphs, start.sigma, modes)
-            except StepError:
-                raise _unsettled(n, dt, len(net.elements)) from None
+                sol = solve_step(first, second, start.inertia, rhs, graphs, start.sigma, modes, ranges=saved)
+            except StepError as err:
+                raise _failed(net, n, dt, err) from None
             v, modes, most = sol.v, sol.modes, max(most, sol.iterations)
             x = x + dt * v
             state = [
@@ -272,8 +301,8 @@ def _run_python(
             if not (np.isfinite(v).all() and np.isfinite(sol.f).all()):
                 raise _overflowed(n, dt)
             rest[v != 0] = n + 1
-            if n % save_every == 0 or n == n_steps:
-                rec.save(n * dt, x, v, sol.f, state, sol.rigid)
+            if saved:
+                rec.save(n * dt, x, v, sol.f, state, sol.rigid, sol.low, sol.high)
     return v, most
 
 
@@ -285,7 +314,10 @@ def _run_compiled(
     counters = np.array([rec.row, 0, 0, 0], dtype=np.int64)
     modes = np.full(len(net.elements), -1, dtype=np.int64)
     marching = (start.x.copy(), start.v.copy(), np.array(start.state, dtype=float), modes, start.rest, counters)
-    record = (rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid.view(np.uint8))
+    if kernel.has_chord(topology):
+        rec.low, rec.high = np.empty_like(rec.force), np.empty_like(rec.force)
+    kept = (rec.low, rec.high) if rec.low is not None else (np.empty(0), np.empty(0))
+    record = (rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid.view(np.uint8), *kept)
     block = max(1, min(_BLOCK, _TABLE_VALUES // max(1, loaded.size)))
     for begin in range(1, n_steps + 1, block):
         stop = min(begin + block - 1, n_steps)

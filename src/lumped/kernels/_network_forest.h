@@ -1,5 +1,5 @@
-/* The one-step problem of a network whose link graph is a forest, solved by
- * elimination: the modes of the elements (which piece of its step graph each
+/* The one-step problem of a network whose link graph is a forest (or a forest
+ * and one more link, a chord: _network_loop.h), solved by elimination: the modes of the elements (which piece of its step graph each
  * is on) found by the active-set iteration of lumped.solvers.network_step
  * (step._iterate at the scales step.SIGMA_SCALES, then step._dual_sweeps;
  * read its docstring first), and for fixed modes the linear solve.
@@ -46,6 +46,15 @@ typedef struct {
     double *D, *R, *num, *den, *K, *A, *off, *vall, *w, *f, *rhs, *z;
     uint64_t *seen;
     int bound;
+    /* the chord (_network_loop.h): its elements link_el[chord_start:chord_end], its points */
+    Py_ssize_t chord_start, chord_end;
+    int64_t cp, cq, rc;
+    double Kc, mu, *Ry, *numy, *vy;
+    /* the last solve's rigid loop: its elements, their +-1 and particular forces */
+    int rigid_loop;
+    Py_ssize_t n_loop;
+    int64_t *loop_el;
+    double *loop_n, *loop_f0;
 } net_t;
 
 /* q's work arrays for n_mass masses and n_el elements: 0, or -1 if memory ran
@@ -57,23 +66,29 @@ static int allocate(net_t *q, Py_ssize_t n_mass, Py_ssize_t n_el) {
     q->graph = malloc((n_el * MAX_PIECES + 1) * sizeof(piece));
     q->count = malloc((4 * n_el + 1) * sizeof(int));
     q->rig = malloc(n_pt * sizeof(int64_t));
-    q->D = malloc((9 * n_pt + 3 * n_el) * sizeof(double));
+    q->D = malloc((12 * n_pt + 5 * n_el) * sizeof(double));
     q->seen = malloc(q->bound * sizeof(uint64_t));
-    if (!q->graph || !q->count || !q->rig || !q->D || !q->seen) return -1;
+    q->loop_el = malloc((n_el + 1 + n_pt) * sizeof(int64_t)); /* and hold_chord's scratch */
+    if (!q->graph || !q->count || !q->rig || !q->D || !q->seen || !q->loop_el) return -1;
     q->mode = q->count + n_el, q->guess = q->mode + n_el, q->next = q->guess + n_el;
     q->R = q->D + n_pt, q->num = q->R + n_pt, q->den = q->num + n_pt, q->K = q->den + n_pt;
     q->A = q->K + n_pt, q->off = q->A + n_pt, q->vall = q->off + n_pt, q->rhs = q->vall + n_pt;
     q->w = q->rhs + n_pt, q->f = q->w + n_el, q->z = q->f + n_el;
+    q->Ry = q->z + n_el, q->numy = q->Ry + n_pt, q->vy = q->numy + n_pt;
+    q->loop_n = q->vy + n_pt, q->loop_f0 = q->loop_n + n_el;
+    q->n_loop = 0, q->rigid_loop = 0;
     return 0;
 }
 
 static void deallocate(net_t *q) {
-    free(q->graph), free(q->count), free(q->rig), free(q->D), free(q->seen);
+    free(q->graph), free(q->count), free(q->rig), free(q->D), free(q->seen), free(q->loop_el);
 }
 
 static const piece *chosen(const net_t *q, Py_ssize_t e, const int *mode) {
     return q->graph + e * MAX_PIECES + mode[e];
 }
+
+#include "_network_loop.h" /* the chord: chord_loads, chord_velocities, chord_forces, loop_intervals */
 
 /* Leaf to root: fold each point's subtree into its parent. */
 static void eliminate(net_t *q, const int *mode) {
@@ -81,6 +96,7 @@ static void eliminate(net_t *q, const int *mode) {
         q->D[i] = i < q->n_mass ? q->inertia[i] : 0.0;
         q->R[i] = i < q->n_mass ? q->rhs[i] : 0.0;
     }
+    if (q->chord_end > q->chord_start) chord_loads(q, mode);
     for (Py_ssize_t idx = q->n_pt - 1; idx >= 0; idx--) {
         const int64_t c = q->order[idx], p = q->parent[c];
         if (p < 0) continue;
@@ -137,6 +153,7 @@ static void substitute(net_t *q, const int *mode) {
         else
             q->vall[c] = (q->num[c] + q->K[c] * q->vall[p]) / q->den[c];
     }
+    if (q->chord_end > q->chord_start) chord_velocities(q, mode);
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
         const piece *pc = chosen(q, e, mode);
         if (pc->rigid) continue;
@@ -145,6 +162,7 @@ static void substitute(net_t *q, const int *mode) {
     }
     for (Py_ssize_t c = 0; c < q->n_pt; c++)
         if (q->parent[c] >= 0 && q->rig[c] >= 0) rigid_force(q, c, mode);
+    if (q->chord_end > q->chord_start) chord_forces(q, mode);
 }
 
 static uint64_t hash_modes(const int *m, Py_ssize_t n) {

@@ -1,5 +1,5 @@
 /* Backward Euler for a network of piecewise-linear elements whose link graph
- * is a forest: the compiled marching loop of lumped.solvers.network_compiled,
+ * is a forest, or a forest and one chord (_network_loop.h): the compiled marching loop of lumped.solvers.network_compiled,
  * and its binding.
  *
  * The one-step problem, its modes, its mode test and its cycle handling are
@@ -34,6 +34,7 @@ typedef struct {
 typedef struct {
     double *t, *x, *v, *force, *state;
     uint8_t *rigid;
+    double *low, *high; /* NULL: no intervals kept (no chord) */
 } record_t;
 
 static void save(const net_t *q, const march_t *m, const record_t *o, double t, int64_t row) {
@@ -44,6 +45,7 @@ static void save(const net_t *q, const march_t *m, const record_t *o, double t, 
     memcpy(o->force + row * ne, q->f, ne * sizeof(double));
     memcpy(o->state + row * ne, m->state, ne * sizeof(double));
     for (Py_ssize_t e = 0; e < ne; e++) o->rigid[row * ne + e] = (uint8_t)chosen(q, e, q->mode)->rigid;
+    if (o->low) loop_intervals(q, o->low + row * ne, o->high + row * ne);
 }
 
 /* One step to t = n dt with the loads `load`: 0 on success, else the bad kind. */
@@ -146,6 +148,24 @@ static int check_forest(const int64_t *order, const int64_t *parent, Py_ssize_t 
     return bad ? -1 : 0;
 }
 
+/* The chord (_network_loop.h): the elements of link_el after the forest's links, all between one
+ * pair of points; -1 with ValueError if they are not. */
+static int take_chord(net_t *q, Py_ssize_t n_link_el) {
+    q->chord_start = q->link_start[q->n_pt], q->chord_end = n_link_el;
+    if (q->chord_end == q->chord_start) return 0;
+    const int64_t first = q->link_el[q->chord_start];
+    q->cp = q->first[first], q->cq = q->second[first];
+    for (Py_ssize_t k = q->chord_start; k < q->chord_end; k++) {
+        const int64_t e = q->link_el[k];
+        const int same = q->first[e] == q->cp && q->second[e] == q->cq, reversed = q->first[e] == q->cq && q->second[e] == q->cp;
+        if (!same && !reversed) {
+            PyErr_Format(PyExc_ValueError, "topology[7] (link_el) after the forest's links must join one pair of points, got element %lld", (long long)e);
+            return -1;
+        }
+    }
+    return 0;
+}
+
 /* Take the topology tuple's 12 arrays into h, checked; set q's counts and topology.  q is zeroed. */
 static int take_topology(held_t *h, PyObject *obj, net_t *q) {
     memset(q, 0, sizeof *q);
@@ -175,7 +195,7 @@ static int take_topology(held_t *h, PyObject *obj, net_t *q) {
     q->parent = b[5]->buf, q->link_start = link_start, q->link_el = b[7]->buf, q->sign = b[8]->buf;
     q->inertia = b[9]->buf, q->sigma = b[10]->buf, q->load_mass = b[11]->buf;
     q->n_mass = n_mass, q->n_el = n_el, q->n_pt = n_pt, q->n_load = items(b[11]);
-    return 0;
+    return take_chord(q, items(b[7]));
 }
 
 /* Take a tuple of arrays of the given names, item types and counts (writable) into h. */
@@ -258,12 +278,14 @@ fail:
 
 /* network_block(topology, marching, record, table, dt, n_first, n_last, n_steps, save_every)
  * topology = (kind, par, first, second, order, parent, link_start, link_el, sign, inertia, sigma, load_mass)
- * marching = (x, v, state, modes, rest, counters); record = (t, x, v, force, state, rigid). */
+ * marching = (x, v, state, modes, rest, counters); record = (t, x, v, force, state, rigid, low, high),
+ * low and high (the admissible forces, _network_loop.h) empty unless the topology has a chord. */
 static PyObject *network_block(PyObject *self, PyObject *args) {
     static const char *const march_names[] = {"marching[0] (x)",     "marching[1] (v)",    "marching[2] (state)",
                                               "marching[3] (modes)", "marching[4] (rest)", "marching[5] (counters)"};
     static const char *const record_names[] = {"record[0] (t)",     "record[1] (x)",     "record[2] (v)",
-                                               "record[3] (force)", "record[4] (state)", "record[5] (rigid)"};
+                                               "record[3] (force)", "record[4] (state)", "record[5] (rigid)",
+                                               "record[6] (low)",   "record[7] (high)"};
     PyObject *topo_obj, *march_obj, *rec_obj, *table_obj;
     double dt;
     Py_ssize_t n_first, n_last, n_steps, save_every;
@@ -272,7 +294,7 @@ static PyObject *network_block(PyObject *self, PyObject *args) {
         return NULL;
     held_t h = {.n = 0};
     net_t q;
-    Py_buffer *mb[6], *rb[6];
+    Py_buffer *mb[6], *rb[8];
     const Py_buffer *table;
     PyObject *const *r;
     if (check_real("dt", dt, 0.0, 1, 0) < 0 || check_steps(n_first, n_last, n_steps, save_every) < 0 ||
@@ -282,11 +304,13 @@ static PyObject *network_block(PyObject *self, PyObject *args) {
     const Py_ssize_t march_sizes[] = {nm, nm, ne, ne, nm, 4};
     if (take_tuple(&h, march_obj, "marching", 6, march_names, "dddqqq", march_sizes, mb) < 0 ||
         !(table = take(&h, table_obj, "table", 'd', (n_last - n_first + 1) * q.n_load, 0)) ||
-        !(r = tuple_items(rec_obj, "record", 6)) || !(rb[0] = take(&h, r[0], record_names[0], 'd', -1, 1)))
+        !(r = tuple_items(rec_obj, "record", 8)) || !(rb[0] = take(&h, r[0], record_names[0], 'd', -1, 1)))
         goto fail;
-    const Py_ssize_t rows = items(rb[0]), record_sizes[] = {rows, rows * nm, rows * nm, rows * ne, rows * ne, rows * ne};
-    for (int i = 1; i < 6; i++)
-        if (!(rb[i] = take(&h, r[i], record_names[i], "ddddB"[i - 1], record_sizes[i], 1))) goto fail;
+    const Py_ssize_t rows = items(rb[0]);
+    const Py_ssize_t kept = q.link_start[q.n_pt] < q.chord_end ? rows * ne : 0; /* intervals: with a chord only */
+    const Py_ssize_t record_sizes[] = {rows, rows * nm, rows * nm, rows * ne, rows * ne, rows * ne, kept, kept};
+    for (int i = 1; i < 8; i++)
+        if (!(rb[i] = take(&h, r[i], record_names[i], "ddddBdd"[i - 1], record_sizes[i], 1))) goto fail;
     int64_t *counters = mb[5]->buf;
     if (check_rows(record_names[0], counters[0], rows, n_first, n_last, n_steps, save_every) < 0) goto fail;
     if (allocate(&q, nm, ne) < 0) {
@@ -299,7 +323,8 @@ static PyObject *network_block(PyObject *self, PyObject *args) {
     if (check_modes(march_names[3], mb[3]->buf, q.count, ne) < 0) goto fail_alloc;
     q.dt = dt;
     march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters};
-    record_t o = {rb[0]->buf, rb[1]->buf, rb[2]->buf, rb[3]->buf, rb[4]->buf, rb[5]->buf};
+    record_t o = {rb[0]->buf, rb[1]->buf, rb[2]->buf, rb[3]->buf, rb[4]->buf, rb[5]->buf,
+                  kept ? rb[6]->buf : NULL, kept ? rb[7]->buf : NULL};
     Py_BEGIN_ALLOW_THREADS
     march(&q, &m, &o, table->buf, n_first, n_last, n_steps, save_every);
     Py_END_ALLOW_THREADS

@@ -1,7 +1,7 @@
 """A network: masses, elements between two points, forces on masses.
 
-The one question asked here about the whole network is whether every step
-is well posed (see :class:`Network`, Notes).
+Why every step of a network is well posed, and which forces may not be
+unique, is :class:`Network`'s Notes.
 """
 
 from __future__ import annotations
@@ -128,14 +128,16 @@ class Network:
     locking dashpot): they fix their rate and take whatever force balances
     the masses, and a closed loop of such elements (two in parallel between
     the same points, or a ring through masses and the ground) carries any
-    circulating force on top of a solution.  So a network is refused when
-    its elements that can be rigid (:attr:`Element.rigid_capable`) close a
-    loop; the message names them.  Then the rigid elements of every step
-    form a forest and their forces are unique (found leaf to root by the
-    momentum balance of each mass).  The test is exact for loops containing
-    a Bingham, Coulomb or locking element (they all stick together at rest);
-    for a loop of strings only it is conservative (strings whose lengths do
-    not close the loop are never taut together).
+    circulating force on top of a solution.  Such networks are solved, not
+    refused: the step reports, for each element of such a loop, the interval
+    of its admissible forces and, as its force, the split of least norm
+    (:mod:`lumped.solvers.loop_forces`).  No network is refused for its
+    loops, because every one has a unique motion: the velocities 0 meet
+    every constraint of a step (every string starts within its length and
+    stays there to rounding, every lock admits the rate 0), so the strictly convex
+    potential has one minimiser.  (A loop of rigid pieces whose fixed rates
+    disagree has none; only a step of hand-made graphs can pose one, and
+    :func:`~lumped.solvers.network_step.solve_step` names its elements.)
     """
 
     masses: tuple[Mass, ...]
@@ -150,7 +152,6 @@ class Network:
             object.__setattr__(self, what, tuple(value))
         self._check_items()
         self._check_names()
-        self._check_loops()
 
     def _check_items(self) -> None:
         for what, cls in (("masses", Mass), ("elements", Element), ("loads", Load)):
@@ -177,19 +178,6 @@ class Network:
         for load in self.loads:
             if load.on not in known - {GROUND}:
                 raise ValueError(f"force on {load.on!r}: there is no mass of that name")
-
-    def _check_loops(self) -> None:
-        index = self.point_index()
-        loop = rigid_loop(
-            index, [((index[el.between[0]], index[el.between[1]]), el) for el in self.elements if el.rigid_capable]
-        )
-        if loop:
-            names = listed([el.name for el in loop])
-            raise ValueError(
-                f"elements {names} close a loop of elements that can all be rigid at once "
-                "(sticking, taut or locked), so their forces would not be unique; "
-                "merge them into one element or put a compliant element in the loop"
-            )
 
     # -- indices ------------------------------------------------------------
     def point_index(self) -> dict[str, int]:

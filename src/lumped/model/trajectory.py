@@ -91,6 +91,11 @@ class Trajectory:
         The events the method located (stops, breakaways, reversals, the
         forcing's switch-off), in time order; empty for a method that
         locates none.
+    force_min, force_max : ndarray, (N, elements), N, or None
+        The least and greatest admissible force of each element where rigid
+        elements close a loop and their split is not unique (``forces`` then
+        holds the split of least norm); equal to ``forces`` where the force is
+        unique.  ``None`` when every saved point's forces are unique.
     """
 
     t: np.ndarray
@@ -108,6 +113,8 @@ class Trajectory:
     solver: str = ""
     iterations: int = 0
     events: tuple = field(default=())
+    force_min: np.ndarray | None = None
+    force_max: np.ndarray | None = None
 
     @classmethod
     def of_oscillator(
@@ -178,10 +185,15 @@ class Trajectory:
         return np.where(self.velocities[-1] == 0.0, self.positions[-1], np.nan)
 
     def system_columns(self, suffix: str) -> dict[str, np.ndarray]:
-        """The system's output arrays: ``.npz`` names or ``.csv`` columns (see book/guide/systems.md)."""
+        """The system's output arrays: ``.npz`` names or ``.csv`` columns (see book/guide/systems.md).
+
+        Where some forces are not unique, ``force_min`` and ``force_max`` too
+        (``.npz``), or ``force_min_<element>`` and ``force_max_<element>``
+        beside ``F_<element>`` for each element concerned (``.csv``).
+        """
         net = self.network
         if suffix == ".npz":
-            return {
+            out = {
                 "t": self.t,
                 "x": self.positions,
                 "v": self.velocities,
@@ -190,12 +202,26 @@ class Trajectory:
                 "mass_names": np.array(net.mass_names),
                 "element_names": np.array(net.element_names),
             }
+            if self.force_min is not None and self.force_max is not None:
+                out |= {"force_min": self.force_min, "force_max": self.force_max}
+            return out
         out = {"t": self.t}
         out |= {f"x_{n}": self.positions[:, i] for i, n in enumerate(net.mass_names)}
         out |= {f"v_{n}": self.velocities[:, i] for i, n in enumerate(net.mass_names)}
-        out |= {f"F_{n}": self.forces[:, i] for i, n in enumerate(net.element_names)}
+        for i, n in enumerate(net.element_names):
+            out[f"F_{n}"] = self.forces[:, i]
+            if i in self.undetermined:
+                out[f"force_min_{n}"] = self.force_min[:, i]  # type: ignore[index]
+                out[f"force_max_{n}"] = self.force_max[:, i]  # type: ignore[index]
         out |= {f"load_{n}": self.applied[:, i] for i, n in enumerate(net.mass_names)}
         return out
+
+    @property
+    def undetermined(self) -> list[int]:
+        """Indices of the elements whose force is not unique at some saved point (see ``force_min``)."""
+        if self.force_min is None or self.force_max is None:
+            return []
+        return np.flatnonzero((self.force_min != self.force_max).any(axis=0)).tolist()
 
     def summary(self, shown: int = 10) -> str:
         """Each mass's rest time and position, or that it still moves (the first ``shown`` masses)."""

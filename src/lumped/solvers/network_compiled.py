@@ -1,8 +1,12 @@
-"""The compiled step for networks whose link graph is a forest (``_network_kernel.c``).
+"""The compiled step for networks whose link graph is a forest or has one loop (``_network_kernel.c``).
 
 The *link graph* has the masses and the ground as points and one link per
 pair of points joined by at least one element (parallel elements share a
-link).  When it is a forest and every element is piecewise linear with a C
+link).  When it is a forest, or a forest and one more link closing one loop
+(a ring of masses through the ground: the *chord* of ``_network_loop.h``,
+one rank-one update of the forest's solve, and the least-norm split with
+its intervals when the loop is rigid all round; every element on the loop
+that can be rigid must then be a Bingham element), and every element is piecewise linear with a C
 copy of its step graph (a ``kernel_form``, point 9 of
 :class:`~lumped.laws.element.Element`: every kind but the law elements,
 :class:`~lumped.laws.dashpot_elements.Monotone` and Herschel-Bulkley), the one-step problem
@@ -35,7 +39,7 @@ from lumped.laws.step_graph import Piece
 from lumped.model.network import Network, listed, rigid_loop
 from lumped.solvers.network_step import StepError, StepSolution, default_bound, unsettled
 
-__all__ = ["KERNEL", "Plan", "ineligible", "plan", "solve_graphs", "march_block"]
+__all__ = ["KERNEL", "Plan", "ineligible", "plan", "has_chord", "solve_graphs", "march_block"]
 
 #: ``"compiled"`` when ``_network_kernel.c`` was built (and ``LUMPED_PURE_PYTHON``
 #: is unset), else ``"python"``: the Python step then runs every network.
@@ -79,14 +83,57 @@ def ineligible(net: Network) -> str | None:
     odd = [el.name for el, form in zip(net.elements, forms) if form is None]
     if odd:
         return f"element {odd[0]!r} is not piecewise linear"
-    index, links = net.point_index(), _links(net)
-    loop = rigid_loop(index, [(pair, net.elements[els[0]]) for pair, els in links.items()])
-    if loop:
-        return f"the links of {listed([el.name for el in loop])} close a loop"
+    links = _links(net)
     for els in links.values():
         if sum(forms[e].rigid_pieces for e in els) > 1:  # type: ignore[union-attr]
             return f"elements {listed([net.elements[e].name for e in els])} are in parallel and more than one has rigid pieces"
+    chord = _chord(net, links)
+    if chord is None:
+        return None
+    index = net.point_index()
+    pairs = [(pair, net.elements[els[0]]) for pair, els in links.items() if pair != chord]
+    second = rigid_loop(index, pairs)
+    if second:
+        return f"the links of {listed([el.name for el in second])} close a second loop"
+    looped = [e for pair in _cycle(net, links, chord) for e in links[pair]]
+    odd = [net.elements[e].name for e in looped if forms[e].rigid_pieces and forms[e].code != _BINGHAM]  # type: ignore[union-attr]
+    if odd:
+        return f"element {odd[0]!r} on the loop of links can be rigid at a rate other than 0"
     return None
+
+
+#: The kind code of a Bingham element (``_network_elements.h``): rigid only at the rate 0.
+_BINGHAM = 2
+
+
+def _chord(net: Network, links: dict[tuple[int, int], list[int]]) -> tuple[int, int] | None:
+    """The link that closes the link graph's first loop (in link order), or ``None`` for a forest."""
+    loop = rigid_loop(net.point_index(), [(pair, net.elements[els[0]]) for pair, els in links.items()])
+    if not loop:
+        return None
+    first, second = net.incidence()
+    e = net.elements.index(loop[-1])
+    return (min(first[e], second[e]), max(first[e], second[e]))
+
+
+def _cycle(net: Network, links: dict[tuple[int, int], list[int]], chord: tuple[int, int]) -> list[tuple[int, int]]:
+    """The links of the loop that ``chord`` closes in the spanning forest of :func:`plan`."""
+    order, parent, via = _forest(len(net.masses) + 1, {k: v for k, v in links.items() if k != chord})
+    up = {}
+    for p in chord:
+        path, node = [], p
+        while parent[node] >= 0:
+            path.append(node)
+            node = parent[node]
+        up[p] = path + [node]
+    shared = set(up[chord[0]]) & set(up[chord[1]])
+    out = [chord]
+    for p in chord:
+        for node in up[p]:
+            if node in shared:
+                break
+            out.append((min(node, parent[node]), max(node, parent[node])))
+    return out
 
 
 def _links(net: Network) -> dict[tuple[int, int], list[int]]:
@@ -125,14 +172,25 @@ def _int64(values: object) -> np.ndarray:
 
 
 def plan(net: Network) -> Plan:
-    """The compiled loop's arrays for ``net`` (which :func:`ineligible` accepts)."""
+    """The compiled loop's arrays for ``net`` (which :func:`ineligible` accepts).
+
+    A chord (the link that closes the one loop of links, ``_network_loop.h``)
+    has its elements after the forest's in ``link_el``, each with ``sign`` +1
+    if its ``second`` point is the chord's first element's ``second``.
+    """
     first, second = net.incidence()
-    order, parent, via = _forest(len(net.masses) + 1, _links(net))
+    links = _links(net)
+    chord = _chord(net, links)
+    forest = links if chord is None else {k: v for k, v in links.items() if k != chord}
+    order, parent, via = _forest(len(net.masses) + 1, forest)
     link_start = np.cumsum([0] + [len(els) for els in via])
     sign = np.zeros(len(net.elements))
     for p, els in enumerate(via):
         for e in els:
             sign[e] = 1.0 if second[e] == p else -1.0
+    tail = [] if chord is None else links[chord]
+    for e in tail:
+        sign[e] = 1.0 if second[e] == second[tail[0]] else -1.0
     forms = [el.kernel_form() for el in net.elements]
     par = np.zeros((len(net.elements), 4))
     for e, form in enumerate(forms):
@@ -145,9 +203,14 @@ def plan(net: Network) -> Plan:
         _int64(order),
         _int64(parent),
         _int64(link_start),
-        _int64([e for els in via for e in els]),
+        _int64([e for els in via for e in els] + tail),
         sign,
     )
+
+
+def has_chord(topology: Plan) -> bool:
+    """True if the plan closes one loop of links (its elements follow the forest's)."""
+    return int(topology.link_start[-1]) < topology.link_el.size
 
 
 def march_block(
@@ -166,8 +229,9 @@ def march_block(
     ``marching = (x, v, state, modes, rest, counters)`` is updated in place
     (``modes`` -1 for the middle piece; ``counters = (row, bad_step,
     bad_kind, most_iterations)``); saved rows go to ``record = (t, x, v,
-    force, state, rigid)``; ``table`` holds the loads on the masses
-    ``loaded`` for each step of the block.
+    force, state, rigid, low, high)`` (``low``, ``high``: the admissible
+    forces, empty arrays unless the plan has a chord); ``table`` holds the
+    loads on the masses ``loaded`` for each step of the block.
     """
     _network_block((*topology, inertia, sigma, loaded), marching, record, np.ascontiguousarray(table), dt, *steps)
 

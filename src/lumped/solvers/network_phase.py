@@ -27,7 +27,7 @@ from typing import NamedTuple
 import numpy as np
 from lumped.laws.element import Element
 from lumped.model.forcing import Constant, SwitchedSine, kind_of
-from lumped.model.network import Network
+from lumped.model.network import Network, listed, rigid_loop
 
 __all__ = ["Parts", "Phase", "parts", "phase", "refusal"]
 
@@ -78,6 +78,15 @@ def refusal(net: Network, method: str = "exact") -> str | None:
     for load in net.loads:
         if not isinstance(load.force, (SwitchedSine, Constant)):
             return f"method {method!r} cannot run the load on {load.on!r}, {kind_of(load.force)}: it runs {_TAKES}"
+    index = net.point_index()
+    sticking = [((index[el.between[0]], index[el.between[1]]), el) for el in net.elements if el.rigid_capable]
+    loop = rigid_loop(index, sticking)
+    if loop:
+        return (
+            f"method {method!r} cannot run elements {listed([el.name for el in loop])}: they close a loop of "
+            "elements that can stick together, whose forces are not unique (backward-euler runs it and reports "
+            "their admissible intervals)"
+        )
     return None
 
 

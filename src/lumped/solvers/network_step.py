@@ -20,7 +20,12 @@ exactly 0 for a sticking element) and are merged into one unknown.  The
 merged system is symmetric positive definite (the inertias are positive);
 for a chain in file order it is tridiagonal and is solved as a band.  The
 rigid elements' forces then follow from the momentum balance of each mass,
-leaf to root of the rigid forest (unique, see ``Network``).  Each element's
+leaf to root of the rigid forest (unique, see ``Network``).  Rigid elements
+that close loops (two in parallel, a ring) share what is left: their split
+is the least-norm admissible one, each with its interval of admissible
+forces (:mod:`lumped.solvers.loop_forces`), and a loop whose fixed rates
+disagree has one element on a wrong piece, which the next iteration moves
+(:mod:`lumped.solvers.rigid_clusters`).  Each element's
 new mode is the piece that contains ``z = f + sigma w``, its resolvent with
 a scale ``sigma > 0`` of the stiffness its points see; the iteration stops
 when no mode changes, and then every ``(w, f)`` lies on its graph: the
@@ -49,24 +54,35 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.laws.step_graph import Piece, StepGraph, as_step_graph
+from lumped.solvers.loop_forces import CoreForces, core_forces
+from lumped.solvers.merged_system import assemble, solve_merged
+from lumped.solvers.rigid_clusters import Clusters, Merged, loop_merge
 
 __all__ = ["StepError", "StepSolution", "solve_step", "SIGMA_SCALES", "default_bound", "unsettled"]
 
 #: Scales of ``sigma`` tried in turn when the active-set iteration cycles.
 SIGMA_SCALES = (1.0, 0.25, 4.0, 1 / 16, 16.0)
-#: Largest unknown count solved as a dense matrix.
-_DENSE = 48
 
 Graph = Sequence[Piece] | StepGraph
 
 
 class StepError(ArithmeticError):
-    """The active-set iteration did not settle."""
+    """The active-set iteration did not settle, or (``elements`` given) the rigid
+    elements ``elements`` close a loop whose rates disagree: the step has no solution."""
+
+    def __init__(self, message: str, elements: Sequence[int] = ()) -> None:
+        super().__init__(message)
+        self.elements = tuple(elements)
 
 
 class StepSolution(NamedTuple):
     """Velocities ``v`` (masses), rates ``w``, forces ``f``, chosen ``modes`` (elements),
-    ``rigid`` (elements on a rigid piece) and the ``iterations`` taken."""
+    ``rigid`` (elements on a rigid piece) and the ``iterations`` taken.
+
+    ``low``, ``high`` (elements), when asked for and some forces are not
+    unique (rigid elements closing a loop), bound each element's admissible
+    force; ``f`` is then the least-norm split.  ``None`` otherwise.
+    """
 
     v: np.ndarray
     w: np.ndarray
@@ -74,6 +90,19 @@ class StepSolution(NamedTuple):
     modes: list[int]
     rigid: list[bool]
     iterations: int
+    low: np.ndarray | None = None
+    high: np.ndarray | None = None
+
+
+class _Linear(NamedTuple):
+    """One linear solve: velocities, rates, forces, the loops' forces (``None``
+    without rigid loops) and the rigid elements whose loops disagree."""
+
+    v: np.ndarray
+    w: np.ndarray
+    f: np.ndarray
+    core: tuple | None
+    clash: tuple[int, ...]
 
 
 class _Topology(NamedTuple):
@@ -91,6 +120,7 @@ def solve_step(
     sigma: np.ndarray,
     modes: Sequence[int] | None = None,
     max_iterations: int | None = None,
+    ranges: bool = False,
 ) -> StepSolution:
     """Solve the one-step problem (see the module docstring).
 
@@ -111,26 +141,50 @@ def solve_step(
         Initial guess (the previous step's modes); the middle piece otherwise.
     max_iterations : int, optional
         Bound per scale; ``20 + 2 * elements`` by default.
+    ranges : bool
+        Also the interval of admissible forces of each element
+        (:attr:`StepSolution.low`, ``high``), when some are not unique.
 
     Raises
     ------
     StepError
-        If no scale settles within the bound.
+        If no scale settles within the bound; with ``elements`` set if the
+        last failure was a loop of rigid pieces whose rates disagree.
     """
     topo = _Topology(list(first), list(second), inertia.size)
     graphs = [as_step_graph(g) for g in graphs]
     guess = [g.initial_mode() for g in graphs] if modes is None else list(modes)
     bound = default_bound(len(graphs)) if max_iterations is None else max_iterations
+    clash: list[tuple[int, ...]] = [()]
     for scale in SIGMA_SCALES:
-        out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound)
+        out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound, clash)
         if out is not None:
-            return out
+            return _with_ranges(out, topo, ranges)
     for sweeps in (10, 100, 1000):  # the guaranteed way in, then the exact finish
         guess = _dual_sweeps(topo, inertia, rhs, graphs, sweeps)
-        out = _iterate(topo, inertia, rhs, graphs, sigma, guess, bound)
+        out = _iterate(topo, inertia, rhs, graphs, sigma, guess, bound, clash)
         if out is not None:
-            return out
+            return _with_ranges(out, topo, ranges)
+    if clash[0]:
+        raise StepError(DISAGREE, clash[0])
     raise StepError(unsettled(bound))
+
+
+#: Why a step with a loop of rigid pieces whose rates disagree has no solution.
+DISAGREE = "close a loop of rigid constraints whose fixed rates disagree, so no velocities meet them all"
+
+
+def _with_ranges(out: tuple[StepSolution, _Linear], topo: _Topology, ranges: bool) -> StepSolution:
+    """The settled solution, with the intervals of the loops' forces if asked for."""
+    sol, lin = out
+    if not ranges or lin.core is None:
+        return sol
+    loops: CoreForces = core_forces(*lin.core, topo.n_mass, ranges=True)
+    low, high = sol.f.copy(), sol.f.copy()
+    low[loops.elements], high[loops.elements] = loops.low, loops.high
+    if np.array_equal(low, high):
+        return sol
+    return sol._replace(low=low, high=high)
 
 
 def unsettled(bound: int) -> str:
@@ -151,17 +205,23 @@ def _iterate(
     sigma: np.ndarray,
     modes: list,
     bound: int,
-) -> StepSolution | None:
-    """The active-set loop at one scale; ``None`` if it cycles or hits the bound."""
+    clash: list[tuple[int, ...]],
+) -> tuple[StepSolution, _Linear] | None:
+    """The active-set loop at one scale; ``None`` if it cycles or hits the bound
+    (``clash[0]``: the elements of a last loop whose rates disagree)."""
     seen: set[tuple] = set()
     piecewise = all(g.is_piecewise for g in graphs)
     for it in range(1, bound + 1):
         pieces = [g.piece(m, s) for g, m, s in zip(graphs, modes, sigma)]
-        v, w, f = _linear(topo, inertia, rhs, pieces)
+        lin = _linear(topo, inertia, rhs, pieces)
+        v, w, f = lin.v, lin.w, lin.f
+        clash[0] = lin.clash
+        if lin.clash:
+            return None  # rigid pieces whose rates disagree and none can give way
         new = [g.mode(fe + s * we, s) for g, fe, we, s in zip(graphs, f, w, sigma)]
         settled = all(g.same(a, b) for a, b, g in zip(modes, new, graphs))
         if settled:
-            return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it)
+            return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
         key = tuple(m if g.is_piecewise else None for m, g in zip(new, graphs))
         if key in seen and piecewise:
             return None  # a cycle: this scale will never settle
@@ -204,7 +264,7 @@ def _dual_sweeps(
     return modes
 
 
-def _clusters(topo: _Topology, pieces: list[Piece]) -> tuple[list[int], list[float]]:
+def _clusters(topo: _Topology, pieces: list[Piece]) -> Merged:
     """Merge the points joined by rigid pieces: each point's cluster root and
     velocity offset from it (exactly 0 across sticking elements)."""
     n = topo.n_mass + 1
@@ -216,7 +276,7 @@ def _clusters(topo: _Topology, pieces: list[Piece]) -> tuple[list[int], list[flo
             adjacent.setdefault(b, []).append((a, -p.a))
     root, offset = list(range(n)), [0.0] * n
     done = [False] * n
-    ground = topo.n_mass
+    ground, merged = topo.n_mass, 0
     for start in [ground] + [i for i in range(topo.n_mass) if i in adjacent]:
         if done[start]:
             continue
@@ -228,95 +288,43 @@ def _clusters(topo: _Topology, pieces: list[Piece]) -> tuple[list[int], list[flo
                     done[nxt], root[nxt] = True, start
                     offset[nxt] = offset[node] + rate
                     stack.append(nxt)
-    return root, offset
+                    merged += 1
+    rigid = [e for e, p in enumerate(pieces) if p.rigid]
+    if merged == len(rigid):  # a forest: every rigid element merged two clusters
+        return Merged(Clusters(root, offset, {}), {}, ())
+    return loop_merge(topo.first, topo.second, topo.n_mass, pieces, rigid)
 
 
-def _linear(
-    topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, pieces: list[Piece]
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _linear(topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, pieces: list[Piece]) -> _Linear:
     """Solve with every mode fixed: velocities, rates and forces."""
     n, ground = topo.n_mass, topo.n_mass
-    root, offset = _clusters(topo, pieces)
+    merged = _clusters(topo, pieces)
+    root, offset = merged.clusters.root, merged.clusters.offset
     unknown: dict[int, int] = {}
     for i in range(n):
         if root[i] != root[ground] and root[i] not in unknown:
             unknown[root[i]] = len(unknown)
     col = [unknown.get(root[i], -1) for i in range(n + 1)]
-    matrix, load = _assemble(topo, inertia, rhs, pieces, col, offset, len(unknown))
-    u = _solve(matrix, load)
+    matrix, load = assemble(topo, inertia, rhs, pieces, col, offset, len(unknown))
+    u = solve_merged(matrix, load)
     v_all = [offset[i] if col[i] < 0 else u[col[i]] + offset[i] for i in range(n + 1)]
     v_all[ground] = 0.0
-    w, f = _rates_forces(topo, pieces, v_all)
-    _rigid_forces(topo, inertia, rhs, pieces, v_all, f)
-    return np.array(v_all[:n]), np.array(w), np.array(f)
+    w, f = _rates_forces(topo, pieces, v_all, merged.released)
+    core = _rigid_forces(topo, inertia, rhs, pieces, v_all, f, merged.released)
+    return _Linear(np.array(v_all[:n]), np.array(w), np.array(f), core, merged.stuck)
 
 
-def _assemble(
-    topo: _Topology,
-    inertia: np.ndarray,
-    rhs: np.ndarray,
-    pieces: list[Piece],
-    col: list[int],
-    offset: list[float],
-    size: int,
-) -> tuple[dict, np.ndarray]:
-    """The merged system as ``{(row, col): value}`` and its right-hand side."""
-    entries: dict[tuple[int, int], float] = {}
-    load = np.zeros(size)
-    for i in range(topo.n_mass):
-        c = col[i]
-        if c >= 0:
-            load[c] += rhs[i] - inertia[i] * offset[i]
-            entries[c, c] = entries.get((c, c), 0.0) + inertia[i]
-    for e, p in enumerate(pieces):
-        i, j = topo.first[e], topo.second[e]
-        ci, cj = col[i], col[j]
-        if p.rigid or ci == cj:  # fixed rate, or inside one cluster: cancels
-            continue
-        known = p.a + p.b * (offset[j] - offset[i])
-        for c, other, sign in ((cj, ci, 1.0), (ci, cj, -1.0)):
-            if c < 0:
-                continue
-            load[c] -= sign * known
-            if p.b:
-                entries[c, c] = entries.get((c, c), 0.0) + p.b
-                if other >= 0:
-                    entries[c, other] = entries.get((c, other), 0.0) - p.b
-    return entries, load
-
-
-def _solve(entries: dict, load: np.ndarray) -> np.ndarray:
-    """Solve the symmetric positive definite system: scalar, dense or band."""
-    size = load.size
-    if size == 0:
-        return load
-    if size == 1:
-        return load / entries[0, 0]
-    band = max(abs(r - c) for r, c in entries)
-    if size <= _DENSE or band > 8:
-        matrix = np.zeros((size, size))
-        for (r, c), value in entries.items():
-            matrix[r, c] = value
-        if size <= _DENSE:
-            return np.linalg.solve(matrix, load)
-        from scipy.sparse import csc_matrix
-        from scipy.sparse.linalg import spsolve
-
-        return spsolve(csc_matrix(matrix), load)
-    from scipy.linalg import solveh_banded  # here, as spsolve above: the command line starts without SciPy
-
-    upper = np.zeros((band + 1, size))
-    for (r, c), value in entries.items():
-        if r <= c:
-            upper[band + r - c, c] = value
-    return solveh_banded(upper, load)
-
-
-def _rates_forces(topo: _Topology, pieces: list[Piece], v_all: list[float]) -> tuple[list[float], list[float]]:
-    """Each element's rate (the fixed rate on a rigid piece) and free force."""
+def _rates_forces(
+    topo: _Topology, pieces: list[Piece], v_all: list[float], released: dict[int, tuple[float, float]]
+) -> tuple[list[float], list[float]]:
+    """Each element's rate (the fixed rate on a rigid piece) and free force
+    (a released element: the rate its points have, the edge of its band)."""
     w, f = [], []
     for e, p in enumerate(pieces):
-        if p.rigid:
+        if e in released:
+            w.append(released[e][0])
+            f.append(released[e][1])
+        elif p.rigid:
             w.append(p.a)
             f.append(0.0)
         else:
@@ -327,17 +335,25 @@ def _rates_forces(topo: _Topology, pieces: list[Piece], v_all: list[float]) -> t
 
 
 def _rigid_forces(
-    topo: _Topology, inertia: np.ndarray, rhs: np.ndarray, pieces: list[Piece], v_all: list[float], f: list[float]
-) -> None:
-    """Forces of the rigid elements, leaf to root of the rigid forest (in place)."""
-    rigid = [e for e, p in enumerate(pieces) if p.rigid]
+    topo: _Topology,
+    inertia: np.ndarray,
+    rhs: np.ndarray,
+    pieces: list[Piece],
+    v_all: list[float],
+    f: list[float],
+    released: dict[int, tuple[float, float]],
+) -> tuple | None:
+    """Forces of the rigid elements, leaf to root of the rigid forest (in place);
+    what closes loops is split by :func:`~lumped.solvers.loop_forces.core_forces`,
+    whose arguments are returned (``None`` without loops)."""
+    rigid = [e for e, p in enumerate(pieces) if p.rigid and e not in released]
     if not rigid:
-        return
+        return None
     n, ground = topo.n_mass, topo.n_mass
     gap = [rhs[i] - inertia[i] * v_all[i] for i in range(n)] + [0.0]
     pushed = [0.0] * (n + 1)
     for e, p in enumerate(pieces):
-        if not p.rigid:
+        if not p.rigid or e in released:
             pushed[topo.second[e]] += f[e]
             pushed[topo.first[e]] -= f[e]
     gap = [g - q for g, q in zip(gap, pushed)]
@@ -358,3 +374,11 @@ def _rigid_forces(
         at[j].discard(e)
         if len(at[j]) == 1 and j != ground:
             leaves.append(j)
+    left = sorted({e for es in at.values() for e in es})
+    if not left:
+        return None
+    core = (left, topo.first, topo.second, {e: (pieces[e].lo, pieces[e].hi) for e in left}, gap)
+    split = core_forces(*core, ground)
+    for e, value in zip(split.elements, split.force):
+        f[e] = value
+    return core
