@@ -313,12 +313,26 @@ def test_the_dampers_lower_the_peak_drift(runs: dict[str, np.ndarray]) -> None:
 
 
 def test_the_ground_record_is_what_its_script_writes() -> None:
-    """scripts/ground_record.py regenerates examples/ground_record.csv byte for byte; its header says it is synthetic."""
+    """scripts/ground_record.py regenerates examples/ground_record.csv to its printed digits; its header says it is synthetic.
+
+    The script sums NumPy sines, whose last bit may differ between CPUs (NumPy's
+    vectorised ``sin`` and ``exp`` take another path on another instruction set),
+    so a value within round-off of a rounding boundary of its 6 printed digits
+    may print one unit apart: each value is held to one unit of its 6th
+    significant digit, the times and the header exactly.
+    """
     spec = importlib.util.spec_from_file_location("ground_record", ROOT / "scripts" / "ground_record.py")
     script = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(script)
     committed = (FOLDER / "ground_record.csv").read_text(encoding="utf-8")
-    assert script.text() == committed
+    ours, theirs = script.text().splitlines(), committed.splitlines()
+    assert [r for r in ours if r.startswith(("#", "t,"))] == [r for r in theirs if r.startswith(("#", "t,"))]
+    rows = np.array([[float(v) for v in r.split(",")] for r in ours if r[0].isdigit() or r[0] == "-"])
+    kept = np.array([[float(v) for v in r.split(",")] for r in theirs if r[0].isdigit() or r[0] == "-"])
+    assert np.array_equal(rows[:, 0], kept[:, 0])
+    a = np.abs(kept[:, 1])
+    unit = np.where(a > 0, 10.0 ** (np.floor(np.log10(np.where(a > 0, a, 1.0))) - 5), 0.0)
+    assert np.all(np.abs(rows[:, 1] - kept[:, 1]) <= unit * (1 + 1e-9))
     assert committed.startswith("# SYNTHETIC ground acceleration, not a measured earthquake")
     record = L.read_table(FOLDER / "ground_record.csv", "a")
     assert record.values[0] == record.values[-1] == 0.0 and np.abs(record.values).max() == script.PEAK
