@@ -11,7 +11,12 @@
   predicts; ``building.toml`` with its dampers locked is the linear shear
   frame (``scipy.signal.lsim``, exact for the piecewise-linear record), its
   braces never pass their slip loads, and the dampers lower the peak storey
-  drift below the exact peaks of the bare and of the locked frame.
+  drift below the exact peaks of the bare and of the locked frame;
+  ``figure2_beside_dashpot.toml`` moves as the Figure 3 system until its
+  string goes taut, then rests at the string's length with the intervals of
+  the hand calculation; ``friction_pads.toml`` moves as Algorithm 1 with one
+  pad of the summed threshold, rests where the closed form says, and its pads'
+  intervals are what each one's threshold leaves the other.
 * ``scripts/ground_record.py`` writes the committed record, byte for byte.
 """
 
@@ -40,7 +45,11 @@ TESTS = {
     "maxwell_creep": "test_examples.py::test_the_creep_follows_the_closed_form",
     "chain": "test_examples.py::test_each_block_of_the_chain_starts_at_its_quasi_steady_pull",
     "building": "test_examples.py::test_the_building_with_locked_dampers_is_the_linear_shear_frame",
+    "figure2_beside_dashpot": "test_examples.py::test_figure2_beside_the_dashpot_holds_at_the_strings_length",
+    "friction_pads": "test_examples.py::test_two_pads_move_as_one_and_share_the_held_force",
 }
+#: The examples whose elements close a loop that is rigid at some saved point: their non-unique forces.
+INTERVALS = {"figure2_beside_dashpot": ["string", "dashpot"], "friction_pads": ["pad1", "pad2"]}
 FILES = sorted(FOLDER.glob("*.toml"))
 
 
@@ -88,7 +97,10 @@ def test_an_example_says_what_it_is_and_runs_as_it_says(path: Path, runs: dict[s
     network = L.load_system(path)
     names = network.mass_names
     columns = ["t"] + [f"{q}_{n}" for q in ("x", "v") for n in names]
-    columns += [f"F_{n}" for n in network.element_names] + [f"load_{n}" for n in names]
+    for n in network.element_names:
+        shared = n in INTERVALS.get(path.stem, [])
+        columns += [f"F_{n}", f"force_min_{n}", f"force_max_{n}"] if shared else [f"F_{n}"]
+    columns += [f"load_{n}" for n in names]
     args = command(path)
     value = {key: float(args[args.index(key) + 1]) for key in ("--t-end", "--dt")}
     every = int(args[args.index("--save-every") + 1]) if "--save-every" in args else 1
@@ -337,3 +349,94 @@ def test_the_ground_record_is_what_its_script_writes() -> None:
     record = L.read_table(FOLDER / "ground_record.csv", "a")
     assert record.values[0] == record.values[-1] == 0.0 and np.abs(record.values).max() == script.PEAK
     assert record.t.size == 2001 and record.t[-1] == 20.0
+
+
+# -- figure2_beside_dashpot.toml: a spring with a string beside a Bingham dashpot, under a constant pull -------
+
+
+def test_figure2_beside_the_dashpot_holds_at_the_strings_length(runs: dict[str, np.ndarray]) -> None:
+    """Before the string is taut, the Figure 3 system's velocities bit for bit; then at rest at ``x = L``
+    exactly, each force in the interval of the hand calculation.
+
+    Slack, the ``spring-string`` steps as the spring (the same arithmetic,
+    ``k e + dt k w``), so the velocities equal Algorithm 1's for spring and
+    dashpot; the positions are sums of the same increments in another order,
+    within ``n eps max|x|`` after ``n`` steps.  At rest the step's held force
+    is ``R = m v_prev/dt + P`` (the momentum balance with ``v = 0``): the
+    string carries ``>= k L``, the dashpot ``|F_d| <= tau``, their sum ``R``,
+    so ``F_s`` is in ``[max(kL, R - tau), R + tau]`` and ``F_d`` in
+    ``[-tau, min(tau, R - kL)]``; the bound is the rounding of ``R`` (two
+    operations, against the step's own) relative to ``R``.
+    """
+    net = L.load_system(FOLDER / "figure2_beside_dashpot.toml")
+    string, dashpot = net.elements
+    m, P, tau, kL = net.masses[0].mass, net.loads[0].force(0.0), dashpot.threshold, string.stiffness * string.length
+    run = runs["figure2_beside_dashpot"]
+    dt = run["t"][1]
+    bare = L.Network(net.masses, [L.Spring("spring", string.between, string.stiffness), dashpot], net.loads)
+    ref = L.simulate_network(bare, run["t"][-1], dt)
+    assert ref.solver == "algorithm1"
+    taut = int(np.argmax(run["x_m"] == string.length))
+    assert taut > 0 and 0.131 < run["t"][taut] < 0.133 and (ref.positions[:, 0] > string.length).any()
+    assert np.array_equal(run["v_m"][:taut], ref.velocities[:taut, 0])
+    assert np.abs(run["x_m"][:taut] - ref.positions[:taut, 0]).max() <= taut * EPS * string.length
+    assert (run["x_m"][taut:] == string.length).all() and (run["v_m"][taut + 1 :] == 0).all()
+    rest = np.arange(taut + 1, run.size)
+    held = m * run["v_m"][rest - 1] / dt + P
+    bound = 4 * EPS * held
+    expected = {
+        "string": (np.maximum(kL, held - tau), held + tau),
+        "dashpot": (np.full(held.size, -tau), np.minimum(tau, held - kL)),
+    }
+    for name, (low, high) in expected.items():
+        assert np.all(np.abs(run[f"force_min_{name}"][rest] - low) <= bound), name
+        assert np.all(np.abs(run[f"force_max_{name}"][rest] - high) <= bound), name
+    assert np.all(np.abs(run["F_string"][rest] + run["F_dashpot"][rest] - held) <= bound)
+    # at rest for good: R = P, the string in [14, 16] N, the least-norm split 14 N and 1 N (the file's comment)
+    assert held[-1] == P and [run[c][-1] for c in ("force_min_string", "force_max_string")] == [P - tau, P + tau]
+    assert run["F_string"][-1] == P - tau and run["F_dashpot"][-1] == tau
+
+
+# -- friction_pads.toml: a block on two Coulomb pads, pushed by a constant force ---------------------------------
+
+
+def test_two_pads_move_as_one_and_share_the_held_force(runs: dict[str, np.ndarray]) -> None:
+    """Algorithm 1 with one pad of ``tau1 + tau2`` gives the same velocities; the block stops after half a
+    period near ``2 (P - tau)/k``; at rest each pad's interval is what the other's threshold leaves.
+
+    Sliding, both pads carry their thresholds, whose sum is the one pad's
+    threshold: the same step (measured bit for bit; the positions, sums of
+    the same increments in another order, within ``n eps max|x|``).  The closed form (the
+    issue's Coulomb oscillator, ``tau < P < 3 tau``) stops at ``t = pi/omega``
+    at ``2 (P - tau)/k``; backward Euler shrinks the swing ``A = (P - tau)/k``
+    by ``(1 + (omega dt)^2)^(-1/2)`` per step, over ``pi/(omega dt)`` steps,
+    and stops at the first step past the turn, where ``x`` is within
+    ``A (omega dt)^2`` of it.  At rest the pads hold ``R = P - k x`` (the
+    spring's force is ``k x`` to one rounding).
+    """
+    net = L.load_system(FOLDER / "friction_pads.toml")
+    spring, pad1, pad2 = net.elements
+    m, k, P = net.masses[0].mass, spring.stiffness, net.loads[0].force(0.0)
+    tau1, tau2 = pad1.threshold, pad2.threshold
+    run = runs["friction_pads"]
+    dt, t_end = run["t"][1], run["t"][-1]
+    ref = L.backward_euler(L.Oscillator.bingham(m, k, tau1 + tau2, math.inf), t_end, dt, force=net.loads[0].force)
+    assert np.array_equal(run["v_m"], ref.v)
+    assert np.abs(run["x_m"] - ref.x).max() <= run.size * EPS * np.abs(ref.x).max()  # sums in another order
+    omega, swing = math.sqrt(k / m), (P - (tau1 + tau2)) / k
+    stop = int(np.argmax((run["v_m"] == 0) & (run["t"] > 0)))
+    assert (run["v_m"][1:stop] > 0).all() and (run["v_m"][stop:] == 0).all()
+    assert math.pi / omega <= run["t"][stop] < math.pi / omega + dt
+    damped = swing * (1 - (1 + (omega * dt) ** 2) ** (-math.pi / (omega * dt) / 2))
+    assert abs(2 * swing - run["x_m"][stop] - damped) <= swing * (omega * dt) ** 2
+    slides = slice(1, stop)
+    assert (run["F_pad1"][slides] == tau1).all() and (run["F_pad2"][slides] == tau2).all()
+    rest = slice(stop + 1, None)  # the step after the stop: no inertia left
+    held = P - run["F_spring"][rest]
+    bound = 4 * EPS * (abs(held) + tau1 + tau2)
+    for name, mine, other in (("pad1", tau1, tau2), ("pad2", tau2, tau1)):
+        assert np.all(np.abs(run[f"force_min_{name}"][rest] - np.maximum(-mine, held - other)) <= bound), name
+        assert np.all(np.abs(run[f"force_max_{name}"][rest] - np.minimum(mine, held + other)) <= bound), name
+        assert np.all(np.abs(run[f"F_{name}"][rest] - held / 2) <= bound), name  # least norm: R/2 each
+    # the file's comment: 0.13 mm short of 0.08 m, R = 2.013 N
+    assert round(2 * swing - run["x_m"][-1], 5) == 0.00013 and round(held[-1], 3) == 2.013
