@@ -23,7 +23,7 @@ from lumped.solvers.events import Event
 from lumped.drivers.methods import METHODS
 from lumped.studies import accuracy as A
 from lumped.studies.accuracy import methods as M
-from lumped.studies.accuracy.orders import _slope
+from lumped.studies.accuracy.orders import fitted_slope
 
 # Three halvings from 1e-3: enough for a slope, ~1 s for the three schemes on one case.
 STEPS = (1e-3, 5e-4, 2.5e-4)
@@ -192,8 +192,8 @@ def test_theta_method_is_not_second_order_through_switches(forced_orders):
 
 def test_slope_uses_the_finest_finite_run():
     steps, errors = [8.0, 4.0, 2.0, 1.0], [math.nan, 4.0, 2.0, 1.0]
-    assert _slope(steps, errors) == pytest.approx(1.0, abs=1e-12)
-    assert math.isnan(_slope(steps, [1.0, 1.0, math.nan, 1.0]))  # one point left: no fit
+    assert fitted_slope(steps, errors) == pytest.approx(1.0, abs=1e-12)
+    assert math.isnan(fitted_slope(steps, [1.0, 1.0, math.nan, 1.0]))  # one point left: no fit
 
 
 @pytest.mark.slow

@@ -93,16 +93,15 @@ def _system_message(message: str, path: str, network: object) -> str:
 
 def _piecewise(network: object, method: str, path: str) -> bool:
     """True if ``method`` runs ``network`` by its solver of piecewise-linear networks; its refusal there
-    (an element or load with no closed form per phase) names the file."""
+    (an element or load with no linear phases) names the file."""
     from lumped.model.problem import one_mass_form
-    from lumped.solvers.network_phase import refusal
 
     if METHODS[method].piecewise_networks is None:
         return False
     try:
         one_mass_form(network)  # type: ignore[arg-type]
     except ValueError:
-        if (reason := refusal(network, method)) is not None:  # type: ignore[arg-type]
+        if (reason := METHODS[method].network_refusal(network)) is not None:  # type: ignore[arg-type]
             raise ValueError(f"{reason} ({path})") from None
         return True
     return False

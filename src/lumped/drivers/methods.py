@@ -38,14 +38,17 @@ from types import MappingProxyType
 
 import numpy as np
 
-from lumped.model.forcing import SwitchedSine, kind_of
+from lumped.model.forcing import SwitchedSine, kind_of, sine_form
+from lumped.model.network import Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.trajectory import Trajectory
 from lumped.solvers.backward_euler import backward_euler
 from lumped.solvers.event_capturing import event_capturing
 from lumped.solvers.event_driven import DEFAULT_RTOL, solve_event_driven, validate_rtol
 from lumped.solvers.exact import ExactSolution, solve_exact
+from lumped.solvers.event_capturing_network import solve_capturing_network
 from lumped.solvers.exact_network import solve_exact_network
+from lumped.solvers.network_phase import refusal
 from lumped.solvers.theta import theta_method
 
 __all__ = ["METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", "NETWORK_SOLVERS", "OPTIONS"]
@@ -110,10 +113,15 @@ class Method:
     #: True if its forcing must be a :class:`~lumped.model.forcing.SwitchedSine` (its closed forms or its
     #: events use the formula); false if it takes any callable of time.
     sine_forcing: bool = False
-    #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots; sine and constant
-    #: loads), ``(network, t_end, dt, *, save_every) -> Trajectory``, which refuses any other network in one
-    #: line; ``None`` if it runs one-mass networks only (or any network, by ``network_solvers``).
+    #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots),
+    #: ``(network, t_end, dt, *, save_every) -> Trajectory``, which refuses any other network in one
+    #: line (:meth:`network_refusal`); ``None`` if it runs one-mass networks only (or any network, by
+    #: ``network_solvers``).
     piecewise_networks: Callable[..., Trajectory] | None = None
+    #: True if that solver takes any load (it steps the loads as functions of time); false if only sines
+    #: and constants (its closed forms carry them).  A one-mass system whose load the one-mass solver
+    #: refuses then runs through it.
+    piecewise_any_load: bool = False
 
     def __call__(self, *args: object, **options: object) -> Trajectory:
         return self.run(*args, **options)
@@ -138,13 +146,26 @@ class Method:
     def force_refusal(self, force: object) -> str | None:
         """Why this method cannot run the forcing ``force`` (one line naming the method), or ``None`` if it can."""
         if self.sine_forcing and callable(force) and not isinstance(force, SwitchedSine):
-            *others, last = (n for n, m in METHODS.items() if not m.sine_forcing)
+            *others, last = (n for n, m in METHODS.items() if not m.sine_forcing or m.piecewise_any_load)
             anyone = f"{', '.join(others)} and {last}" if others else last
             return (
                 f"force: method {self.name!r} runs a sine or a constant load from t = 0, "
                 f"not {kind_of(force)}; {anyone} run any load"
             )
         return None
+
+    def network_refusal(self, network: Network) -> str | None:
+        """Why :attr:`piecewise_networks` cannot run ``network`` (one line naming the method and the element
+        or load), or ``None`` if it can; a method without one refuses every network in one line."""
+        if self.piecewise_networks is None:
+            return f"method {self.name!r} runs one-mass systems only"
+        return refusal(network, self.name, any_load=self.piecewise_any_load)
+
+    def by_network(self, force: object, network: Network) -> bool:
+        """True if the one-mass solver refuses ``force`` (a table, ground motion) but the solver of
+        piecewise-linear networks takes any load and runs ``network``, the one-mass system with it."""
+        refused = self.force_refusal(sine_form(force)) is not None  # a constant from t = 0 runs as its sine
+        return self.piecewise_any_load and refused and self.network_refusal(network) is None
 
     def takes(self, names: object) -> None:
         """Refuse the first of ``names`` that is not one of this method's options."""
@@ -239,6 +260,8 @@ METHODS: Mapping[str, Method] = MappingProxyType(
                 "Event-capturing trapezoidal scheme, order 2 through the switches",
                 not_batch=_STUDY_ONLY,
                 sine_forcing=True,
+                piecewise_networks=solve_capturing_network,
+                piecewise_any_load=True,
             ),
             Method(
                 "theta",

@@ -85,6 +85,9 @@ def simulate(
         raise ValueError(reason)
     given, force = force, sine_form(force)
     if (reason := run.force_refusal(force)) is not None:
+        net = oscillator_network(oscillator, x0, v0, given) if isinstance(oscillator, Oscillator) else None
+        if net is not None and run.by_network(force, net):  # its solver of networks takes any load
+            return run.piecewise_networks(net, t_end, dt, save_every=save_every)  # type: ignore[misc]
         raise ValueError(reason)
     tr = run(oscillator, t_end, dt, x0, v0, force, save_every, **options)
     if force is None:
@@ -131,7 +134,11 @@ def solve(
     (:attr:`~lumped.drivers.methods.Method.network_solvers`) or to its
     solver of piecewise-linear networks
     (:attr:`~lumped.drivers.methods.Method.piecewise_networks`:
-    ``exact``'s :func:`~lumped.solvers.exact_network.solve_exact_network`).
+    ``exact``'s :func:`~lumped.solvers.exact_network.solve_exact_network`,
+    ``event-capturing``'s
+    :func:`~lumped.solvers.event_capturing_network.solve_capturing_network`),
+    which also runs a one-mass system whose load the one-mass solver does
+    not take (a table, ground motion) when it takes any load.
     """
     run = methods.get(method)
     options = run.check_options(options)
@@ -142,9 +149,11 @@ def solve(
     try:
         form = problem.one_mass()
     except ValueError as err:
-        if run.piecewise_networks is not None:  # exact: closed forms per phase, or a refusal naming the element
+        if run.piecewise_networks is not None:  # its phases solved in turn, or a refusal naming the element
             return run.piecewise_networks(problem.system, problem.t_end, dt, save_every=save_every)
         raise ValueError(f"method {method!r} needs a one-mass system; the network {err}") from None
+    if run.by_network(problem.force, problem.system):  # a load its one-mass solver lacks
+        return run.piecewise_networks(problem.system, problem.t_end, dt, save_every=save_every)  # type: ignore[misc]
     mass = problem.system.masses[0]
     tr = simulate(
         form.oscillator,

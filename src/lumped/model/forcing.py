@@ -35,6 +35,7 @@ __all__ = [
     "Table",
     "evaluate",
     "first_bad_sample",
+    "jumps",
     "kind_of",
     "one_force",
     "sine_form",
@@ -249,6 +250,23 @@ def sine_form(force: object) -> object:
     if isinstance(force, Constant) and force.start == 0:
         return SwitchedSine(force.value, 0.0, math.pi / 2, force.until)
     return force
+
+
+def jumps(force: object) -> tuple[float, ...]:
+    """The times at which ``force`` may jump, sorted: a sine's ``until``, a constant's ``start`` and
+    ``until``, a table's first and last times (it is zero outside them), a sum's together; none for
+    any other callable (taken as continuous).  Infinite times are left out."""
+    if isinstance(force, SwitchedSine):
+        times = {force.until}
+    elif isinstance(force, Constant):
+        times = {force.start, force.until}
+    elif isinstance(force, Table):
+        times = {float(force.t[0]), float(force.t[-1])}
+    elif isinstance(force, LoadSum):
+        times = {t for f in force.forces for t in jumps(f)}
+    else:
+        times = set()
+    return tuple(sorted(t for t in times if math.isfinite(t)))
 
 
 def kind_of(force: object) -> str:

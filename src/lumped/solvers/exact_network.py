@@ -17,12 +17,8 @@ marches from phase to phase:
 2. a load coming on or going off (``until``, a constant's ``from``) ends a
    phase too (a *switch*);
 3. at an event the new mode is chosen among the elements at zero rate
-   (those sticking, those that stopped, those slipping at a rate within
-   round-off of zero): all start sticking, those breaking away slip in the
-   direction of their force; while a sticking element's reaction leaves its
-   band (by more than 1e-9 of it), the one furthest out slips in the
-   direction of its force, and a slipping one whose rate would turn back
-   sticks again.  The reactions are those of :func:`~lumped.solvers.network_phase.phase`.
+   (:func:`lumped.solvers.network_modes.select`, shared with the
+   ``event-capturing`` method).
 
 Each mass's final rest is the start of the last run of phases in which a
 path of sticking elements holds it to the ground (as the independent
@@ -32,14 +28,14 @@ reference of ``tests/references.py`` defines it).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 from lumped.numerics.roots import brentq
-from lumped.solvers.network_phase import Parts, Phase, load_on, parts, phase, refusal, switch_times
+from lumped.solvers.network_modes import NetworkEvent, event_rows, final_rest, initial_mode, select, zero_set
+from lumped.solvers.network_phase import Parts, Phase, parts, refusal, switch_times
 
 __all__ = ["NetworkEvent", "solve_exact_network", "MAX_EVENTS"]
 
@@ -47,72 +43,6 @@ __all__ = ["NetworkEvent", "solve_exact_network", "MAX_EVENTS"]
 MAX_EVENTS = 20_000
 #: Sub-steps per shortest period of a phase, for bracketing the events.
 _PER_PERIOD = 50
-#: A sticking element's reaction may exceed its threshold by this fraction (round-off) and still stick.
-_BAND = 1e-9
-
-
-@dataclass(frozen=True)
-class NetworkEvent:
-    """An event at ``time`` (s): ``kind`` ``"stop"``, ``"breakaway"`` or ``"switch"``, the ``elements`` it
-    concerns (names; none for a switch) and the ``mode`` chosen after it (per element: 0 stick, +-1 slip,
-    0 for an element that cannot stick)."""
-
-    time: float
-    kind: str
-    elements: tuple[str, ...]
-    mode: tuple[int, ...]
-
-
-def _initial_mode(p: Parts, v: np.ndarray) -> tuple[np.ndarray, list[int]]:
-    """Slip in the direction of the initial rate; friction elements at zero rate are to be chosen."""
-    w = p.b.T @ v
-    mode = np.where(p.friction, np.sign(w), 0).astype(int)
-    return mode, [int(e) for e in np.flatnonzero(p.friction & (w == 0))]
-
-
-def _consistent(p: Parts, ph: Phase, zero: list[int], forced: set[int]) -> tuple[int, int] | None:
-    """``None`` if the mode of ``ph`` holds at its start, else ``(element, new mode)`` to change."""
-    _, _, acc, f = ph.values(ph.z0)
-    out = [e for e in zero if ph.mode[e] == 0 and abs(f[e]) > p.tau[e] * (1 + _BAND)]
-    if out:
-        e = max(out, key=lambda e: abs(f[e]) / p.tau[e])
-        return e, int(np.sign(f[e]))
-    rel = p.b.T @ acc
-    margin = 1e-12 * float(np.max(p.tau)) / float(np.min(p.m))
-    back = [e for e in zero if ph.mode[e] != 0 and e not in forced and rel[e] * ph.mode[e] < -margin]
-    return (back[0], 0) if back else None
-
-
-def _select(p: Parts, t: float, x: np.ndarray, v: np.ndarray, mode: np.ndarray, zero: list[int], forced: dict) -> Phase:
-    """The phase of the mode chosen at ``t`` for the elements ``zero`` (rule 3 of the module)."""
-    trial = mode.copy()
-    trial[zero] = 0
-    for e, s in forced.items():
-        trial[e] = s
-    for _ in range(3 * len(zero) + 3):
-        ph = phase(p, t, x, v, trial)
-        change = _consistent(p, ph, zero, set(forced))
-        if change is None:
-            return ph
-        trial[change[0]] = change[1]
-    raise ArithmeticError(f"t = {t!r}: no consistent mode found for the elements {zero} at zero rate")
-
-
-def _event_rows(p: Parts, ph: Phase) -> tuple[np.ndarray, list[tuple[int, str]]]:
-    """The event functions of ``ph`` as rows on ``z`` (each starts positive), with ``(element, kind)``."""
-    w = p.b.T @ ph.rows("v")
-    f = ph.rows("f")
-    rows, what = [], []
-    for e in np.flatnonzero(p.friction):
-        if ph.mode[e] != 0:
-            rows.append(ph.mode[e] * w[e])
-            what.append((int(e), "stop"))
-        else:
-            unit = np.zeros(ph.a.shape[0])
-            unit[-1 - 2 * (len(p.omegas))] = p.tau[e]  # the generator "1"
-            rows += [unit - f[e], unit + f[e]]
-            what += [(int(e), "breakaway")] * 2
-    return np.array(rows).reshape(len(rows), ph.a.shape[0]), what
 
 
 def _step_for(ph: Phase, span: float) -> float:
@@ -127,7 +57,7 @@ def _next_event(p: Parts, ph: Phase, t_lim: float) -> tuple[float, list[tuple[in
     """The first event of ``ph`` in ``(start, t_lim]``: its time and ``(element, kind)`` fired; none at ``t_lim``."""
     from scipy.linalg import expm  # here: importing the package loads no SciPy solver
 
-    rows, what = _event_rows(p, ph)
+    rows, _, what = event_rows(p, ph)
     if not what:
         return t_lim, []
     h = _step_for(ph, t_lim - ph.start)
@@ -159,19 +89,12 @@ def _locate(ph, rows, what, fired, t0, z, t1, g0) -> tuple[float, list[tuple[int
     return first, sorted({what[r] for r, s in roots.items() if s - first <= near})
 
 
-def _zero_set(p: Parts, ph: Phase, v: np.ndarray, fired: list[int]) -> list[int]:
-    """Friction elements sticking, just fired, or slipping at a rate within 1e-9 of the speeds."""
-    w = p.b.T @ v
-    tol = 1e-9 * float(np.max(np.abs(v), initial=0.0))
-    return [int(e) for e in np.flatnonzero(p.friction) if ph.mode[e] == 0 or e in fired or abs(w[e]) <= tol]
-
-
 def _march(net: Network, p: Parts, t_end: float, max_events: int) -> tuple[list[Phase], list[NetworkEvent]]:
     """The phases to ``t_end`` and the events between them."""
     x, v = (a[:-1] for a in net.initial_positions())
     names = net.element_names
-    mode, zero = _initial_mode(p, v)
-    phases = [_select(p, 0.0, x, v, mode, zero, {})]
+    mode, zero = initial_mode(p, v)
+    phases = [select(p, 0.0, x, v, mode, zero, {})]
     events: list[NetworkEvent] = []
     breaks = switch_times(p, t_end) + [t_end]
     while True:
@@ -183,8 +106,8 @@ def _march(net: Network, p: Parts, t_end: float, max_events: int) -> tuple[list[
         x, v, _, f = ph.values(ph.z(t))
         elements = [e for e, _ in fired]
         forced = {e: int(np.sign(f[e])) for e, kind in fired if kind == "breakaway"}
-        zero = _zero_set(p, ph, v, elements)
-        phases.append(_select(p, t, x, v, ph.mode, zero, forced))
+        zero = zero_set(p, ph, v, elements)
+        phases.append(select(p, t, x, v, ph.mode, zero, forced))
         kind = fired[0][1] if fired else "switch"
         mode_after = tuple(int(s) for s in phases[-1].mode)
         events.append(NetworkEvent(t, kind, tuple(names[e] for e in dict.fromkeys(elements)), mode_after))
@@ -209,17 +132,6 @@ def _sample(phases: list[Phase], times: np.ndarray) -> tuple[np.ndarray, ...]:
         rows[2].append(y[:, 3 * n :])
         rows[3].append(np.repeat((ph.mode == 0)[None, :], at.size, axis=0))
     return tuple(np.vstack(r) for r in rows)
-
-
-def _rest(phases: list[Phase], x_end: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Start of each mass's last run of grounded phases (``nan`` if it moves at the end), and its position."""
-    rest = np.full(x_end.size, math.nan)
-    for i in range(x_end.size):
-        for ph in reversed(phases):
-            if not ph.grounded[i]:
-                break
-            rest[i] = ph.start
-    return rest, np.where(np.isnan(rest), math.nan, x_end)
 
 
 def solve_exact_network(
@@ -263,7 +175,7 @@ def solve_exact_network(
         save_every=save_every,
         states=states,
         rigid=rigid,
-        final_rest=_rest(phases, x[-1]),
+        final_rest=final_rest(phases, x[-1]),
         solver="exact",
         events=tuple(events),
     )

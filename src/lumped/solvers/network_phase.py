@@ -26,7 +26,7 @@ from typing import NamedTuple
 
 import numpy as np
 from lumped.laws.element import Element
-from lumped.model.forcing import Constant, SwitchedSine, kind_of
+from lumped.model.forcing import Constant, SwitchedSine, jumps, kind_of
 from lumped.model.network import Network, listed, rigid_loop
 
 __all__ = ["Parts", "Phase", "parts", "phase", "refusal"]
@@ -67,15 +67,22 @@ def linear_parts(el: Element) -> tuple[float, float, float] | None:
     return None
 
 
-def refusal(net: Network, method: str = "exact") -> str | None:
-    """Why the phases of ``net`` have no closed form (one line naming the element or load), or ``None``."""
+def refusal(net: Network, method: str = "exact", *, any_load: bool = False) -> str | None:
+    """Why ``method`` cannot run ``net`` phase by phase (one line naming the element or load), or ``None``.
+
+    Every phase must be linear (:func:`linear_parts` of each element) and
+    the sticking elements must form a forest (their reactions unique); the
+    loads must be sines and constants, whose generators the phase carries,
+    unless ``any_load`` (a method that steps the loads as functions of time).
+    """
+    takes = _TAKES if not any_load else _TAKES.split(" under ")[0]
     for el in net.elements:
         if linear_parts(el) is None:
             return (
                 f"method {method!r} cannot run element {el.name!r} of kind {el.kind!r}: "
-                f"its closed forms per phase need {_TAKES}"
+                f"its {'closed forms' if not any_load else 'linear steps'} per phase need {takes}"
             )
-    for load in net.loads:
+    for load in net.loads if not any_load else ():
         if not isinstance(load.force, (SwitchedSine, Constant)):
             return f"method {method!r} cannot run the load on {load.on!r}, {kind_of(load.force)}: it runs {_TAKES}"
     index = net.point_index()
@@ -117,9 +124,7 @@ def load_on(force: SwitchedSine | Constant, t: float) -> bool:
 
 def switch_times(p: Parts, t_end: float) -> list[float]:
     """The times in ``(0, t_end)`` at which a load comes on or goes off."""
-    times = set()
-    for _, f in p.loads:
-        times |= {f.until} | ({f.start} if isinstance(f, Constant) else set())
+    times = {t for _, f in p.loads for t in jumps(f)}
     return sorted(t for t in times if 0 < t < t_end)
 
 
@@ -148,7 +153,12 @@ def _groups(p: Parts, mode: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 
 
 class Phase(NamedTuple):
-    """A phase from ``start``: ``z(t) = expm(a (t - start)) z0``; ``out @ z`` is ``(x, v, acceleration, forces)``."""
+    """A phase from ``start``: ``z(t) = expm(a (t - start)) z0``; ``out @ z`` is ``(x, v, acceleration, forces)``.
+
+    A further load ``F`` (n,) on the masses, beyond the parts' own, enters
+    linearly: ``z' = a z + gin F`` and ``(x, v, acceleration, forces) = out z
+    + feed F`` (the event-capturing method steps its loads this way).
+    """
 
     start: float
     z0: np.ndarray
@@ -157,15 +167,20 @@ class Phase(NamedTuple):
     mode: np.ndarray
     grounded: np.ndarray
     n: int
+    gin: np.ndarray
+    feed: np.ndarray
 
     def z(self, t: float) -> np.ndarray:
         from scipy.linalg import expm  # here: importing the package loads no SciPy solver
 
         return expm(self.a * (t - self.start)) @ self.z0
 
-    def values(self, z: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-        """Positions, velocities, accelerations (n,) and element forces (E,) at the state ``z``."""
+    def values(self, z: np.ndarray, load: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
+        """Positions, velocities, accelerations (n,) and element forces (E,) at the state ``z``
+        (with the further load ``load`` on the masses, if given)."""
         y, n = self.out @ z, self.n
+        if load is not None:
+            y = y + self.feed @ load
         return y[:n], y[n : 2 * n], y[2 * n : 3 * n], y[3 * n :]
 
     def rows(self, what: str) -> np.ndarray:
@@ -233,9 +248,14 @@ def phase(p: Parts, t: float, x: np.ndarray, v: np.ndarray, mode: np.ndarray) ->
     vs = np.zeros((n, dim))
     vs[:, g : 2 * g] = member
     acc = member @ acc_u
-    forces = free.copy()
+    gin = np.zeros((dim, n))  # a further load F: u'' gains Mr^-1 P^T F
+    gin[g : 2 * g] = np.linalg.solve(mr, member.T) if g else 0.0
+    acc_in = member @ gin[g : 2 * g]
+    forces, f_in = free.copy(), np.zeros((p.k.size, n))
     if stick.any():  # B_S f_S = F - B f_free - M a: consistent, with one solution on a forest
-        residual = load - p.b @ free - p.m[:, None] * acc
-        forces[stick] = np.linalg.pinv(p.b[:, stick]) @ residual
+        split = np.linalg.pinv(p.b[:, stick])
+        forces[stick] = split @ (load - p.b @ free - p.m[:, None] * acc)
+        f_in[stick] = split @ (np.eye(n) - p.m[:, None] * acc_in)
     out = np.vstack([xs, vs, acc, forces])
-    return Phase(t, z0, a, out, mode.copy(), grounded, n)
+    feed = np.vstack([np.zeros((2 * n, n)), acc_in, f_in])
+    return Phase(t, z0, a, out, mode.copy(), grounded, n, gin, feed)

@@ -18,7 +18,7 @@ from lumped.studies.accuracy.events import KINDS
 from lumped.studies.accuracy.methods import SCHEMES
 from lumped.studies.accuracy.runs import Result
 
-__all__ = ["MIN_FIT_POINTS", "ROUND_OFF", "observed_orders", "order_table"]
+__all__ = ["MIN_FIT_POINTS", "ROUND_OFF", "fitted_slope", "observed_orders", "order_table"]
 
 #: Fewest steps an order is fitted over.
 MIN_FIT_POINTS = 3
@@ -27,7 +27,7 @@ MIN_FIT_POINTS = 3
 ROUND_OFF = 1e-13
 
 
-def _slope(steps: Sequence[float], errors: Sequence[float]) -> float:
+def fitted_slope(steps: Sequence[float], errors: Sequence[float]) -> float:
     """Least-squares slope of ``log(error)`` against ``log(step)`` over the finest steps whose errors are > 0.
 
     ``steps`` decrease.  The fit takes the longest run of finite, positive
@@ -50,7 +50,7 @@ def observed_orders(results: Iterable[Result]) -> dict[str, dict[str, dict[str, 
     """Fitted orders ``[case][scheme][quantity]`` over the steps of each fixed-step scheme.
 
     The quantities are ``position``, ``rest_time``, ``max_x`` and each event
-    kind; see :func:`_slope` for the steps used (an error is ``nan`` where
+    kind; see :func:`fitted_slope` for the steps used (an error is ``nan`` where
     events cannot be paired or a run is still moving, and zero where the
     scheme is exact, as the event-capturing scheme's closed-form breakaways).
     """
@@ -69,7 +69,7 @@ def observed_orders(results: Iterable[Result]) -> dict[str, dict[str, dict[str, 
         }
         for kind in rs[0].event_errors:
             quantities[kind] = [r.event_errors.get(kind, math.nan) for r in rs]
-        out.setdefault(name, {})[method] = {q: _slope(steps, e) for q, e in quantities.items()}
+        out.setdefault(name, {})[method] = {q: fitted_slope(steps, e) for q, e in quantities.items()}
     return out
 
 

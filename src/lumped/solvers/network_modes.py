@@ -1,0 +1,131 @@
+"""The modes of a piecewise-linear network and their switches, shared by its ``exact`` and ``event-capturing`` methods.
+
+A friction element (one that can stick: Bingham, Coulomb) is in one of
+three modes: sticking (0) or slipping one way (+-1); the mode of the network
+fixes its linear phase (:func:`lumped.solvers.network_phase.phase`).  This
+module holds what both methods do at the boundaries of phases:
+
+* :func:`initial_mode` and :func:`select`, the choice of a consistent mode
+  among the elements at zero rate: all start sticking, those breaking away
+  slip in the direction of their force; while a sticking element's reaction
+  leaves its band (by more than 1e-9 of it), the one furthest out slips in
+  the direction of its force, and a slipping one whose rate would turn back
+  sticks again;
+* :func:`event_rows`, the event functions of a phase as linear rows on its
+  state (a slipping element's rate times its direction: a *stop* at 0; a
+  sticking element's ``threshold -+ force``: a *breakaway* at 0);
+* :func:`zero_set`, the elements whose mode is to be chosen after an event;
+* :func:`final_rest`, each mass's rest: the start of its last run of phases
+  in which a path of sticking elements holds it to the ground;
+* :class:`NetworkEvent`, an event as the trajectory reports it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from lumped.solvers.network_phase import Parts, Phase, phase
+
+__all__ = ["BAND", "NetworkEvent", "event_rows", "final_rest", "initial_mode", "select", "zero_set"]
+
+#: A sticking element's reaction may exceed its threshold by this fraction (round-off) and still stick.
+BAND = 1e-9
+
+
+@dataclass(frozen=True)
+class NetworkEvent:
+    """An event at ``time`` (s): ``kind`` ``"stop"``, ``"breakaway"`` or ``"switch"``, the ``elements`` it
+    concerns (names; none for a switch) and the ``mode`` chosen after it (per element: 0 stick, +-1 slip,
+    0 for an element that cannot stick)."""
+
+    time: float
+    kind: str
+    elements: tuple[str, ...]
+    mode: tuple[int, ...]
+
+
+def initial_mode(p: Parts, v: np.ndarray) -> tuple[np.ndarray, list[int]]:
+    """Slip in the direction of the initial rate; friction elements at zero rate are to be chosen."""
+    w = p.b.T @ v
+    mode = np.where(p.friction, np.sign(w), 0).astype(int)
+    return mode, [int(e) for e in np.flatnonzero(p.friction & (w == 0))]
+
+
+def _consistent(
+    p: Parts, ph: Phase, zero: list[int], forced: set[int], load: np.ndarray | None
+) -> tuple[int, int] | None:
+    """``None`` if the mode of ``ph`` holds at its start (with the further ``load``), else ``(element, new mode)``."""
+    _, _, acc, f = ph.values(ph.z0, load)
+    out = [e for e in zero if ph.mode[e] == 0 and abs(f[e]) > p.tau[e] * (1 + BAND)]
+    if out:
+        e = max(out, key=lambda e: abs(f[e]) / p.tau[e])
+        return e, int(np.sign(f[e]))
+    rel = p.b.T @ acc
+    margin = 1e-12 * float(np.max(p.tau)) / float(np.min(p.m))
+    back = [e for e in zero if ph.mode[e] != 0 and e not in forced and rel[e] * ph.mode[e] < -margin]
+    return (back[0], 0) if back else None
+
+
+def select(
+    p: Parts,
+    t: float,
+    x: np.ndarray,
+    v: np.ndarray,
+    mode: np.ndarray,
+    zero: list[int],
+    forced: dict,
+    load: np.ndarray | None = None,
+) -> Phase:
+    """The phase of the mode chosen at ``t`` for the elements ``zero`` (the module's rule), with the
+    elements of ``forced`` slipping the way given and the further ``load`` on the masses (if any)."""
+    trial = mode.copy()
+    trial[zero] = 0
+    for e, s in forced.items():
+        trial[e] = s
+    for _ in range(3 * len(zero) + 3):
+        ph = phase(p, t, x, v, trial)
+        change = _consistent(p, ph, zero, set(forced), load)
+        if change is None:
+            return ph
+        trial[change[0]] = change[1]
+    raise ArithmeticError(f"t = {t!r}: no consistent mode found for the elements {zero} at zero rate")
+
+
+def event_rows(p: Parts, ph: Phase) -> tuple[np.ndarray, np.ndarray, list[tuple[int, str]]]:
+    """The event functions of ``ph`` as rows on ``z`` (each starts positive) and on a further load ``F``
+    (``rows @ z + feed @ F``), with ``(element, kind)``."""
+    w = p.b.T @ ph.rows("v")
+    f, f_in = ph.rows("f"), ph.feed[3 * ph.n :]
+    rows, feed, what = [], [], []
+    for e in np.flatnonzero(p.friction):
+        if ph.mode[e] != 0:
+            rows.append(ph.mode[e] * w[e])
+            feed.append(np.zeros(ph.n))
+            what.append((int(e), "stop"))
+        else:
+            unit = np.zeros(ph.a.shape[0])
+            unit[-1 - 2 * (len(p.omegas))] = p.tau[e]  # the generator "1"
+            rows += [unit - f[e], unit + f[e]]
+            feed += [-f_in[e], f_in[e]]
+            what += [(int(e), "breakaway")] * 2
+    return np.array(rows).reshape(len(rows), ph.a.shape[0]), np.array(feed).reshape(len(rows), ph.n), what
+
+
+def zero_set(p: Parts, ph: Phase, v: np.ndarray, fired: list[int]) -> list[int]:
+    """Friction elements sticking, just fired, or slipping at a rate within 1e-9 of the speeds."""
+    w = p.b.T @ v
+    tol = 1e-9 * float(np.max(np.abs(v), initial=0.0))
+    return [int(e) for e in np.flatnonzero(p.friction) if ph.mode[e] == 0 or e in fired or abs(w[e]) <= tol]
+
+
+def final_rest(phases: list[Phase], x_end: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Start of each mass's last run of grounded phases (``nan`` if it moves at the end), and its position."""
+    rest = np.full(x_end.size, math.nan)
+    for i in range(x_end.size):
+        for ph in reversed(phases):
+            if not ph.grounded[i]:
+                break
+            rest[i] = ph.start
+    return rest, np.where(np.isnan(rest), math.nan, x_end)
