@@ -46,12 +46,12 @@ class Curve(NamedTuple):
 def response_oscillator(network: Network, mass: str) -> Oscillator:
     """The oscillator of a one-mass network whose mass is named ``mass``; ``ValueError`` naming what is not supported."""
     names = [m.name for m in network.masses]
-    if mass not in names:
-        raise ValueError(f"force_on: no mass named {mass!r} in the system (its masses: {', '.join(names[:5])})")
     if len(names) != 1:
         raise ValueError(
             f"system: response curves of networks of {len(names)} masses are not yet supported (one mass only)"
         )
+    if mass not in names:
+        raise ValueError(f"force_on: no mass named {mass!r} in the system (its mass: {names[0]!r})")
     if network.loads:
         raise ValueError("system: the file has loads of its own; the response command applies the one sine load")
     try:
