@@ -34,8 +34,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     rp.add_argument("--system", required=True, metavar="FILE.toml", help="the system file (examples/figure3.toml)")
     rp.add_argument("--force-on", required=True, metavar="MASS", help="the name of the mass the sine acts on")
     rp.add_argument("--amplitude", required=True, metavar="P", help="the force amplitude P > 0 (N)")
-    rp.add_argument("--omega", required=True, metavar="START:STOP", help="the interval of omega, 0 < START < STOP (rad/s)")
-    rp.add_argument("--points", default="200", metavar="N", help="about the rows of a branch monotone in omega [default: 200]")
+    rp.add_argument(
+        "--omega", required=True, metavar="START:STOP", help="the interval of omega, 0 < START < STOP (rad/s)"
+    )
+    rp.add_argument(
+        "--points", default="200", metavar="N", help="about the rows of a branch monotone in omega [default: 200]"
+    )
     rp.add_argument("--output", required=True, help="output file, .csv or .npz")
 
 

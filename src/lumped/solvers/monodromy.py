@@ -43,7 +43,7 @@ from lumped.model.oscillator import Oscillator
 from lumped.solvers.events import Phase
 from lumped.solvers.exact import ExactSolution, solve_exact
 
-__all__ = ["PeriodMap", "period_map", "monodromy"]
+__all__ = ["PeriodMap", "monodromy", "period_map"]
 
 
 class PeriodMap(NamedTuple):
@@ -105,7 +105,7 @@ def _end_state(solution: ExactSolution) -> np.ndarray:
 def monodromy(solution: ExactSolution) -> np.ndarray:
     """``d(x, v)(t_end) / d(x0, v0)`` of an exact solution under a sine that never stops (module Notes)."""
     P, w, ph = solution.force.canonical()
-    slope = lambda t: P * w * math.cos(w * t + ph)  # noqa: E731 (F'(t), N/s)
+    slope = lambda t: P * w * math.cos(w * t + ph)
     k, t_end = solution.oscillator.stiffness, solution.t_end
     D = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
     for phase in solution.phases:
@@ -125,7 +125,7 @@ def _slip(phase: Phase, D: np.ndarray, t_end: float) -> np.ndarray:
     return np.vstack([dt, dz[0], np.zeros(2)])
 
 
-def _stick(phase: Phase, D: np.ndarray, k: float, slope, t_end: float) -> np.ndarray:  # noqa: ANN001
+def _stick(phase: Phase, D: np.ndarray, k: float, slope, t_end: float) -> np.ndarray:
     """``D`` at the end of a stick phase: ``x`` held, ``v = 0``, the breakaway moved by ``x`` (module Notes)."""
     dt = np.zeros(2) if phase.end >= t_end else k * D[1] / slope(phase.end)
     return np.vstack([dt, D[1], np.zeros(2)])

@@ -30,7 +30,7 @@ from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, Scales, find_orb
 from lumped.model.oscillator import Oscillator
 from lumped.solvers.monodromy import period_map
 
-__all__ = ["Branch", "MAX_AMPLITUDE", "ResponsePoint", "continue_orbits", "OMEGA_STEP", "BISECTIONS"]
+__all__ = ["BISECTIONS", "MAX_AMPLITUDE", "OMEGA_STEP", "Branch", "ResponsePoint", "continue_orbits"]
 
 #: Step of the central difference ``dPi/domega`` in units of omega_n: its truncation (step^2, 1e-12)
 #: and round-off (the map's ~1e-14 over the step, 1e-8) leave the tangent good to 1e-8, which only
@@ -232,4 +232,3 @@ def _append(branch: _Branch, out: list[ResponsePoint], a: _Point, b: _Point) -> 
             out.append(ResponsePoint(b.orbit, kind))
             return
     out.append(ResponsePoint(b.orbit, "regular"))
-

@@ -147,9 +147,7 @@ def _summary(branches: list[Branch], rows: list[ResponsePoint]) -> str:
     """``N points; ends: ...; changes: k fold, ...``."""
     from lumped.drivers.response.continuation import MAX_AMPLITUDE
 
-    ends = "; ".join(
-        _ENDS[b.end].format(limit=MAX_AMPLITUDE, omega=b.points[-1].orbit.omega) for b in branches
-    )
+    ends = "; ".join(_ENDS[b.end].format(limit=MAX_AMPLITUDE, omega=b.points[-1].orbit.omega) for b in branches)
     kinds = [p.kind for p in rows if p.kind != "regular"]
     changes = ", ".join(f"{kinds.count(k)} {k}" for k in dict.fromkeys(kinds)) or "none"
     return f"{len(rows)} points ({ends}; changes: {changes})"

@@ -127,6 +127,4 @@ def find_orbit(
         if np.max(np.abs(scales.state(pm.end - z))) <= tol:
             return Orbit(omega, z, pm)
         z = z - np.linalg.solve(pm.monodromy - np.eye(2), pm.end - z)
-    raise ValueError(
-        f"force_omega: Newton found no periodic motion at omega = {omega:.6g} rad/s in {MAX_NEWTON} steps"
-    )
+    raise ValueError(f"force_omega: Newton found no periodic motion at omega = {omega:.6g} rad/s in {MAX_NEWTON} steps")
