@@ -32,7 +32,7 @@ CONFIG_TEXT = yaml.safe_dump(dict(config), sort_keys=True)
 #: notebook stem -> figure stems: the paper's in its numbering (figNN_<slug>),
 #: then the tutorial's extensions (extNN_<slug>, notebooks 06 to 08) and the
 #: accuracy study (accNN_<slug>, notebook 09) and the studies (stNN_<slug>, notebook 10;
-#: spNN_<slug>, notebook 12).
+#: spNN_<slug>, notebook 12; rcNN_<slug>, notebook 13).
 NOTEBOOK_FIGURES = {
     "01_governing_equations": [],
     "02_sgn_zero_failure": [],
@@ -70,6 +70,7 @@ NOTEBOOK_FIGURES = {
     "10_where_it_rests": ["st01_rest_position", "st02_wrong_side"],
     "11_den_hartog": ["dh01_amplitude", "dh02_steady_state"],
     "12_stops_per_cycle": ["sp01_stops_map", "sp02_stop_histories"],
+    "13_response_curves": ["rc01_response_curves"],
 }
 
 #: notebook stem -> the data files it reads (rules/studies.smk, rules/accuracy.smk).
@@ -78,6 +79,7 @@ NOTEBOOK_DATA = {
     "10_where_it_rests": ["results/studies/rest.csv"],
     "11_den_hartog": ["results/studies/den_hartog.csv"],
     "12_stops_per_cycle": ["results/studies/stops.csv"],
+    "13_response_curves": ["results/studies/den_hartog.csv"],
 }
 
 #: Report section of each notebook.
@@ -92,6 +94,7 @@ CATEGORY = {
     "10_where_it_rests": "Study: where the mass comes to rest (st01-st02)",
     "11_den_hartog": "Study: Den Hartog's forced oscillator with friction (dh01-dh02)",
     "12_stops_per_cycle": "Study: stops per cycle of the forced Coulomb oscillator (sp01-sp02)",
+    "13_response_curves": "Tutorial: response curves by shooting and continuation (rc01)",
 }
 
 #: Every figure file the pipeline makes.

@@ -227,6 +227,20 @@ FIGURES = {
     "dh01": lambda: plotting.den_hartog_amplitudes(DH_TABLE, DH_CURVES),
     "dh02": lambda: plotting.den_hartog_history(REST_X0, 1e-3 * np.sin(REST_X0), 1e-3, (0.5, 1.0)),
     "sp01": lambda: plotting.stops_map(*SPC_GRID, 2.0 * (SPC_GRID[0] < 1), np.ones(12), boundary=(SPC_R, 0.5 / SPC_R)),
+    "rc01": lambda: plotting.response_curves(
+        {
+            (z, f): {
+                "r": np.array([0.5, 1.0, 2.0]),
+                "ratio": np.array([1.0, 5.0, 0.3]),
+                "stable": np.array([True, False, True]),
+                "kind": np.array(["regular", "stops-change", "regular"]),
+            }
+            for z in (0.0, 0.05)
+            for f in (0.2, 0.6)
+        },
+        DH_CURVES,
+        DH_TABLE,
+    ),
     "sp02": lambda: plotting.stop_histories([("a", REST_X0, REST_X0, [(0.0, 0.5)]), ("b", REST_X0, -REST_X0, [])]),
 }
 

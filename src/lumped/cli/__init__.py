@@ -1,5 +1,7 @@
 """Command line: ``python -m lumped simulate [options]`` and ``python -m lumped sweep [options]``.
 
+``response`` follows a forced periodic motion in omega
+(:mod:`lumped.drivers.response`) and writes its response curve;
 ``simulate`` writes the columns ``t, x, v, F_s, F_d, F`` to a ``.csv`` or
 ``.npz`` file and a short summary to stderr; ``sweep`` writes one row of
 summaries per parameter set of a grid (:mod:`lumped.drivers.sweep`).  A user
@@ -12,8 +14,8 @@ every failure removes it.
 This module holds the entry point (:func:`main`) and the parser
 (:func:`build_parser`); the rest, one module each:
 
-* :mod:`~lumped.cli.simulate`, :mod:`~lumped.cli.system` and
-  :mod:`~lumped.cli.sweep`: the subcommands (``simulate --system`` in ``system``);
+* :mod:`~lumped.cli.simulate`, :mod:`~lumped.cli.system`,
+  :mod:`~lumped.cli.sweep` and :mod:`~lumped.cli.response`: the subcommands (``simulate --system`` in ``system``);
 * :mod:`~lumped.cli.options`: the parser's class, the methods' options and the
   reading of ``argv``;
 * :mod:`~lumped.cli.messages`: the API's argument names as options
@@ -29,7 +31,7 @@ import sys
 from collections.abc import Sequence
 
 from lumped import __version__
-from lumped.cli import simulate, sweep
+from lumped.cli import response, simulate, sweep
 from lumped.cli.messages import option_message
 from lumped.cli.options import Parser, attach_values, refuse_repeats, refuse_single_mass
 from lumped.cli.output import Output
@@ -73,16 +75,17 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True, parser_class=Parser)
     simulate.add_parser(sub)
     sweep.add_parser(sub)
+    response.add_parser(sub)
     return parser
 
 
 def _parse(argv: Sequence[str]) -> argparse.Namespace:
     """Parse the command line; raises SystemExit (usage, --help) or ValueError."""
     items = attach_values(argv)
-    if items[:1] in (["simulate"], ["sweep"]):
+    if items[:1] in (["simulate"], ["sweep"], ["response"]):
         refuse_repeats([i for i in items[1:] if not i.startswith("--vary")])
     args = build_parser().parse_args(items)
-    if getattr(args, "system", None) is not None:
+    if getattr(args, "system", None) is not None and args.command != "response":
         refuse_single_mass(items[1:])
     return args
 
@@ -97,12 +100,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status (0, 2 for a user error, 128 + signal)."""
     output = None
     argv = list(sys.argv[1:] if argv is None else argv)
-    command = "sweep" if argv[:1] == ["sweep"] else "simulate"
+    command = argv[0] if argv[:1] in (["sweep"], ["response"]) else "simulate"
     try:
         with signals_unwind():
             args = _parse(argv)
             output = Output(args.output)
-            summary = (sweep.run if command == "sweep" else simulate.run)(args, output)
+            summary = {"sweep": sweep.run, "response": response.run}.get(command, simulate.run)(args, output)
     except SystemExit as stop:  # argparse: usage errors (status 2) and --help (status 0)
         return int(stop.code or 0)
     except (KeyboardInterrupt, Terminated) as stop:
@@ -113,9 +116,11 @@ def main(argv: Sequence[str] | None = None) -> int:
     except MemoryError:
         return _fail(2, "error: out of memory; raise --save-every or --dt", command)
     except ArithmeticError as err:  # the API should refuse such input first: report it
-        return _fail(2, f"error: the {args.method} run failed: {type(err).__name__}: {err}", command)
+        what = getattr(args, "method", command)
+        return _fail(2, f"error: the {what} run failed: {type(err).__name__}: {err}", command)
     finally:
         if output is not None:
             output.discard()
-    print(f"lumped {command} ({args.method}): {summary}; wrote {args.output}", file=sys.stderr)
+    how = "" if command == "response" else f" ({args.method})"
+    print(f"lumped {command}{how}: {summary}; wrote {args.output}", file=sys.stderr)
     return 0

@@ -19,8 +19,16 @@ from lumped.drivers.methods import METHODS, OPTIONS, SWEEP_METHODS
 from lumped.model.parameters import PARAMETERS, PER_ROW
 from lumped.numerics import validate
 
+#: The options of ``response`` that take a value (:mod:`lumped.cli.response`).
+RESPONSE_FLAGS = ("--force-on", "--amplitude", "--omega", "--points")
 #: Options that take a value (the rest of the command line is names and values).
-TAKES_VALUE = frozenset(API_TO_OPTION.values()) - {"--t-end/--dt"} | {"--method", "--output", "--system", *LOAD_FLAGS}
+TAKES_VALUE = frozenset(API_TO_OPTION.values()) - {"--t-end/--dt"} | {
+    "--method",
+    "--output",
+    "--system",
+    *LOAD_FLAGS,
+    *RESPONSE_FLAGS,
+}
 #: Options that describe the single mass, refused with ``--system``.
 SINGLE_MASS = frozenset(PARAMETERS[name].option for name in PER_ROW) | frozenset(LOAD_FLAGS)
 

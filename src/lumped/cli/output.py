@@ -94,6 +94,19 @@ def _dump(fh: BinaryIO, columns: dict[str, np.ndarray], suffix: str) -> None:
     """Write the columns as ``.npz`` arrays or as ``.csv`` with a header line."""
     if suffix == ".npz":
         np.savez(fh, **columns)
-    else:
+    elif all(np.asarray(c).dtype.kind == "f" for c in columns.values()):
         data = np.column_stack(list(columns.values()))
         np.savetxt(fh, data, fmt="%.17g", delimiter=",", header=",".join(columns), comments="")
+    else:  # text and booleans (the response curve's kind and stable): each value as its own text
+        cells = [[_cell(v) for v in np.asarray(c)] for c in columns.values()]
+        lines = [",".join(columns)] + [",".join(row) for row in zip(*cells)]
+        fh.write(("\n".join(lines) + "\n").encode("utf-8"))
+
+
+def _cell(value: object) -> str:
+    """A CSV cell: a float as ``%.17g``, a boolean as ``true``/``false``, text as it is."""
+    if isinstance(value, (bool, np.bool_)):
+        return "true" if value else "false"
+    if isinstance(value, (float, np.floating)):
+        return "%.17g" % value
+    return str(value)

@@ -33,6 +33,7 @@ from lumped.plotting.histories import (
     time_history_panels,
 )
 from lumped.plotting.networks import chain_positions, locking_graph, network_history, network_panels, stick_map
+from lumped.plotting.response import response_curves
 from lumped.plotting.studies import (
     den_hartog_amplitudes,
     den_hartog_history,
@@ -49,6 +50,8 @@ __all__ = [
     "bingham_pictorial",
     "chain_positions",
     "convergence",
+    "den_hartog_amplitudes",
+    "den_hartog_history",
     "difference",
     "exact_fine",
     "exact_on_grid",
@@ -58,10 +61,9 @@ __all__ = [
     "network_panels",
     "new_axes",
     "oscillator_schematic",
+    "response_curves",
     "rest_discrepancies",
     "rest_positions",
-    "den_hartog_amplitudes",
-    "den_hartog_history",
     "save_figure",
     "sci_tex",
     "step_label",

@@ -181,6 +181,18 @@ class SlipMotion:
         xp, vp = self._particular(t)
         return xp + y, vp + dy
 
+    def flow_matrix(self, duration: float) -> np.ndarray:
+        """``exp(A duration)``, ``A = [[0, 1], [-k/m, -c/m]]``: the derivative of ``(x, v)`` at
+        ``t0 + duration`` with respect to ``(x0, v0)`` at a fixed ``t0`` (2 x 2, from :meth:`_free`)."""
+        ec, es = (float(a) for a in self._free(np.asarray(float(duration))))
+        h, omega2 = self.modes.h, self.modes.omega2
+        return np.array([[ec + h * es, es], [-omega2 * es, ec - h * es]])
+
+    def acceleration(self, t: float, x: float, v: float) -> float:
+        """``(P sin(w t + ph) - s tau - c v - k x)/m`` (m/s^2): the slip phase's equation at ``(t, x, v)``."""
+        force = self.P * math.sin(self.w * t + self.ph) if self.P else 0.0
+        return (force - self.s_tau - self.c * v - self.k * x) / self.m
+
     def velocity(self, t: float) -> float:
         """``v(t)`` as a float (m/s)."""
         return float(self.state(t)[1])

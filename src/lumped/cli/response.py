@@ -1,0 +1,91 @@
+"""``python -m lumped response``: the forced response curve of a system file's mass (:mod:`lumped.drivers.response`)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+from lumped.cli.options import HelpFormatter
+from lumped.cli.output import Output, check_output
+from lumped.numerics import validate
+
+_DESCRIPTION = """\
+Follow the periodic motion of the forcing's period of a system file's mass
+under P sin(omega t), from omega = START to STOP (rad/s), by shooting on the
+exact period map and pseudo-arclength continuation, folds included.  One row
+per point along the branch, the first at START and the last at STOP when the
+branch gets there: omega, amplitude_<mass> (half of max x minus min x over the
+period, m), stops_per_period, stable (true when every Floquet multiplier lies
+inside the unit circle), max_multiplier (the largest modulus) and kind
+(regular, fold, period-doubling or stops-change, the located point of a change).
+The system: one mass on linear springs and a Bingham or Coulomb dashpot, all
+to the ground, and no loads of its own (its x0 and v0 are not used)."""
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    """The ``response`` subcommand."""
+    rp = sub.add_parser(
+        "response",
+        help="follow the forced periodic motion in omega and write the response curve",
+        description=_DESCRIPTION,
+        allow_abbrev=False,
+        formatter_class=HelpFormatter,
+    )
+    rp.add_argument("--system", required=True, metavar="FILE.toml", help="the system file (examples/figure3.toml)")
+    rp.add_argument("--force-on", required=True, metavar="MASS", help="the name of the mass the sine acts on")
+    rp.add_argument("--amplitude", required=True, metavar="P", help="the force amplitude P > 0 (N)")
+    rp.add_argument(
+        "--omega", required=True, metavar="START:STOP", help="the interval of omega, 0 < START < STOP (rad/s)"
+    )
+    rp.add_argument(
+        "--points", default="200", metavar="N", help="about the rows of a branch monotone in omega [default: 200]"
+    )
+    rp.add_argument("--output", required=True, help="output file, .csv or .npz")
+
+
+#: The API's argument names that this command's messages may begin with -> its options.
+_API_NAMES = {"force_omega": "--omega", "force_amplitude": "--amplitude", "t_end": "--omega"}
+
+
+def _interval(text: str) -> tuple[float, float]:
+    """``START:STOP`` as two floats."""
+    parts = text.split(":")
+    if len(parts) != 2:
+        raise ValueError(f"--omega expects START:STOP, got {text!r}")
+    start, stop = (validate.parse_float("--omega", part) for part in parts)
+    if not 0 < start < stop:
+        raise ValueError(f"--omega: START:STOP must satisfy 0 < START < STOP, got {text!r}")
+    return start, stop
+
+
+def run(args: argparse.Namespace, output: Output) -> str:
+    """Validate, read the system, reserve the output, follow the branch, write; returns the summary."""
+    from lumped.drivers.response.curve import response_curve, response_oscillator
+    from lumped.drivers.sweep import Progress
+    from lumped.model.files import load_system
+
+    amplitude = validate.parse_float("--amplitude", args.amplitude)
+    if not amplitude > 0 or amplitude == float("inf"):
+        raise ValueError(f"--amplitude must be finite and > 0, got {args.amplitude!r}")
+    start, stop = _interval(args.omega)
+    points = validate.parse_int("--points", args.points)
+    if points < 2:
+        raise ValueError(f"--points must be at least 2, got {args.points!r}")
+    check_output(args.output)
+    network = load_system(args.system)
+    try:
+        response_oscillator(network, args.force_on)
+    except ValueError as err:
+        raise ValueError(f"{args.system}: {str(err).split(': ', 1)[1]}") from None
+    output.create()
+    bar = Progress(sys.stderr, True, label="response", unit="")
+    try:
+        curve = response_curve(network, args.force_on, amplitude, start, stop, points, progress=bar)
+    except ValueError as err:  # the API's names as this command's options
+        message = str(err)
+        for name, option in _API_NAMES.items():
+            if message.startswith(name + ":"):
+                message = option + message[len(name) :]
+        raise ValueError(message) from None
+    output.commit(curve.columns)
+    return curve.summary

@@ -1,0 +1,153 @@
+"""The response curve of a system file's mass under ``P sin(omega t)``: the API of ``python -m lumped response``.
+
+:func:`response_curve` takes a :class:`~lumped.model.network.Network` (a
+system file read by :func:`lumped.model.files.load_system`) of one mass on
+linear springs and a Bingham or Coulomb dashpot, all to the ground, and
+returns the table of :data:`COLUMNS` along the branch of periodic motions
+(:func:`~lumped.drivers.response.continuation.continue_orbits`).  The file's
+initial state is not used (each row's is found), and the file may hold no
+load of its own: the command's sine is the one load.
+
+Without viscosity (``gamma = inf``) and below Den Hartog's ``F/P = pi/4`` the
+amplitude grows without bound at ``omega = omega_n``: the branch is cut where
+it passes :data:`~lumped.drivers.response.continuation.MAX_AMPLITUDE` and
+taken up again as far above ``omega_n`` as it stopped below, from the linear
+oscillator's motion there (Newton then finds the friction's).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import NamedTuple
+
+import numpy as np
+
+from lumped.drivers.response.continuation import Branch, ResponsePoint, continue_orbits
+from lumped.drivers.response.shooting import Orbit, find_orbit
+from lumped.model.network import Network
+from lumped.model.oscillator import Oscillator
+from lumped.model.problem import one_mass_form
+from lumped.numerics import validate
+
+__all__ = ["COLUMNS", "Curve", "response_curve", "response_oscillator"]
+
+#: The columns after ``omega`` and ``amplitude_<mass>``.
+COLUMNS = ("stops_per_period", "stable", "max_multiplier", "kind")
+
+
+class Curve(NamedTuple):
+    """The table (column name -> array, ``stable`` as bool, ``kind`` as str) and a one-line summary."""
+
+    columns: dict[str, np.ndarray]
+    summary: str
+
+
+def response_oscillator(network: Network, mass: str) -> Oscillator:
+    """The oscillator of a one-mass network whose mass is named ``mass``; ``ValueError`` naming what is not supported."""
+    names = [m.name for m in network.masses]
+    if len(names) != 1:
+        raise ValueError(
+            f"system: response curves of networks of {len(names)} masses are not yet supported (one mass only)"
+        )
+    if mass not in names:
+        raise ValueError(f"force_on: no mass named {mass!r} in the system (its mass: {names[0]!r})")
+    if network.loads:
+        raise ValueError("system: the file has loads of its own; the response command applies the one sine load")
+    try:
+        osc = one_mass_form(network).oscillator
+    except ValueError as err:
+        raise ValueError(f"system: the network {err}; response curves need springs and one dashpot") from None
+    if osc.dashpot.bingham_form() is None:
+        raise ValueError("system: response curves need a Bingham or Coulomb dashpot (the exact solver's phases)")
+    return osc
+
+
+def _branches(
+    osc: Oscillator, amplitude: float, start: float, stop: float, points: int, progress: Callable | None
+) -> list[Branch]:
+    """One branch, or two around an undamped resonance (module docstring)."""
+    first = continue_orbits(osc, amplitude, start, stop, points, progress)
+    wn = math.sqrt(osc.stiffness / osc.mass)
+    last = first.points[-1].orbit.omega
+    if first.end != "amplitude" or osc.dashpot.bingham_form().viscosity != 0 or not last < wn < stop:
+        return [first]
+    restart = 2 * wn - last
+    a = amplitude / (osc.stiffness - osc.mass * restart**2)  # the linear motion a sin(omega t)
+    orbit = find_orbit(osc, amplitude, restart, np.array([0.0, a * restart]))
+    return [first, continue_orbits(osc, amplitude, orbit.omega, stop, points, progress, start_orbit=orbit)]
+
+
+def response_curve(
+    network: Network,
+    mass: str,
+    amplitude: float,
+    start: float,
+    stop: float,
+    points: int = 200,
+    progress: Callable[[int, int], None] | None = None,
+) -> Curve:
+    """The forced response of ``mass`` under ``amplitude sin(omega t)`` for ``omega`` from ``start`` to ``stop``.
+
+    Parameters
+    ----------
+    network : Network
+        One mass, springs and a Bingham or Coulomb dashpot to the ground, no loads.
+    mass : str
+        The mass the force acts on (its name in the file).
+    amplitude : float, N
+        ``P > 0``.
+    start, stop : float, rad/s
+        ``0 < start < stop``.
+    points : int
+        At least 2: about the number of rows of a branch monotone in omega
+        (:func:`~lumped.drivers.response.continuation.continue_orbits`).
+
+    Returns
+    -------
+    Curve
+        Columns ``omega``, ``amplitude_<mass>`` (half of max x minus min x over
+        the period, m), then :data:`COLUMNS`.
+    """
+    amplitude = validate.positive("force_amplitude", amplitude)
+    start, stop = validate.positive("start", start), validate.positive("stop", stop)
+    if not start < stop:
+        raise ValueError(f"omega: START must be below STOP, got {start!r}:{stop!r}")
+    points = validate.positive_int("points", points)
+    if points < 2:
+        raise ValueError(f"points must be at least 2, got {points}")
+    osc = response_oscillator(network, mass)
+    branches = _branches(osc, amplitude, start, stop, points, progress)
+    rows = [p for b in branches for p in b.points]
+    return Curve(_table(rows, mass), _summary(branches, rows))
+
+
+def _table(rows: list[ResponsePoint], mass: str) -> dict[str, np.ndarray]:
+    orbits: list[Orbit] = [p.orbit for p in rows]
+    return {
+        "omega": np.array([o.omega for o in orbits]),
+        f"amplitude_{mass}": np.array([o.amplitude for o in orbits]),
+        "stops_per_period": np.array([float(o.stops) for o in orbits]),
+        "stable": np.array([o.stable for o in orbits]),
+        "max_multiplier": np.array([o.max_multiplier for o in orbits]),
+        "kind": np.array([p.kind for p in rows]),
+    }
+
+
+_ENDS = {
+    "stop": "reached STOP",
+    "amplitude": "amplitude beyond {limit:g} P/k near omega = {omega:.6g} rad/s",
+    "turned": "turned back below START",
+    "step": "no corrector step converged near omega = {omega:.6g} rad/s",
+    "steps": "step budget spent near omega = {omega:.6g} rad/s",
+}
+
+
+def _summary(branches: list[Branch], rows: list[ResponsePoint]) -> str:
+    """``N points; ends: ...; changes: k fold, ...``."""
+    from lumped.drivers.response.continuation import MAX_AMPLITUDE
+
+    ends = "; ".join(_ENDS[b.end].format(limit=MAX_AMPLITUDE, omega=b.points[-1].orbit.omega) for b in branches)
+    kinds = [p.kind for p in rows if p.kind != "regular"]
+    changes = ", ".join(f"{kinds.count(k)} {k}" for k in dict.fromkeys(kinds)) or "none"
+    return f"{len(rows)} points ({ends}; changes: {changes})"
