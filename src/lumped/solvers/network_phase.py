@@ -29,7 +29,7 @@ from lumped.laws.element import Element
 from lumped.model.forcing import Constant, SwitchedSine, jumps, kind_of
 from lumped.model.network import Network, listed, rigid_loop
 
-__all__ = ["Parts", "Phase", "parts", "phase", "refusal"]
+__all__ = ["Parts", "Phase", "groups", "parts", "phase", "refusal"]
 
 #: What the closed forms of a phase take, for the refusals.
 _TAKES = "linear springs, Bingham or Coulomb elements and linear dashpots under sine and constant loads"
@@ -128,7 +128,7 @@ def switch_times(p: Parts, t_end: float) -> list[float]:
     return sorted(t for t in times if 0 < t < t_end)
 
 
-def _groups(p: Parts, mode: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def groups(p: Parts, mode: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``P`` (n, G), the membership of each mass in a free group, and the grounded masses (n,)."""
     n = p.m.size
     parent = list(range(n + 1))  # the ground is n
@@ -215,7 +215,7 @@ def phase(p: Parts, t: float, x: np.ndarray, v: np.ndarray, mode: np.ndarray) ->
     element's rate is zero).
     """
     n, g = p.m.size, None
-    member, grounded = _groups(p, mode)
+    member, grounded = groups(p, mode)
     g = member.shape[1]
     dim = 2 * g + 1 + 2 * len(p.omegas)
     base = 2 * g
