@@ -241,6 +241,14 @@ FIGURES = {
         DH_CURVES,
         DH_TABLE,
     ),
+    "rc02": lambda: plotting.network_response(
+        np.array([1.0, 2.0, 3.0]),
+        {"m1": np.array([0.01, 0.02, 0.01]), "m2": np.array([0.02, 0.01, 0.005])},
+        np.array([True, False, True]),
+        np.array(["regular", "stops-change", "regular"]),
+        (np.array([1.0, 3.0]), {"m1": np.array([0.01, 0.01]), "m2": np.array([0.02, 0.005])}),
+        (1.5, 2.5),
+    ),
     "sp02": lambda: plotting.stop_histories([("a", REST_X0, REST_X0, [(0.0, 0.5)]), ("b", REST_X0, -REST_X0, [])]),
 }
 

@@ -63,6 +63,38 @@ threshold = 1.0
 gamma = inf
 """
 
+#: A block on a spring (and a light dashpot) with a light second block on a spring, held to the floor by a Coulomb
+#: contact: a spring that slips, so the system softens as the amplitude grows (where a fold would be expected).
+SOFTENING = """
+[[mass]]
+name = "m1"
+mass = 1.0
+[[mass]]
+name = "m2"
+mass = 0.05
+[[element]]
+name = "k1"
+kind = "spring"
+between = ["ground", "m1"]
+stiffness = 100.0
+[[element]]
+name = "c1"
+kind = "dashpot"
+between = ["ground", "m1"]
+damping = 0.2
+[[element]]
+name = "k2"
+kind = "spring"
+between = ["m1", "m2"]
+stiffness = 100.0
+[[element]]
+name = "pad"
+kind = "bingham"
+between = ["ground", "m2"]
+threshold = 1.0
+gamma = inf
+"""
+
 
 def example(threshold: float = 1.0) -> L.Network:
     """The two-mass example, with its contacts' thresholds set to ``threshold`` (N)."""
@@ -121,6 +153,7 @@ def energy_factor(system: L.Oscillator | LoadedNetwork) -> np.ndarray:
         (None, "m1", P, (2.0, 5.5, 16.0, 23.0, 30.0)),  # at 30 rad/s m2's contact sticks through the period
         (COUPLED, "m2", 1.0, (14.0, 15.0, 18.8, 19.5)),  # near the steepest part of its curve
         (COUPLED, "m2", 1.3, (19.8, 19.95, 20.05)),
+        (SOFTENING, "m1", 1.0, (9.0, 10.1, 10.5, 11.2, 12.0)),  # at 9 rad/s the pad sticks through the period
     ],
 )
 def test_the_period_map_never_expands_the_energy_of_a_difference(text, mass, amplitude, omegas):
