@@ -33,6 +33,7 @@ import numpy as np
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
+from lumped.numerics.expm import expm
 from lumped.numerics.roots import brentq
 from lumped.solvers.network_modes import NetworkEvent, event_rows, final_rest, initial_mode, select, zero_set
 from lumped.solvers.network_phase import Parts, Phase, parts, refusal, switch_times
@@ -55,8 +56,6 @@ def step_for(ph: Phase, span: float) -> float:
 
 def _next_event(p: Parts, ph: Phase, t_lim: float) -> tuple[float, list[tuple[int, str]]]:
     """The first event of ``ph`` in ``(start, t_lim]``: its time and ``(element, kind)`` fired; none at ``t_lim``."""
-    from scipy.linalg import expm  # here: importing the package loads no SciPy solver
-
     rows, _, what = event_rows(p, ph)
     if not what:
         return t_lim, []
@@ -78,8 +77,6 @@ def _comes_back(ph: Phase, row: np.ndarray, t0: float, z: np.ndarray, t1: float)
     """When an event function that starts at zero (to round-off) is below zero at ``t1``: ``t0`` if it falls at
     once, else (it first rises: a slip that reverses and stops again within the sub-step) the time in
     ``(t0, t1]`` at which it comes back to zero, found past its peak."""
-    from scipy.linalg import expm
-
     value = lambda s: float(row @ (expm(ph.a * (s - t0)) @ z))
     rate = lambda s: float(row @ (ph.a @ (expm(ph.a * (s - t0)) @ z)))
     if not (rate(t0) > 0 and rate(t1) < 0):
@@ -90,8 +87,6 @@ def _comes_back(ph: Phase, row: np.ndarray, t0: float, z: np.ndarray, t1: float)
 
 def _locate(ph, rows, what, fired, t0, z, t1, g0) -> tuple[float, list[tuple[int, str]]]:  # noqa: ANN001
     """The earliest root among the rows ``fired`` in ``(t0, t1]``, and every row that fires there."""
-    from scipy.linalg import expm
-
     roots = {}
     for r in fired:
         if g0[r] <= 0:

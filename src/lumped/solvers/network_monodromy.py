@@ -48,6 +48,7 @@ from functools import cached_property
 import numpy as np
 
 from lumped.model.forcing import SwitchedSine
+from lumped.numerics.expm import expm
 from lumped.numerics.roots import brentq
 from lumped.solvers.exact_network import march, step_for
 from lumped.solvers.network_modes import NetworkEvent, event_rows
@@ -164,8 +165,6 @@ class NetworkPeriodMap:
 
 def _extremes(ph: Phase, end: float) -> np.ndarray:
     """Positions (rows, (k, n)) at the phase's ends and at each mass's zeros of ``v`` inside it."""
-    from scipy.linalg import expm  # here: importing the package loads no SciPy solver
-
     rx, rv = ph.rows("x"), ph.rows("v")
     h = step_for(ph, end - ph.start)
     times = np.append(np.arange(ph.start, end, h), end)
@@ -228,8 +227,6 @@ def _through(
     p: Parts, ph: Phase, d: np.ndarray, event: NetworkEvent | None, names: list[str], t_end: float
 ) -> np.ndarray:
     """``D`` at the end of the phase ``ph`` (at its event, or at ``t_end``) from ``D`` at its start (module Notes)."""
-    from scipy.linalg import expm
-
     flow = mode_flow(p, ph.mode)
     end = t_end if event is None else event.time
     dy = expm(flow.b * (end - ph.start)) @ flow.q @ (d[1:] - np.outer(_field(ph, ph.z0), d[0]))
