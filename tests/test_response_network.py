@@ -280,6 +280,26 @@ def test_a_stable_network_orbit_is_not_left_by_a_perturbed_run(omega):
     assert np.all(gaps <= 1.01 * gaps[0]) and gaps[-1] <= 0.1 * gaps[0]
 
 
+def test_a_slip_that_reverses_and_stops_within_one_sub_step_is_located_not_repeated():
+    # A state met while following the example's branch (omega = 5.71 rad/s): m1's contact reverses at t = 0.4508 s
+    # with its acceleration barely past zero, slips back for about a millisecond and stops.  The exact network
+    # solver used to see the new slip's rate below zero at the end of its first sub-step and fire the same stop
+    # again at the same instant, without end; it must find the second stop inside the sub-step.
+    from lumped.solvers.exact_network import march
+    from lumped.solvers.network_monodromy import forced_parts
+    from lumped.solvers.network_phase import parts
+
+    network, omega = example(), 5.712672775937431
+    p = forced_parts(parts(network), 0, P, omega)
+    x, v = np.array([-0.07682843411375934, -0.12365441544477251]), np.array([0.06317649885629395, 0.17586999623326693])
+    phases, events = march(p, x, v, 2 * math.pi / omega, network.element_names, max_events=20)
+    first, second = events[0], events[1]
+    assert first.elements == second.elements == ("floor1",) and first.kind == second.kind == "stop"
+    assert first.mode[2] == -1 and second.mode[2] == 0  # reversed, then stuck
+    sub_step = 2 * math.pi / np.max(np.abs(np.linalg.eigvals(phases[1].a))) / 50
+    assert 0 < second.time - first.time < sub_step
+
+
 # --- the detection of changes, on a synthetic branch ---------------------------------------------------------
 
 

@@ -36,6 +36,10 @@ of each phase, ``D = [0; I]`` at ``t = 0`` (notebook 13 derives each rule):
   slip-to-stick the next phase's ``Q`` is the projection onto the stuck
   subspace.
 * the end ``t = T`` is fixed: ``M`` is the ``y`` rows of ``D`` there.
+
+Two events at one instant (not generic: a symmetric network, or a tie) take
+the rule of the first element the solver names; the map is not
+differentiable there in any case.
 """
 
 from __future__ import annotations
