@@ -483,8 +483,8 @@ def notebook_02_settings() -> dict[str, Any]:
         "rk45_rtol": float(re.search(rk45, src).group(1)),
         "rk45_atol": float(re.search(rk45, src).group(2)),
         "rk45_budget": int(re.search(rk45, src).group(3).replace("_", "")),
-        "tanh_eps": eval(find(r"for eps in (\([^)]*\)):\s*\n\s*run = smooth\[eps\]")),
-        "tanh_t_end": float(find(r"TextbookModel\(osc, eps=eps\), ([\d.]+), x0=x0")),
+        "tanh_eps": eval(find(r"for eps in (\([^)]*\)):\s*\n\s*model = T\.TextbookModel\(osc, eps=eps\)")),
+        "tanh_t_end": float(find(r"smooth\[eps\] = T\.integrate_adaptive\(model, ([\d.]+), x0=x0")),
     }
 
 
