@@ -226,6 +226,7 @@ def test_slope_uses_the_finest_finite_run():
     steps, errors = [8.0, 4.0, 2.0, 1.0], [math.nan, 4.0, 2.0, 1.0]
     assert _slope(steps, errors) == pytest.approx(1.0, abs=1e-12)
     assert math.isnan(_slope(steps, [1.0, 1.0, math.nan, 1.0]))  # one point left: no fit
+    assert str(_slope(steps, [3e-5] * 4)) == "0.0"  # constant errors: exactly 0, never -0.0 or 1e-17
 
 
 @pytest.mark.slow
