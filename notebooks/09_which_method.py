@@ -165,7 +165,7 @@ for method in ("backward-euler", "theta", "moreau-jean", "event-capturing"):
 #
 # Algorithm 1 is the θ = 1 member of the Moreau-Jean (Euler-Moreau) scheme,
 # the time stepping of nonsmooth mechanics (Jean 1999; Acary and Brogliato
-# 2008, ch. 10) and of its reference code, INRIA's Siconos: the smooth forces
+# 2008) and of its reference code, INRIA's Siconos: the smooth forces
 # by the θ-rule, the set-valued one implicit at the new level, each step a
 # relay problem (`lumped.solvers.moreau_jean`; `moreau-jean` at θ = 1 is
 # Algorithm 1 bit for bit, `tests/test_moreau_jean.py`). Siconos' own example
