@@ -179,7 +179,8 @@ for method in ("backward-euler", "theta", "moreau-jean", "event-capturing"):
 # %%
 fo = study.friction_oscillator
 print(f"exact rest 15 - sqrt(205) = {fo['exact']:.6f} m; at dt = {fo['case']['dt']} s:")
-for method, r in fo["schemes"].items():
+for method in A.SCHEMES:  # the registry's order, from a run or the file (whose keys are sorted)
+    r = fo["schemes"][method]
     off = f"{r['error']:.2e} m off" if r["error"] > 1e-10 else "off by round-off"
     print(f"{method:16s} rests at {r['position']:.6f} m, {off}; stick swing {r['stick_swing']:.2f} N")
 s_be, s_mj = fo["schemes"]["backward-euler"], fo["schemes"]["moreau-jean"]
