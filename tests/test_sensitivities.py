@@ -22,59 +22,16 @@ EPS = float(np.finfo(float).eps)
 #: mass whose sine goes off at 2.5 s, during a slip, and then decays; a forced Bingham mass that starts
 #: stuck and sticks, breaks away, stops and reverses; a Coulomb mass under a sine with a negative
 #: amplitude and frequency that goes off at t = 14.3 s, during a stick, then comes to rest.
+_KEYS = ("mass", "stiffness", "threshold", "gamma", "x0", "v0", "t_end")
+_FORCE = ("force_amplitude", "force_omega", "force_phase", "force_until")
 CASES = {
-    "paper's free decay": dict(
-        mass=1.0,
-        stiffness=100.0,
-        threshold=1.0,
-        gamma=1.0,
-        x0=0.5,
-        v0=0.0,
-        t_end=4.0,
-        force_amplitude=0.0,
-        force_omega=0.0,
-        force_phase=0.0,
-        force_until=math.inf,
-    ),  # fmt: skip
-    "forced, then free": dict(
-        mass=1.0,
-        stiffness=100.0,
-        threshold=1.0,
-        gamma=1.0,
-        x0=0.5,
-        v0=0.3,
-        t_end=5.0,
-        force_amplitude=2.0,
-        force_omega=3.0,
-        force_phase=0.2,
-        force_until=2.5,
-    ),  # fmt: skip
-    "forced stick-slip": dict(
-        mass=1.0,
-        stiffness=1.0,
-        threshold=1.0,
-        gamma=2.0,
-        x0=0.2,
-        v0=0.0,
-        t_end=20.0,
-        force_amplitude=2.0,
-        force_omega=1.3,
-        force_phase=0.4,
-        force_until=math.inf,
-    ),  # fmt: skip
-    "Coulomb, sine off": dict(
-        mass=1.0,
-        stiffness=1.0,
-        threshold=1.0,
-        gamma=math.inf,
-        x0=0.2,
-        v0=-0.5,
-        t_end=20.0,
-        force_amplitude=-2.5,
-        force_omega=-1.1,
-        force_phase=0.4,
-        force_until=14.3,
-    ),  # fmt: skip
+    name: dict(zip(_KEYS, system)) | dict(zip(_FORCE, force))
+    for name, system, force in (
+        ("paper's free decay", (1.0, 100.0, 1.0, 1.0, 0.5, 0.0, 4.0), (0.0, 0.0, 0.0, math.inf)),
+        ("forced, then free", (1.0, 100.0, 1.0, 1.0, 0.5, 0.3, 5.0), (2.0, 3.0, 0.2, 2.5)),
+        ("forced stick-slip", (1.0, 1.0, 1.0, 2.0, 0.2, 0.0, 20.0), (2.0, 1.3, 0.4, math.inf)),
+        ("Coulomb, sine off", (1.0, 1.0, 1.0, math.inf, 0.2, -0.5, 20.0), (-2.5, -1.1, 0.4, 14.3)),
+    )
 }
 
 
