@@ -98,7 +98,9 @@ def _parse(lines: list[str], masses: list[str]) -> Record:
     late = np.flatnonzero(np.diff(t) <= 0)
     if late.size:
         i = int(late[0]) + 1
-        raise ValueError(f"line {first + i + 2}: the time {float(t[i])!r} does not follow {float(t[i - 1])!r} (t must increase)")
+        raise ValueError(
+            f"line {first + i + 2}: the time {float(t[i])!r} does not follow {float(t[i - 1])!r} (t must increase)"
+        )
     return Record(t, {name[2:]: data[:, j] for j, name in enumerate(columns) if name != "t"})
 
 
