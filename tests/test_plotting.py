@@ -2,14 +2,14 @@
 
 from __future__ import annotations
 
+import functools
+
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 
-import functools  # noqa: E402
-
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 from matplotlib.figure import Figure  # noqa: E402
 
