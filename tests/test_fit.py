@@ -253,3 +253,20 @@ def test_sensitivities_of_a_network_are_refused_in_one_line(tmp_path):
                   "--sensitivities", "a.x0", "--output", "s.csv", cwd=tmp_path)  # fmt: skip
     assert run.returncode == 2 and "need a one-mass system; the network has 2 masses" in run.stderr
     assert run.stderr.count("\n") == 1 and not (tmp_path / "s.csv").exists()
+
+
+def test_a_ground_motion_refuses_the_mass_and_no_output_prints_the_summary_alone(tmp_path):
+    # The ground's load -m a_g is written into the system when the file is read: a changed mass would keep
+    # the old load, so the mass is refused as a parameter with a [ground] table.
+    ground = tmp_path / "g.toml"
+    ground.write_text(
+        FIGURE3.read_text() + '\n[ground]\nacceleration = { kind = "sine", amplitude = 2.0, omega = 5.0 }\n'
+    )
+    (tmp_path / "r.csv").write_text("t,x_m\n0,0.5\n0.1,0.3\n0.2,0.1\n0.3,0.0\n")
+    for args in (["fit", "--data", "r.csv", "--free", "m.mass"], ["simulate", "--t-end", "1", "--method", "exact",
+                 "--sensitivities", "m.mass", "--output", "s.csv"]):  # fmt: skip
+        run = _lumped(*args, "--system", str(ground), cwd=tmp_path)
+        assert run.returncode == 2 and "m.mass is not supported with a [ground] table" in run.stderr
+    run = _lumped("fit", "--system", str(FIGURE3), "--data", "r.csv", "--free", "m.x0", cwd=tmp_path)
+    assert run.returncode == 0 and run.stderr.startswith("lumped fit: m.x0 = ") and "wrote" not in run.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["g.toml", "r.csv"]

@@ -7,6 +7,7 @@ import math
 
 from lumped.cli.options import HelpFormatter
 from lumped.cli.output import Output, check_output
+from lumped.cli.sensitivity import refuse_ground_mass
 
 _DESCRIPTION = """\
 Estimate parameters of a system file from a measured record by least squares
@@ -53,7 +54,7 @@ def run(args: argparse.Namespace, output: Output | None) -> str:
     if args.output is not None:
         check_output(args.output, (".json",))
     network = load_system(args.system)
-    system_parameters(network, args.free, "--free")
+    refuse_ground_mass(args.system, system_parameters(network, args.free, "--free"), "--free")
     record = read_record(args.data, network.mass_names)
     if output is not None:
         output.create()

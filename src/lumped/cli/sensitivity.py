@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 
-__all__ = ["check_sensitivities", "sensitivity_columns"]
+__all__ = ["check_sensitivities", "refuse_ground_mass", "sensitivity_columns"]
 
 
 def check_sensitivities(args: argparse.Namespace) -> None:
@@ -22,3 +22,20 @@ def sensitivity_columns(network: object, t: object, names: str) -> dict[str, obj
     _, sens = system_sensitivities(network, t, names, "--sensitivities")  # type: ignore[arg-type]
     mass = network.masses[0].name  # type: ignore[attr-defined]
     return {f"dx_{mass}/d{name}": sens.x[:, j] for j, name in enumerate(sens.parameters)}
+
+
+def refuse_ground_mass(path: str, parameters: tuple, what: str) -> None:
+    """Refuse a mass's ``mass`` among ``parameters`` when the system file ``path`` has a ``[ground]`` table.
+
+    The ground's load on a mass is ``-m a_g(t)``, written into the system when the file is read; a changed
+    mass would keep the old load, so its derivative (and its fit) would be wrong.
+    """
+    import tomllib
+
+    with open(path, "rb") as fh:
+        ground = "ground" in tomllib.load(fh)
+    masses = [p.name for p in parameters if p.table == "mass" and p.key == "mass"]
+    if ground and masses:
+        raise ValueError(
+            f"{what}: {masses[0]} is not supported with a [ground] table, whose load -m a_g moves with the mass"
+        )

@@ -12,7 +12,7 @@ import os
 from lumped.cli.messages import LEADING_NAME
 from lumped.cli.options import check_method, method_options
 from lumped.cli.output import Output, check_output
-from lumped.cli.sensitivity import sensitivity_columns
+from lumped.cli.sensitivity import refuse_ground_mass, sensitivity_columns
 from lumped.drivers.methods import METHODS
 from lumped.drivers.sensitivity import prepare
 from lumped.model.parameters import PARAMETERS
@@ -33,7 +33,8 @@ def run(args: argparse.Namespace, output: Output) -> str:
     if not METHODS[args.method].runs_networks and not _piecewise(network, args.method, args.system):
         _one_mass(network, args)
     if args.sensitivities is not None:
-        prepare(network, args.sensitivities, "--sensitivities")  # before the output is created
+        params = prepare(network, args.sensitivities, "--sensitivities")[0]  # before the output is created
+        refuse_ground_mass(args.system, params, "--sensitivities")
     output.create()
     try:
         problem = Problem(network, values["t_end"])
