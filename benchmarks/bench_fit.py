@@ -50,8 +50,10 @@ def main() -> None:
     wall = (time.perf_counter() - began) / trials
     mean, se = np.mean(estimates, axis=0), np.mean(errors, axis=0)
     for j, name in enumerate(FREE.split(",")):
-        print(f"{name}: within 2 standard errors in {hits[j]} of {trials}; mean {mean[j]:.5g} (truth {TRUTH[j]:g}), "
-              f"mean standard error {se[j]:.2g}, spread of the estimates {np.std(estimates, axis=0)[j]:.2g}")  # fmt: skip
+        print(
+            f"{name}: within 2 standard errors in {hits[j]} of {trials}; mean {mean[j]:.5g} (truth {TRUTH[j]:g}), "
+            f"mean standard error {se[j]:.2g}, spread of the estimates {np.std(estimates, axis=0)[j]:.2g}"
+        )
     print(f"{wall * 1e3:.0f} ms per fit")
 
 

@@ -211,8 +211,9 @@ def test_bad_fit_input_is_refused_in_one_line(tmp_path, change, message):
 def test_simulate_writes_the_sensitivities_as_columns(tmp_path):
     out = tmp_path / "s.csv"
     names = "dashpot.threshold,m.x0,spring.stiffness"
-    run = _lumped("simulate", "--x0", "0.5", "--t-end", "4", "--dt", "0.01", "--method", "exact",
-                  "--sensitivities", names, "--output", str(out))  # fmt: skip
+    run = _lumped(
+        *"simulate --x0 0.5 --t-end 4 --dt 0.01 --method exact --sensitivities".split(), names, "--output", str(out)
+    )
     assert run.returncode == 0, run.stderr
     with out.open() as fh:
         rows = list(csv.DictReader(fh))
@@ -249,8 +250,8 @@ def test_sensitivities_of_a_network_are_refused_in_one_line(tmp_path):
         '[[element]]\nname = "c"\nkind = "spring"\nbetween = ["a", "b"]\nstiffness = 100.0\n'
         '[[element]]\nname = "d"\nkind = "bingham"\nbetween = ["ground", "b"]\nthreshold = 1.0\ngamma = 1.0\n'
     )
-    run = _lumped("simulate", "--system", str(two), "--t-end", "1", "--dt", "0.1", "--method", "exact",
-                  "--sensitivities", "a.x0", "--output", "s.csv", cwd=tmp_path)  # fmt: skip
+    args = "simulate --t-end 1 --dt 0.1 --method exact --sensitivities a.x0 --output s.csv".split()
+    run = _lumped(*args, "--system", str(two), cwd=tmp_path)
     assert run.returncode == 2 and "need a one-mass system; the network has 2 masses" in run.stderr
     assert run.stderr.count("\n") == 1 and not (tmp_path / "s.csv").exists()
 
@@ -263,8 +264,10 @@ def test_a_ground_motion_refuses_the_mass_and_no_output_prints_the_summary_alone
         FIGURE3.read_text() + '\n[ground]\nacceleration = { kind = "sine", amplitude = 2.0, omega = 5.0 }\n'
     )
     (tmp_path / "r.csv").write_text("t,x_m\n0,0.5\n0.1,0.3\n0.2,0.1\n0.3,0.0\n")
-    for args in (["fit", "--data", "r.csv", "--free", "m.mass"], ["simulate", "--t-end", "1", "--method", "exact",
-                 "--sensitivities", "m.mass", "--output", "s.csv"]):  # fmt: skip
+    for args in (
+        ["fit", "--data", "r.csv", "--free", "m.mass"],
+        ["simulate", "--t-end", "1", "--method", "exact", "--sensitivities", "m.mass", "--output", "s.csv"],
+    ):
         run = _lumped(*args, "--system", str(ground), cwd=tmp_path)
         assert run.returncode == 2 and "m.mass is not supported with a [ground] table" in run.stderr
     run = _lumped("fit", "--system", str(FIGURE3), "--data", "r.csv", "--free", "m.x0", cwd=tmp_path)
