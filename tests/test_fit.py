@@ -212,7 +212,10 @@ def test_simulate_writes_the_sensitivities_as_columns(tmp_path):
     out = tmp_path / "s.csv"
     names = "dashpot.threshold,m.x0,spring.stiffness"
     run = _lumped(
-        *"simulate --x0 0.5 --t-end 4 --dt 0.01 --method exact --sensitivities".split(), names, "--output", str(out)
+        *["simulate", "--x0", "0.5", "--t-end", "4", "--dt", "0.01", "--method", "exact", "--sensitivities"],
+        names,
+        "--output",
+        str(out),
     )
     assert run.returncode == 0, run.stderr
     with out.open() as fh:
@@ -250,7 +253,19 @@ def test_sensitivities_of_a_network_are_refused_in_one_line(tmp_path):
         '[[element]]\nname = "c"\nkind = "spring"\nbetween = ["a", "b"]\nstiffness = 100.0\n'
         '[[element]]\nname = "d"\nkind = "bingham"\nbetween = ["ground", "b"]\nthreshold = 1.0\ngamma = 1.0\n'
     )
-    args = "simulate --t-end 1 --dt 0.1 --method exact --sensitivities a.x0 --output s.csv".split()
+    args = [
+        "simulate",
+        "--t-end",
+        "1",
+        "--dt",
+        "0.1",
+        "--method",
+        "exact",
+        "--sensitivities",
+        "a.x0",
+        "--output",
+        "s.csv",
+    ]
     run = _lumped(*args, "--system", str(two), cwd=tmp_path)
     assert run.returncode == 2 and "need a one-mass system; the network has 2 masses" in run.stderr
     assert run.stderr.count("\n") == 1 and not (tmp_path / "s.csv").exists()
