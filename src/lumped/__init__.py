@@ -16,8 +16,10 @@ backward Euler's choice of step solver; the method registry; the sweep), :mod:`~
 :mod:`~lumped.cli`.  The names below are the public API.
 """
 
+from lumped.drivers.fit import FitResult, fit
 from lumped.drivers.methods import METHODS
 from lumped.drivers.network import simulate_network
+from lumped.drivers.sensitivity import system_sensitivities
 from lumped.drivers.simulation import simulate, solve
 from lumped.laws import (
     Bingham,
@@ -42,6 +44,7 @@ from lumped.model.forcing import Constant, LoadSum, SwitchedSine, Table
 from lumped.model.network import Load, Mass, Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import Problem
+from lumped.model.records import Record, read_record
 from lumped.model.tables import read_table
 from lumped.model.trajectory import COLUMNS, EnergyBalance, Trajectory
 from lumped.solvers.backward_euler import algorithm1, backward_euler
@@ -49,6 +52,7 @@ from lumped.solvers.event_capturing import CapturedRun, event_capturing
 from lumped.solvers.event_driven import IntegratedSolution, solve_event_driven
 from lumped.solvers.events import Event, Phase
 from lumped.solvers.exact import ExactSolution, solve_exact
+from lumped.solvers.sensitivities import Sensitivities, sensitivities
 from lumped.solvers.theta import theta_method
 
 __all__ = [
@@ -62,6 +66,7 @@ __all__ = [
     "EnergyBalance",
     "Event",
     "ExactSolution",
+    "FitResult",
     "HerschelBulkley",
     "HerschelBulkleyDashpot",
     "IntegratedSolution",
@@ -80,6 +85,8 @@ __all__ = [
     "PapanastasiouDashpot",
     "Phase",
     "Problem",
+    "Record",
+    "Sensitivities",
     "Spring",
     "SpringString",
     "SwitchedSine",
@@ -89,14 +96,18 @@ __all__ = [
     "backward_euler",
     "coulomb",
     "event_capturing",
+    "fit",
     "load_system",
     "parse_system",
+    "read_record",
     "read_table",
+    "sensitivities",
     "simulate",
     "simulate_network",
     "solve_event_driven",
     "solve",
     "solve_exact",
+    "system_sensitivities",
     "theta_method",
 ]
 
