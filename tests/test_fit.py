@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import csv
 import json
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -157,11 +158,18 @@ def test_the_standard_errors_cover_the_truth_in_at_least_90_of_100_trials():
     net = load_system(FIGURE3)
     start, truth = _start(net), np.array([1.0, 1.0, 100.0])
     t = np.linspace(0.0, 4.0, 201)
-    hits = np.zeros(3, dtype=int)
-    for seed in range(100):
-        result = fit(start, _record(net, t, 2e-3, seed), FREE)
-        hits += np.abs(result.estimate - truth) <= 2 * result.standard_error
+    z = np.array(
+        [
+            (r.estimate - truth) / r.standard_error
+            for r in (fit(start, _record(net, t, 2e-3, seed), FREE) for seed in range(100))
+        ]
+    )
+    hits = np.sum(np.abs(z) <= 2, axis=0)
     assert np.all(hits >= 90), hits
+    # No |z| lies within 0.1 of 2 for these seeds (the nearest, for tau, are 1.84 and 2.12 on one machine),
+    # so round-off cannot move a trial across the line.  A continuous check beside the count: the mean of
+    # z^2 is 1 for unbiased standard errors, with standard deviation sqrt(2/100) = 0.14; within 3 of them.
+    assert np.all(np.abs(np.mean(z**2, axis=0) - 1) <= 3 * math.sqrt(2 / 100)), np.mean(z**2, axis=0)
 
 
 # --- the commands --------------------------------------------------------------------------------
