@@ -32,7 +32,7 @@ CONFIG_TEXT = yaml.safe_dump(dict(config), sort_keys=True)
 #: notebook stem -> figure stems: the paper's in its numbering (figNN_<slug>),
 #: then the tutorial's extensions (extNN_<slug>, notebooks 06 to 08) and the
 #: accuracy study (accNN_<slug>, notebook 09) and the studies (stNN_<slug>, notebook 10;
-#: spNN_<slug>, notebook 12; rcNN_<slug>, notebook 13).
+#: spNN_<slug>, notebook 12; rcNN_<slug>, notebook 13; fitNN_<slug>, notebook 14).
 NOTEBOOK_FIGURES = {
     "01_governing_equations": [],
     "02_sgn_zero_failure": [],
@@ -71,6 +71,7 @@ NOTEBOOK_FIGURES = {
     "11_den_hartog": ["dh01_amplitude", "dh02_steady_state"],
     "12_stops_per_cycle": ["sp01_stops_map", "sp02_stop_histories"],
     "13_response_curves": ["rc01_response_curves", "rc02_two_mass_response"],
+    "14_sensitivities_and_fit": ["fit01_rest_kinks", "fit02_free_decay_fit"],
 }
 
 #: notebook stem -> the data files it reads (rules/studies.smk, rules/accuracy.smk).
@@ -95,6 +96,7 @@ CATEGORY = {
     "11_den_hartog": "Study: Den Hartog's forced oscillator with friction (dh01-dh02)",
     "12_stops_per_cycle": "Study: stops per cycle of the forced Coulomb oscillator (sp01-sp02)",
     "13_response_curves": "Tutorial: response curves by shooting and continuation (rc01-rc02)",
+    "14_sensitivities_and_fit": "Tutorial: sensitivities through stick and slip, and a fit (fit01-fit02)",
 }
 
 #: Every figure file the pipeline makes.

@@ -39,7 +39,7 @@ def test_the_study_compares_every_method_of_the_registry_in_one_group():
     assert M.STUDY_METHODS == (*M.SCHEMES, *M.TOLERANCED, *M.CLOSED_FORM, "tanh") == A.STUDY_METHODS
     assert all(any(o.name == "rtol" for o in METHODS[name].options) for name in M.TOLERANCED)
     # the order of the rows of results/accuracy/study.json and of its order table
-    assert M.SCHEMES == ("backward-euler", "event-capturing", "theta")
+    assert M.SCHEMES == ("backward-euler", "event-capturing", "theta", "moreau-jean")
     assert (M.TOLERANCED, M.CLOSED_FORM) == (("event-driven",), ("exact",))
 
 
@@ -190,10 +190,43 @@ def test_theta_method_is_not_second_order_through_switches(forced_orders):
     assert 0.3 <= forced_orders["theta"]["max_x"] <= 1.5
 
 
+def test_moreau_jean_events_pair_within_a_step(forced_orders):
+    # Unlike the theta method it makes no one-step stops (the band is implicit at the new
+    # level), so every event pairs with the reference's and an order is fitted for each kind.
+    # Its events are read on the grid, as Algorithm 1's: each is dated at a grid point next to
+    # the scheme's own switch, so at the finest step every error is below that step (measured
+    # 0.7 dt at most), and the slopes scatter with where the switches fall (0.6 to 1.6 here).
+    o = forced_orders["moreau-jean"]
+    assert all(math.isfinite(o[q]) for q in ("breakaway", "stop", "reversal", "forcing-off"))
+    finest = A.run("forced-17b", "moreau-jean", STEPS[-1])
+    assert all(err < STEPS[-1] for kind, err in finest.event_errors.items() if kind != "forcing-off")
+
+
+def test_moreau_jean_runs_on_the_bingham_and_coulomb_cases_only():
+    study = A.study(["coulomb-17b", "hb-n2"], steps=(1e-3, 5e-4), rtols=(1e-6,), tanh=[])
+    assert {r.case for r in study.results if r.method == "moreau-jean"} == {"coulomb-17b"}
+    assert {r.case for r in study.results if r.method == "theta"} == {"coulomb-17b", "hb-n2"}
+
+
+def test_friction_oscillator_rests_where_the_half_cycles_say():
+    # Coulomb, k = m = 1, bound 1: each half-cycle's amplitude about the friction's centre falls
+    # by 2; from (12, 6) the first is sqrt(13^2 + 6^2) = sqrt(205) about -1, the eighth ends
+    # inside the band at 15 - sqrt(205) (closed form, independent of the exact solver).
+    fo = A.study(["forced-17b"], steps=(1e-3, 5e-4), rtols=(1e-6,), tanh=[]).friction_oscillator
+    assert fo["exact"] == pytest.approx(15 - math.sqrt(205), abs=1e-12)
+    s = fo["schemes"]
+    # Siconos rests at 0.6820441351954105 m (tests/data/siconos, its last row), to the peer test's 1e-10.
+    assert s["moreau-jean"]["position"] == pytest.approx(0.6820441351954105, abs=1e-10)
+    # In stick: settled on the reaction (exactly, moreau_jean_step's Notes) but for the theta method.
+    assert s["moreau-jean"]["stick_swing"] == 0.0 == s["backward-euler"]["stick_swing"]
+    assert s["theta"]["stick_swing"] > 1e-2
+
+
 def test_slope_uses_the_finest_finite_run():
     steps, errors = [8.0, 4.0, 2.0, 1.0], [math.nan, 4.0, 2.0, 1.0]
     assert fitted_slope(steps, errors) == pytest.approx(1.0, abs=1e-12)
     assert math.isnan(fitted_slope(steps, [1.0, 1.0, math.nan, 1.0]))  # one point left: no fit
+    assert str(fitted_slope(steps, [3e-5] * 4)) == "0.0"  # constant errors: exactly 0, never -0.0 or 1e-17
 
 
 @pytest.mark.slow

@@ -250,7 +250,22 @@ FIGURES = {
         (1.5, 2.5),
     ),
     "sp02": lambda: plotting.stop_histories([("a", REST_X0, REST_X0, [(0.0, 0.5)]), ("b", REST_X0, -REST_X0, [])]),
+    "fit01": lambda: plotting.summary_kinks(REST_X0, 0.01 * REST_X0, 0.01 * np.sign(REST_X0), [(0.0, -0.01, 0.01)]),
+    "fit02": lambda: plotting.fit_record(_fit()),
 }
+
+
+def _fit():
+    """A fit of the threshold to the paper's free decay over 1 s (fit02's helper)."""
+    from lumped.drivers.fit import fit
+    from lumped.model.records import Record
+
+    t = np.linspace(0.0, 1.0, 51)
+    record = Record(t, {"m": L.solve_exact(OSC, 1.0, x0=0.5).evaluate(t)["x"]})
+    start = Network(
+        [Mass("m", 1.0, 0.5)], [Spring("spring", ("ground", "m"), 100.0), Bingham("dashpot", ("ground", "m"), 1.2, 1.0)]
+    )
+    return fit(start, record, "dashpot.threshold")
 
 
 @pytest.mark.parametrize("name", FIGURES)

@@ -8,6 +8,8 @@ API (and the closed form of :mod:`test_loads`).
 from __future__ import annotations
 
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -120,7 +122,7 @@ def test_a_method_that_needs_a_sine_refuses_a_table_naming_the_entry(folder, cap
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and not any(folder.glob("out.csv*"))
     assert err.startswith(f"lumped simulate: error: system file {str(path)!r}: the loads on 'm': method {method!r}")
-    assert "not a table; backward-euler, event-capturing and theta run any load" in err
+    assert "not a table; backward-euler, event-capturing, theta and moreau-jean run any load" in err
 
 
 def test_a_table_file_is_read_relative_to_the_system_file(folder, monkeypatch):
@@ -212,3 +214,27 @@ def test_the_paper_sine_and_a_zero_force_still_run(tmp_path):
     # Unchanged: a sine with its frequency, and no forcing option at all.
     assert simulate(["--force-amplitude", "10", "--force-omega", "15.7", "--force-until", "1"], tmp_path / "a.csv") == 0
     assert simulate(["--x0", "0.5", "--force-amplitude", "0"], tmp_path / "b.csv") == 0
+
+
+SWEEP_ZERO = [
+    (["--force-amplitude", "3", "--vary", "x0=0.1:0.2:2"], "--force-amplitude 3 applies no force"),
+    (["--vary", "force_amplitude=1:3:2"], "--vary force_amplitude applies no force"),
+]
+
+
+@pytest.mark.parametrize(("args", "message"), SWEEP_ZERO, ids=[" ".join(a) for a, _ in SWEEP_ZERO])
+def test_a_sweep_whose_every_sine_is_zero_is_refused_in_one_line(tmp_path, args, message):
+    out = tmp_path / "sweep.csv"
+    run = subprocess.run(
+        [sys.executable, "-m", "lumped", "sweep", *args, "--output", str(out)], capture_output=True, text=True
+    )
+    assert run.returncode == 2 and run.stderr.count("\n") == 1, run.stderr
+    assert run.stderr.startswith(f"lumped sweep: error: {message}: with --force-omega 0 and --force-phase 0")
+    assert not out.exists()
+
+
+def test_a_sweep_of_a_constant_load_still_runs(tmp_path):
+    args = ["--force-amplitude", "3", "--force-phase", "1.5707963267948966", "--vary", "x0=0.1:0.2:2"]
+    out = tmp_path / "sweep.csv"
+    run = subprocess.run([sys.executable, "-m", "lumped", "sweep", *args, "--output", str(out)], capture_output=True)
+    assert run.returncode == 0 and len(out.read_text().splitlines()) == 3

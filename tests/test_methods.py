@@ -65,7 +65,7 @@ def test_the_command_line_reads_the_registry():
     assert _choices("simulate") == tuple(methods.METHODS)
     assert _choices("sweep") == methods.SWEEP_METHODS
     flags = {o.flag for m in methods.METHODS.values() for o in m.options}
-    assert flags == {"--rtol"}
+    assert flags == {"--rtol", "--theta"}
     for command in ("simulate", "sweep"):
         assert flags <= set(_actions(command))
     assert {messages.API_TO_OPTION[o.name] for m in methods.METHODS.values() for o in m.options} == flags

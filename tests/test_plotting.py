@@ -2,7 +2,10 @@
 
 from __future__ import annotations
 
+import functools
+
 import matplotlib
+import numpy as np
 
 matplotlib.use("Agg")
 
@@ -47,6 +50,26 @@ NET = simulate_network(
     1e-3,
     solver="active-set",
 )
+
+
+@functools.cache
+def _fit():
+    """A fit of the paper's free decay to its own exact motion (issue 24), for :func:`plotting.fit_record`."""
+    from lumped.drivers.fit import fit
+    from lumped.model.records import Record
+
+    t = np.linspace(0.0, 1.0, 51)
+    record = Record(t, {"m": L.solve_exact(OSC, 1.0, x0=0.5).evaluate(t)["x"]})
+    return fit(oscillator_network_with_names(), record, "dashpot.threshold")
+
+
+def oscillator_network_with_names() -> Network:
+    return Network(
+        [Mass("m", 1.0, 0.5)],
+        [Spring("spring", ("ground", "m"), 100.0), Bingham("dashpot", ("ground", "m"), 1.2, 1.0)],
+    )
+
+
 #: Every helper that draws a legend, as a call taking ``ax``.
 LEGENDS = {
     "time_history": lambda ax: plotting.time_history(TRAJ, EXACT, "x", ax=ax),
@@ -56,11 +79,13 @@ LEGENDS = {
     "creep": lambda ax: textbook_plots.creep(ADAPTIVE, rest=0.005, ax=ax),
     "network_history": lambda ax: plotting.network_history({"run": NET}, "x", "m", ax=ax),
     "network_panels": lambda ax: plotting.network_panels({"run": NET}, [("x", "m"), ("v", "m")], axes=[ax] * 2),
+    "fit_record": lambda ax: plotting.fit_record(_fit(), axes=[ax] * 2),
 }
 #: Helpers whose ``ax=None`` call is spelled differently (they take ``axes``).
 WHOLE = {
     "time_history_panels": lambda: plotting.time_history_panels(TRAJ, EXACT),
     "network_panels": lambda: plotting.network_panels({"run": NET}, [("x", "m"), ("v", "m")]),
+    "fit_record": lambda: plotting.fit_record(_fit()),
 }
 
 
@@ -89,4 +114,14 @@ def test_helpers_leave_global_rcparams_alone(helper):
     assert isinstance(fig, Figure)
     after = dict(matplotlib.rcParams)
     assert {k for k in before if before[k] != after[k]} <= {"interactive"}
+    plt.close(fig)
+
+
+def test_summary_kinks_leaves_global_rcparams_alone_and_marks_each_kink():
+    before = dict(matplotlib.rcParams)
+    x = np.linspace(0.0, 1.0, 11)
+    fig = plotting.summary_kinks(x, x**2, 2 * x, kinks=[(0.5, 0.9, 1.1)])
+    assert {k for k in before if before[k] != dict(matplotlib.rcParams)[k]} <= {"interactive"}
+    top, bottom = fig.axes
+    assert len(bottom.lines) == 5 and len(top.lines) == 2  # the curve, the kink's line, its two circles, the axis
     plt.close(fig)

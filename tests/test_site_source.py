@@ -56,6 +56,7 @@ def test_a_caption_splits_at_its_first_sentence(path):
         "dh": f"Study figure dh{number}",
         "sp": f"Study figure sp{number}",
         "rc": f"Tutorial figure rc{number}",
+        "fit": f"Tutorial figure fit{number}",
     }[kind]
     assert caption.title.startswith(expected)
     flat = " ".join(caption.text.split())

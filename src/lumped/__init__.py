@@ -16,10 +16,12 @@ backward Euler's choice of step solver; the method registry; the sweep; the resp
 :mod:`~lumped.cli`.  The names below are the public API.
 """
 
+from lumped.drivers.fit import FitResult, fit
 from lumped.drivers.methods import METHODS
 from lumped.drivers.network import simulate_network
 from lumped.drivers.response import continue_orbits, find_orbit
 from lumped.drivers.response.curve import response_curve
+from lumped.drivers.sensitivity import system_sensitivities
 from lumped.drivers.simulation import simulate, solve
 from lumped.laws import (
     Bingham,
@@ -44,6 +46,7 @@ from lumped.model.forcing import Constant, LoadSum, SwitchedSine, Table
 from lumped.model.network import Load, Mass, Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import Problem
+from lumped.model.records import Record, read_record
 from lumped.model.tables import read_table
 from lumped.model.trajectory import COLUMNS, EnergyBalance, Trajectory
 from lumped.solvers.backward_euler import algorithm1, backward_euler
@@ -51,6 +54,7 @@ from lumped.solvers.event_capturing import CapturedRun, event_capturing
 from lumped.solvers.event_driven import IntegratedSolution, solve_event_driven
 from lumped.solvers.events import Event, Phase
 from lumped.solvers.exact import ExactSolution, solve_exact
+from lumped.solvers.sensitivities import Sensitivities, sensitivities
 from lumped.solvers.theta import theta_method
 
 __all__ = [
@@ -64,6 +68,7 @@ __all__ = [
     "EnergyBalance",
     "Event",
     "ExactSolution",
+    "FitResult",
     "HerschelBulkley",
     "HerschelBulkleyDashpot",
     "IntegratedSolution",
@@ -82,6 +87,8 @@ __all__ = [
     "PapanastasiouDashpot",
     "Phase",
     "Problem",
+    "Record",
+    "Sensitivities",
     "Spring",
     "SpringString",
     "SwitchedSine",
@@ -93,15 +100,19 @@ __all__ = [
     "coulomb",
     "event_capturing",
     "find_orbit",
+    "fit",
     "load_system",
     "parse_system",
+    "read_record",
     "read_table",
     "response_curve",
+    "sensitivities",
     "simulate",
     "simulate_network",
     "solve_event_driven",
     "solve",
     "solve_exact",
+    "system_sensitivities",
     "theta_method",
 ]
 

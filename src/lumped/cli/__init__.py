@@ -1,5 +1,6 @@
 """Command line: ``python -m lumped simulate [options]`` and ``python -m lumped sweep [options]``.
 
+``fit`` estimates a system file's parameters from a record (:mod:`lumped.drivers.fit`);
 ``response`` follows a forced periodic motion in omega
 (:mod:`lumped.drivers.response`) and writes its response curve;
 ``simulate`` writes the columns ``t, x, v, F_s, F_d, F`` to a ``.csv`` or
@@ -15,7 +16,8 @@ This module holds the entry point (:func:`main`) and the parser
 (:func:`build_parser`); the rest, one module each:
 
 * :mod:`~lumped.cli.simulate`, :mod:`~lumped.cli.system`,
-  :mod:`~lumped.cli.sweep` and :mod:`~lumped.cli.response`: the subcommands (``simulate --system`` in ``system``);
+  :mod:`~lumped.cli.sweep`, :mod:`~lumped.cli.response` and :mod:`~lumped.cli.fit`: the subcommands
+  (``simulate --system`` in ``system``, ``simulate --sensitivities`` in :mod:`~lumped.cli.sensitivity`);
 * :mod:`~lumped.cli.options`: the parser's class, the methods' options and the
   reading of ``argv``;
 * :mod:`~lumped.cli.messages`: the API's argument names as options
@@ -31,7 +33,7 @@ import sys
 from collections.abc import Sequence
 
 from lumped import __version__
-from lumped.cli import response, simulate, sweep
+from lumped.cli import fit, response, simulate, sweep
 from lumped.cli.messages import option_message
 from lumped.cli.options import Parser, attach_values, refuse_repeats, refuse_single_mass
 from lumped.cli.output import Output
@@ -44,7 +46,9 @@ Vibrations of a mass on a linear spring and a Bingham (or Coulomb) dashpot,
 solved as a differential-algebraic system (Darbha, Nakshatrala and Rajagopal).
 The simulate command integrates one motion and writes t, x, v, F_s, F_d, F to
 a .csv or .npz file; the sweep command writes one row of summaries (rest time
-and position, largest |x|, stops, ...) per parameter set of a grid."""
+and position, largest |x|, stops, ...) per parameter set of a grid; the
+response command follows a forced periodic motion in the frequency; the fit
+command estimates a system file's parameters from a measured record."""
 
 _EXAMPLE = """\
 example (free vibration from x0 = 0.5 m, the paper's Figures 11 to 14):
@@ -76,16 +80,17 @@ def build_parser() -> argparse.ArgumentParser:
     simulate.add_parser(sub)
     sweep.add_parser(sub)
     response.add_parser(sub)
+    fit.add_parser(sub)
     return parser
 
 
 def _parse(argv: Sequence[str]) -> argparse.Namespace:
     """Parse the command line; raises SystemExit (usage, --help) or ValueError."""
     items = attach_values(argv)
-    if items[:1] in (["simulate"], ["sweep"], ["response"]):
+    if items[:1] in (["simulate"], ["sweep"], ["response"], ["fit"]):
         refuse_repeats([i for i in items[1:] if not i.startswith("--vary")])
     args = build_parser().parse_args(items)
-    if getattr(args, "system", None) is not None and args.command != "response":
+    if getattr(args, "system", None) is not None and args.command not in ("response", "fit"):
         refuse_single_mass(items[1:])
     return args
 
@@ -100,12 +105,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status (0, 2 for a user error, 128 + signal)."""
     output = None
     argv = list(sys.argv[1:] if argv is None else argv)
-    command = argv[0] if argv[:1] in (["sweep"], ["response"]) else "simulate"
+    command = argv[0] if argv[:1] in (["sweep"], ["response"], ["fit"]) else "simulate"
     try:
         with signals_unwind():
             args = _parse(argv)
-            output = Output(args.output)
-            summary = {"sweep": sweep.run, "response": response.run}.get(command, simulate.run)(args, output)
+            output = Output(args.output) if args.output is not None else None
+            summary = {"sweep": sweep.run, "response": response.run, "fit": fit.run}.get(command, simulate.run)(
+                args, output
+            )
     except SystemExit as stop:  # argparse: usage errors (status 2) and --help (status 0)
         return int(stop.code or 0)
     except (KeyboardInterrupt, Terminated) as stop:
@@ -121,6 +128,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     finally:
         if output is not None:
             output.discard()
-    how = "" if command == "response" else f" ({args.method})"
-    print(f"lumped {command}{how}: {summary}; wrote {args.output}", file=sys.stderr)
+    how = "" if command in ("response", "fit") else f" ({args.method})"
+    wrote = f"; wrote {args.output}" if args.output is not None else ""
+    print(f"lumped {command}{how}: {summary}{wrote}", file=sys.stderr)
     return 0

@@ -22,7 +22,7 @@ import math
 from lumped.model.parameters import PARAMETERS, shown
 from lumped.numerics import validate
 
-__all__ = ["FLAGS", "add_options", "force"]
+__all__ = ["FLAGS", "add_options", "force", "no_sine"]
 
 #: The options of the constant and table loads, which take a value.
 FLAGS = ("--force-value", "--force-from", "--force-table")
@@ -77,6 +77,14 @@ def force(args: argparse.Namespace, values: dict[str, object]) -> object | None:
     return _sine(values, given + ["force_until"] * until)
 
 
+def no_sine(what: str, remedy: str) -> str:
+    """The refusal of an amplitude that applies no force (``what``), with its ``remedy``."""
+    return (
+        f"{what} applies no force: with --force-omega 0 and --force-phase 0, "
+        f"P sin(omega t + phase) is 0 at all times; {remedy} for a constant load"
+    )
+
+
 def _flag(name: str) -> str:
     return PARAMETERS[name].option
 
@@ -118,11 +126,7 @@ def _sine(values: dict[str, object], given: list[str]) -> object | None:
     if not sine.is_zero:
         return sine
     if p != 0:  # omega = 0 and sin(phase) = 0: phase 0
-        raise ValueError(
-            f"--force-amplitude {shown(p)} applies no force: with --force-omega 0 and --force-phase 0, "
-            f"P sin(omega t + phase) is 0 at all times; give --force-omega, or --force-value {shown(p)} "
-            "for a constant load"
-        )
+        raise ValueError(no_sine(f"--force-amplitude {shown(p)}", f"give --force-omega, or --force-value {shown(p)}"))
     if given:
         raise ValueError(f"{_flag(given[0])} does nothing: --force-amplitude is 0, so the sine is 0 at all times")
     return None

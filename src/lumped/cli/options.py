@@ -21,6 +21,8 @@ from lumped.numerics import validate
 
 #: The options of ``response`` that take a value (:mod:`lumped.cli.response`).
 RESPONSE_FLAGS = ("--force-on", "--amplitude", "--omega", "--points")
+#: The options of ``fit`` (:mod:`lumped.cli.fit`) and ``simulate --sensitivities`` that take a value.
+FIT_FLAGS = ("--data", "--free", "--sensitivities")
 #: Options that take a value (the rest of the command line is names and values).
 TAKES_VALUE = frozenset(API_TO_OPTION.values()) - {"--t-end/--dt"} | {
     "--method",
@@ -28,6 +30,7 @@ TAKES_VALUE = frozenset(API_TO_OPTION.values()) - {"--t-end/--dt"} | {
     "--system",
     *LOAD_FLAGS,
     *RESPONSE_FLAGS,
+    *FIT_FLAGS,
 }
 #: Options that describe the single mass, refused with ``--system``.
 SINGLE_MASS = frozenset(PARAMETERS[name].option for name in PER_ROW) | frozenset(LOAD_FLAGS)

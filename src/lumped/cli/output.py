@@ -7,6 +7,7 @@ refused at once) and renamed when complete; every failure removes it.
 from __future__ import annotations
 
 import contextlib
+import json
 import os
 import stat
 import tempfile
@@ -17,17 +18,18 @@ import numpy as np
 from lumped.cli.signals import signals_blocked
 
 
-def check_output(path: str) -> str:
-    """Refuse an ``--output`` that cannot name the file to write, with the reason."""
+def check_output(path: str, suffixes: tuple[str, ...] = (".csv", ".npz")) -> str:
+    """Refuse an ``--output`` that cannot name the file to write, with the reason (``suffixes``: those allowed)."""
     name = os.path.basename(path)
+    kinds = " or ".join(suffixes)
     if not path.strip():
         raise ValueError("--output expects a file name, got an empty value")
     if os.path.isdir(path) or not name:
-        raise ValueError(f"--output: {path!r} is a directory; name a .csv or .npz file")
-    if name.lower() in (".csv", ".npz"):
+        raise ValueError(f"--output: {path!r} is a directory; name a {kinds} file")
+    if name.lower() in suffixes:
         raise ValueError(f"--output: {path!r} has no file name before the suffix")
-    if os.path.splitext(name)[1].lower() not in (".csv", ".npz"):
-        raise ValueError(f"--output must end in .csv or .npz, got {path!r}")
+    if os.path.splitext(name)[1].lower() not in suffixes:
+        raise ValueError(f"--output must end in {kinds}, got {path!r}")
     folder = os.path.dirname(os.path.abspath(path))
     if not os.path.isdir(folder):
         raise ValueError(f"--output: directory {folder!r} does not exist")
@@ -70,8 +72,8 @@ class Output:
             why = err.strerror or str(err)
             raise ValueError(f"--output: cannot create a file in {folder!r}: {why}") from None
 
-    def commit(self, columns: dict[str, np.ndarray]) -> None:
-        """Write ``columns`` to the temporary file and rename it to the output."""
+    def commit(self, columns: dict) -> None:
+        """Write ``columns`` (arrays; a JSON document for ``.json``) to the temporary file and rename it to the output."""
         assert self.tmp is not None, "create() first"
         try:
             with open(self.tmp, "wb") as fh:
@@ -91,8 +93,10 @@ class Output:
 
 
 def _dump(fh: BinaryIO, columns: dict[str, np.ndarray], suffix: str) -> None:
-    """Write the columns as ``.npz`` arrays or as ``.csv`` with a header line."""
-    if suffix == ".npz":
+    """Write the columns as ``.npz`` arrays, as ``.csv`` with a header line, or (a dict) as ``.json``."""
+    if suffix == ".json":
+        fh.write((json.dumps(columns, indent=2, allow_nan=False) + "\n").encode("utf-8"))
+    elif suffix == ".npz":
         np.savez(fh, **columns)
     elif all(np.asarray(c).dtype.kind == "f" for c in columns.values()):
         data = np.column_stack(list(columns.values()))

@@ -9,7 +9,9 @@ from typing import TYPE_CHECKING
 from lumped.cli import loads, system
 from lumped.cli.options import HelpFormatter, add_method_options, check_method, method_options
 from lumped.cli.output import Output, check_output
+from lumped.cli.sensitivity import check_sensitivities, sensitivity_columns
 from lumped.drivers.methods import METHODS, OPTIONS
+from lumped.drivers.sensitivity import prepare
 from lumped.model.parameters import PARAMETERS
 from lumped.numerics import validate
 
@@ -39,19 +41,47 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         f"(a method other than {', '.join(n for n, m in METHODS.items() if m.runs_networks)} needs one mass)",
     )
     add_method_options(sim)
+    sim.add_argument(
+        "--sensitivities",
+        default=None,
+        metavar="NAME[,NAME...]",
+        help="with --method exact: add the columns dx_<mass>/d<NAME>, the derivative of each mass's x at each "
+        "time with respect to the parameters NAME, written element.key, mass.key or force.key as in the system "
+        "file (without --system the mass is m, its elements spring and dashpot: m.x0, dashpot.threshold, "
+        "dashpot.gamma, spring.stiffness, force.amplitude, ...); one mass only",
+    )
     required = sim.add_argument_group("required arguments")
     required.add_argument("--output", required=True, help="output file, .csv or .npz")
 
 
 def run(args: argparse.Namespace, output: Output) -> str:
     """Validate, reserve the output file, run, write; returns the summary."""
+    check_sensitivities(args)
     if args.system is not None:
         return system.run(args, output)
     values = _clean(args)
+    network = _network(values) if args.sensitivities is not None else None
+    if network is not None:
+        prepare(network, args.sensitivities, "--sensitivities")  # before the output is created
     output.create()
     traj = _compute(values, args.method)
-    output.commit(traj.columns())
+    columns = traj.columns()
+    if network is not None:
+        columns |= sensitivity_columns(network, traj.t, args.sensitivities)
+    output.commit(columns)
     return _summary(traj)
+
+
+def _network(values: dict[str, object]) -> object:
+    """The single mass of the options as a system: the mass ``m``, the elements ``spring`` and ``dashpot``
+    (a Bingham element), its load on ``m``; the names of ``--sensitivities``."""
+    from lumped.laws import GROUND, Bingham, Spring
+    from lumped.model.network import Load, Mass, Network
+
+    v, between = values, (GROUND, "m")
+    elements = [Spring("spring", between, v["stiffness"]), Bingham("dashpot", between, v["threshold"], v["gamma"])]
+    loads = [] if v["force"] is None else [Load("m", v["force"])]  # type: ignore[arg-type]
+    return Network([Mass("m", v["mass"], v["x0"], v["v0"])], elements, loads)  # type: ignore[arg-type]
 
 
 def _clean(args: argparse.Namespace) -> dict[str, object]:

@@ -3,14 +3,16 @@
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import sys
 import time
 
+from lumped.cli.loads import no_sine
 from lumped.cli.options import HelpFormatter, add_method_options, method_options
 from lumped.cli.output import Output, check_output
 from lumped.drivers.methods import METHODS, SWEEP_METHODS
-from lumped.model.parameters import PARAMETERS
+from lumped.model.parameters import PARAMETERS, shown
 from lumped.numerics import validate
 
 
@@ -107,8 +109,13 @@ def _spec(args: argparse.Namespace):  # noqa: ANN202 (a lumped.drivers.sweep.Swe
     t_end, dt = values.pop("t_end"), values.pop("dt")
     periods = validate.parse_int("periods", args.periods)
     suffix = os.path.splitext(check_output(args.output))[1].lower()
+    forced = values["force_amplitude"] != 0 or any(v.name == "force_amplitude" and not v.all_zero for v in varies)
+    if forced and not any(v.name in ("force_omega", "force_phase") for v in varies):
+        if values["force_omega"] == 0 and math.sin(values["force_phase"]) == 0:  # every row's sine is 0
+            what = f"--force-amplitude {shown(values['force_amplitude'])}" if "force_amplitude" in given else None
+            remedy = "give or vary --force-omega, or --force-phase 1.5707963267948966"
+            raise ValueError(no_sine(what or "--vary force_amplitude", remedy))
     if args.method in SWEEP_METHODS:  # another is refused by SweepSpec.build
-        forced = values["force_amplitude"] != 0 or any(v.name == "force_amplitude" and not v.all_zero for v in varies)
         n_steps = validate.step_count(t_end, dt)
         check_size([v.count for v in varies], n_steps=n_steps, method=args.method, forced=forced, output=suffix)
     axes = [v.axis() for v in varies]

@@ -12,7 +12,9 @@ import os
 from lumped.cli.messages import LEADING_NAME
 from lumped.cli.options import check_method, method_options
 from lumped.cli.output import Output, check_output
+from lumped.cli.sensitivity import refuse_ground_mass, sensitivity_columns
 from lumped.drivers.methods import METHODS
+from lumped.drivers.sensitivity import prepare
 from lumped.model.parameters import PARAMETERS
 from lumped.numerics import validate
 
@@ -20,8 +22,8 @@ from lumped.numerics import validate
 def run(args: argparse.Namespace, output: Output) -> str:
     """``--system``: read the file, reserve the output, run the network, write; returns the summary."""
     from lumped.drivers.simulation import solve
-    from lumped.model.problem import Problem
     from lumped.model.files import load_system
+    from lumped.model.problem import Problem
 
     values = _grid(args)
     check_method(args.method)
@@ -30,13 +32,19 @@ def run(args: argparse.Namespace, output: Output) -> str:
     network = load_system(args.system)
     if not METHODS[args.method].runs_networks and not _piecewise(network, args.method, args.system):
         _one_mass(network, args)
+    if args.sensitivities is not None:
+        params = prepare(network, args.sensitivities, "--sensitivities")[0]  # before the output is created
+        refuse_ground_mass(args.system, params, "--sensitivities")
     output.create()
     try:
         problem = Problem(network, values["t_end"])
         traj = solve(problem, values["dt"], method=args.method, save_every=values["save_every"], **options)
     except ValueError as err:
         raise ValueError(_system_message(str(err), args.system, network)) from None
-    output.commit(traj.system_columns(os.path.splitext(args.output)[1].lower()))
+    columns = traj.system_columns(os.path.splitext(args.output)[1].lower())
+    if args.sensitivities is not None:
+        columns |= sensitivity_columns(network, traj.t, args.sensitivities)
+    output.commit(columns)
     return traj.summary()
 
 

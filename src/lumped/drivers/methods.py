@@ -48,6 +48,7 @@ from lumped.solvers.event_driven import DEFAULT_RTOL, solve_event_driven, valida
 from lumped.solvers.exact import ExactSolution, solve_exact
 from lumped.solvers.event_capturing_network import solve_capturing_network
 from lumped.solvers.exact_network import solve_exact_network
+from lumped.solvers.moreau_jean import BINGHAM_REASON, DEFAULT_THETA, moreau_jean, validate_theta
 from lumped.solvers.network_phase import refusal
 from lumped.solvers.theta import theta_method
 
@@ -104,6 +105,8 @@ class Method:
     #: the default first; empty if it runs one-mass networks only, as an oscillator.
     network_solvers: tuple[str, ...] = ()
     options: tuple[Option, ...] = ()
+    #: Why it needs the Bingham form (when ``bingham_only``), for its refusal of another law.
+    bingham_reason: str = "its closed forms need a Bingham or Coulomb law"
     #: Why a sweep does not run it (when ``batch`` is false), for its refusal.
     not_batch: str = "a sweep does not run it"
     #: Its solver in continuous time, ``(osc, t_end, *, x0, v0, force, **options) -> ExactSolution``
@@ -140,7 +143,7 @@ class Method:
         """Why this method cannot run ``oscillator`` (one line naming the method), or ``None`` if it can."""
         if self.bingham_only and oscillator.dashpot.bingham_form() is None:
             law = type(oscillator.dashpot).__name__
-            return f"method: {self.name!r} cannot run a {law}: its closed forms need a Bingham or Coulomb law"
+            return f"method: {self.name!r} cannot run a {law}: {self.bingham_reason}"
         return None
 
     def force_refusal(self, force: object) -> str | None:
@@ -203,6 +206,20 @@ def _theta(osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, force
     return theta_method(osc, t_end, dt, x0=x0, v0=v0, force=force, save_every=save_every)
 
 
+def _moreau_jean(
+    osc: Oscillator,
+    t_end: float,
+    dt: float,
+    x0: float,
+    v0: float,
+    force: Force,
+    save_every: int,
+    *,
+    theta: float = DEFAULT_THETA,
+) -> Trajectory:
+    return moreau_jean(osc, t_end, dt, theta=theta, x0=x0, v0=v0, force=force, save_every=save_every)
+
+
 def _event_driven(
     osc: Oscillator,
     t_end: float,
@@ -221,6 +238,7 @@ def _event_driven(
 #: Why the schemes compared by the accuracy study do not run in a sweep.
 _STUDY_ONLY = "a scheme of the accuracy study, for which a sweep has no cost estimate"
 _RTOL = Option("rtol", validate_rtol, DEFAULT_RTOL, "relative tolerance", "in [2.2e-14, 1e-2]")
+_THETA = Option("theta", validate_theta, DEFAULT_THETA, "weight of the new level of the smooth forces", "in (0, 1]")
 
 #: The registry, in the order ``--help`` lists it.
 METHODS: Mapping[str, Method] = MappingProxyType(
@@ -268,6 +286,16 @@ METHODS: Mapping[str, Method] = MappingProxyType(
                 _theta,
                 "Theta-method with theta = 1/2 (trapezoidal rule), switches crossed blindly",
                 not_batch=_STUDY_ONLY,
+            ),
+            Method(
+                "moreau-jean",
+                _moreau_jean,
+                "Moreau-Jean theta-scheme as Siconos runs it: smooth forces by the theta-rule, "
+                "the band implicit (theta = 1 is Algorithm 1)",
+                bingham_only=True,
+                bingham_reason=BINGHAM_REASON,
+                not_batch=_STUDY_ONLY,
+                options=(_THETA,),
             ),
         )
     }

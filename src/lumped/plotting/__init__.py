@@ -24,6 +24,7 @@ from lumped.plotting.figures import (
     oscillator_schematic,
     string_spring_triptych,
 )
+from lumped.plotting.fit import fit_record, summary_kinks
 from lumped.plotting.histories import (
     difference,
     exact_fine,
@@ -55,6 +56,7 @@ __all__ = [
     "difference",
     "exact_fine",
     "exact_on_grid",
+    "fit_record",
     "legend_above",
     "locking_graph",
     "network_history",
@@ -74,6 +76,7 @@ __all__ = [
     "string_spring_triptych",
     "style",
     "styled",
+    "summary_kinks",
     "time_history",
     "time_history_panels",
     "work_precision",

@@ -27,6 +27,7 @@ METHOD_STYLE = {
     "backward-euler": ("Algorithm 1 (backward Euler)", "o", "C0"),
     "theta": (r"$\theta$-method, $\theta = 1/2$", "s", "C1"),
     "event-capturing": ("event-capturing", "^", "C2"),
+    "moreau-jean": (r"Moreau-Jean, $\theta = 1/2$", "P", "C5"),
     "event-driven": ("event-driven (rtol)", "D", "C3"),
     "tanh": (r"$\tanh$ model, LSODA", "v", "C4"),
 }
@@ -54,7 +55,7 @@ def _reference_slope(ax: Axes, h: np.ndarray, e: np.ndarray, p: int, ls: str) ->
 
 def _convergence_panel(ax: Axes, data: Mapping[str, Any], case: str, error: str) -> None:
     """Each fixed-step scheme's ``error`` against ``dt``, with slopes 1 and 2."""
-    for method in ("backward-euler", "theta", "event-capturing"):
+    for method in ("backward-euler", "theta", "event-capturing", "moreau-jean"):
         rows = _rows(data, case, method)
         h, e = error_points([r["resolution"] for r in rows], [r[error] for r in rows])
         label, marker, colour = METHOD_STYLE[method]

@@ -62,6 +62,33 @@ class TextbookModel:
         switch = np.sign(v) if self.eps is None else np.tanh(np.asarray(v) / self.eps)
         return switch * law.threshold + law.viscosity * v
 
+    def creep_rates(self) -> tuple[float, float]:
+        """The creep rates ``x'/x`` (1/s) of the ``tanh`` model near ``x = 0``: quasi-static, and with inertia.
+
+        Returns
+        -------
+        quasi_static : float
+            ``-k eps/(tau + c eps)``, from the force balance without inertia,
+            ``k x + tau tanh(v/eps) + c v = 0`` (``c = 1/gamma``), linearised at ``x = 0``.
+        with_inertia : float
+            The slow root of ``m s^2 + b s + k = 0`` with ``b = c + tau/eps``,
+            the same linearisation with ``m x''`` kept; it exceeds the
+            quasi-static rate by about ``m k/b^2`` relative.
+
+        Notes
+        -----
+        The slow root is written ``-2k/(b + sqrt(b^2 - 4mk))`` (no cancellation); ``nan`` when
+        ``b^2 < 4mk``, where the linearised motion oscillates instead of creeping.
+        """
+        if self.eps is None:
+            raise ValueError("eps: the creep rates are those of the tanh model; give eps")
+        law, osc = self.oscillator.dashpot.bingham_form(), self.oscillator
+        k, m, c, tau = osc.stiffness, osc.mass, law.viscosity, law.threshold
+        b = c + tau / self.eps
+        disc = b * b - 4 * m * k
+        slow = -2 * k / (b + math.sqrt(disc)) if disc >= 0 else math.nan
+        return -k * self.eps / (tau + c * self.eps), slow
+
     def rhs(self, t: float, z: np.ndarray) -> np.ndarray:
         """``(x', v')`` for the state ``z = (x, v)``."""
         x, v = z

@@ -42,6 +42,8 @@ def fitted_slope(steps: Sequence[float], errors: Sequence[float]) -> float:
         usable += 1
     if usable < MIN_FIT_POINTS:
         return math.nan
+    if len(set(errors[-usable:])) == 1:  # the same error at every step: slope 0, not a round-off of either sign
+        return 0.0
     h, e = np.log(steps[-usable:]), np.log(errors[-usable:])
     return float(np.polyfit(h, e, 1)[0])
 

@@ -16,9 +16,11 @@ from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
+from lumped.drivers.methods import METHODS
 from lumped.studies import examples
 from lumped.studies.accuracy.cases import CASE_NAMES, Case, Reference, cases, reference
 from lumped.studies.accuracy.events import KINDS
+from lumped.studies.accuracy.friction_oscillator import friction_oscillator
 from lumped.studies.accuracy.methods import CLOSED_FORM, SCHEMES, TANH, TOLERANCED
 from lumped.studies.accuracy.orders import observed_orders, order_table
 from lumped.studies.accuracy.runs import Result, compared_final, run
@@ -51,11 +53,13 @@ TANH_CASES = ("free-decay",)
 
 @dataclass(frozen=True)
 class Study:
-    """Every :class:`Result` of :func:`study`, the references' finals, and the fitted orders."""
+    """Every :class:`Result` of :func:`study`, the references' finals, the fitted orders, and
+    :func:`~lumped.studies.accuracy.friction_oscillator.friction_oscillator` (Siconos' example)."""
 
     results: tuple[Result, ...]
     references: dict[str, dict[str, Any]]
     orders: dict[str, dict[str, dict[str, float]]] = field(default_factory=dict)
+    friction_oscillator: dict[str, Any] = field(default_factory=dict)
 
     def select(self, case: str, method: str) -> list[Result]:
         """The results of one method on one case, coarsest first."""
@@ -63,8 +67,11 @@ class Study:
 
 
 def _runs(case: Case, steps: Sequence[float], rtols: Sequence[float], tanh: Sequence[tuple[float, float]]) -> list:
-    """``(method, resolution, eps)`` of every run on ``case``, method group by group."""
-    out = [(m, dt, None) for m in SCHEMES for dt in steps]
+    """``(method, resolution, eps)`` of every run on ``case``, method group by group.
+
+    A scheme that needs the law's Bingham form (``moreau-jean``) runs on the Bingham and Coulomb cases only.
+    """
+    out = [(m, dt, None) for m in SCHEMES if case.closed_form or not METHODS[m].bingham_only for dt in steps]
     out += [(m, r, None) for m in TOLERANCED for r in rtols]
     if case.closed_form:
         out += [(m, steps[-1], None) for m in CLOSED_FORM]
@@ -120,7 +127,7 @@ def study(
         refs[name] = _reference_summary(case, ref)
         for method, res, eps in _runs(case, steps, rtols, tanh):
             results.append(run(case, method, res, eps=eps, ref=ref, repeats=repeats))
-    return Study(tuple(results), refs, observed_orders(results))
+    return Study(tuple(results), refs, observed_orders(results), friction_oscillator())
 
 
 def to_json(result: Study, *, wall_time: bool = False) -> dict[str, Any]:
@@ -130,8 +137,9 @@ def to_json(result: Study, *, wall_time: bool = False) -> dict[str, Any]:
     and rest time, event counts), ``results`` (one object per run, the
     fields of :class:`Result`; ``wall_time`` only when asked, since it
     changes from run to run), ``orders`` (:func:`observed_orders`) and
-    ``order_table`` (:func:`order_table`), ``kinds`` (:data:`KINDS`) and
-    ``headline`` (:func:`headline`).
+    ``order_table`` (:func:`order_table`), ``kinds`` (:data:`KINDS`),
+    ``headline`` (:func:`headline`) and ``friction_oscillator`` (Siconos'
+    example, :mod:`~lumped.studies.accuracy.friction_oscillator`).
     """
     rows = []
     for r in result.results:
@@ -141,6 +149,7 @@ def to_json(result: Study, *, wall_time: bool = False) -> dict[str, Any]:
         rows.append(row)
     out = {"references": result.references, "results": rows, "orders": result.orders}
     out |= {"order_table": order_table(result.orders), "kinds": dict(KINDS), "headline": headline(result)}
+    out["friction_oscillator"] = result.friction_oscillator
     return clean(out)
 
 
@@ -168,7 +177,7 @@ def from_json(data: Mapping[str, Any]) -> Study:
     refs = {}
     for name, ref in data["references"].items():
         refs[name] = dict(ref) | {"position": _float(ref["position"]), "rest_time": _float(ref["rest_time"])}
-    return Study(tuple(results), refs, _floats(data["orders"]))
+    return Study(tuple(results), refs, _floats(data["orders"]), _floats(data["friction_oscillator"]))
 
 
 # ------------------------------------------------------------------ the article's numbers

@@ -33,10 +33,19 @@ Layout of the dictionary
     (``be``) and their differences (``error``); ``be_original`` and
     ``error_original`` are the same at the original's step ``ORIGINAL_DT``
     (identical to ``be`` and ``error`` when the configured step is the
-    original's).
+    original's).  ``free_large.rest_error``: the rest-position error at the
+    original's step as fractions of the exact rest position, of the band
+    half-width ``mu_s N_f / k`` and of ``x0``.
 ``verdicts``
     ``configured`` and ``original``: one :class:`Verdict` per claim, decided
-    from Algorithm 1 at the configured and at the original's step.
+    from Algorithm 1 at the configured and at the original's step.  A result
+    is *reproduced* when our Algorithm 1 agrees with our exact solution of the
+    same equations within the stated tolerance: a verification of the
+    published algorithm, not a comparison with the original's curves, which
+    are not available to us.  The :data:`CHECKS` (Figures 1 to 4, Remark 3.1)
+    hold by construction; they are listed (``checks``) and judged ``holds``
+    or ``fails``, never counted among the results.  ``summary`` groups the
+    labels by verdict.
 ``convergence``, ``convergence_rest``
     The differences for the steps :data:`CONVERGENCE_STEPS`, and how each of
     those runs ends (rest position, reversals, side of zero).
@@ -58,9 +67,10 @@ from __future__ import annotations
 from lumped.studies.replication.numbers import ORIGINAL, PACKAGES, compute
 from lumped.studies.replication.runs import CONVERGENCE_STEPS, ORIGINAL_DT
 from lumped.studies.replication.textbook_model import TEXTBOOK
-from lumped.studies.replication.verdicts import CURVE_TOL, STRETCH_TOL, VERDICT_KEYS, Verdict
+from lumped.studies.replication.verdicts import CHECKS, CURVE_TOL, STRETCH_TOL, VERDICT_KEYS, Verdict
 
 __all__ = [
+    "CHECKS",
     "CONVERGENCE_STEPS",
     "CURVE_TOL",
     "ORIGINAL",

@@ -17,7 +17,7 @@ from lumped.model.oscillator import Oscillator
 from lumped.studies import examples
 from lumped.studies.replication.runs import ORIGINAL_DT, convergence, eq19, paper_run
 from lumped.studies.replication.textbook_model import textbook_runs
-from lumped.studies.replication.verdicts import CURVE_TOL, STRETCH_TOL, summary, verdicts
+from lumped.studies.replication.verdicts import CHECKS, CURVE_TOL, STRETCH_TOL, summary, verdicts
 from lumped.studies.strict_json import clean
 
 __all__ = ["ORIGINAL", "OURS", "PACKAGES", "compute"]
@@ -74,6 +74,18 @@ def _original(cfg: dict[str, Any]) -> dict[str, Any]:
     }
 
 
+def _rest_error(block: dict[str, Any], x0: float, band: float) -> dict[str, float]:
+    """The rest-position error at the original's step as fractions of the rest position, the band and ``x0``.
+
+    The error of a rest position is a fraction of a small quantity: these
+    three put it in scale (``nan`` where either solution still moves at the end).
+    """
+    err, rest = block["error_original"]["rest_position"], block["exact"]["rest_position"]
+    if isinstance(rest, str) or not math.isfinite(err):
+        return {"of_value": math.nan, "of_band": math.nan, "of_x0": math.nan}
+    return {"of_value": err / abs(rest), "of_band": err / band, "of_x0": err / abs(x0)}
+
+
 def _shown(value: Any) -> str:
     """A configuration value as ``--config`` spells it (``.inf`` for infinity)."""
     return ".inf" if value == math.inf else repr(value)
@@ -113,11 +125,13 @@ def compute(cfg: dict[str, Any] | None = None) -> dict[str, Any]:
     out |= {name: paper_run(run) for name, run in runs.items()}
     for suffix, dt in (("", float(cfg["dt"])), ("_original", ORIGINAL_DT)):
         out["forced_small"]["eq19" + suffix] = eq19(runs["forced_small"], dt)
+    out["free_large"]["rest_error"] = _rest_error(out["free_large"], cfg["x0_large"], osc.static_band)
     out["convergence"], out["convergence_rest"] = convergence(runs)
     out["textbook"] = textbook_runs(osc)
     judged = {"configured": verdicts(cfg, out, "", osc), "original": verdicts(cfg, out, "_original", osc)}
     out["verdicts"] = judged | {
         "summary": {key: summary(v) for key, v in judged.items()},
+        "checks": [judged["configured"][key]["label"] for key in CHECKS],
         "curve_tol": CURVE_TOL,
         "stretch_tol": STRETCH_TOL,
     }

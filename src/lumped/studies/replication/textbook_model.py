@@ -40,11 +40,16 @@ def _creep(osc: Oscillator, x0: float, eps: float) -> dict[str, float]:
     Returns the state at the end, the measured creep rate ``v/x`` (1/s), the
     linear rate ``-k eps/(tau + c eps)`` of the quasi-static law
     ``k x + tau tanh(v/eps) + c v = 0`` linearised at ``x = 0`` (``c = 1/gamma``),
-    and ``k x/tau`` at the end, which the linearisation needs small.
+    the same linearisation's slow rate with inertia kept (``inertial_rate``,
+    :meth:`~lumped.solvers.textbook.TextbookModel.creep_rates`, the definitions
+    notebook 02 prints), and ``k x/tau`` at the end, which the linearisation
+    needs small.
     """
     s = TEXTBOOK
+    model = textbook.TextbookModel(osc, eps=eps)
+    linear, inertial = model.creep_rates()
     run = textbook.integrate_adaptive(
-        textbook.TextbookModel(osc, eps=eps),
+        model,
         s["tanh_t_end"],
         x0=x0,
         method="LSODA",
@@ -54,13 +59,14 @@ def _creep(osc: Oscillator, x0: float, eps: float) -> dict[str, float]:
     )
     if not run.finished:
         raise RuntimeError(run.message)
-    x, v, c = float(run.x[-1]), float(run.v[-1]), osc.dashpot.viscosity
+    x, v = float(run.x[-1]), float(run.v[-1])
     return {
         "eps": eps,
         "x_end": x,
         "v_end": v,
         "rate": v / x,
-        "linear_rate": -osc.stiffness * eps / (osc.threshold + c * eps),
+        "linear_rate": linear,
+        "inertial_rate": inertial,
         "load_end": osc.stiffness * x / osc.threshold,
     }
 

@@ -18,7 +18,7 @@ import numpy as np
 from lumped.model.oscillator import Oscillator
 from lumped.studies.replication.runs import CURVES, ORIGINAL_DT, QUANTITIES, same_side
 
-__all__ = ["CURVE_TOL", "STRETCH_TOL", "VERDICT_KEYS", "Verdict", "summary", "verdicts"]
+__all__ = ["CHECKS", "CURVE_TOL", "STRETCH_TOL", "VERDICT_KEYS", "Verdict", "summary", "verdicts"]
 
 #: A curve of Algorithm 1 reproduces the exact one when their largest
 #: difference is at most this fraction of the exact curve's largest magnitude
@@ -38,7 +38,9 @@ class Verdict:
     Attributes
     ----------
     verdict : str
-        ``"reproduced"``, ``"deviates"`` or ``"not checked"``.
+        For a result (Algorithm 1 against the exact solution): ``"reproduced"``,
+        ``"deviates"`` or ``"not checked"``; for one of the :data:`CHECKS`,
+        which hold by construction: ``"holds"`` or ``"fails"``.
     reason : str
         One sentence with the numbers the verdict follows from.
     tolerance : str or None
@@ -71,6 +73,13 @@ def _pct(fraction: float) -> str:
 def _verdict(label: str, problems: list[str], fine: str, tolerance: str | None) -> dict[str, Any]:
     """``deviates`` with the problems as the reason, else ``reproduced`` with ``fine``."""
     word = "deviates" if problems else "reproduced"
+    reason = "; ".join(problems).replace(", but; ", ", but ") or fine
+    return {"label": label} | asdict(Verdict(word, reason, tolerance))
+
+
+def _check(label: str, problems: list[str], fine: str, tolerance: str | None) -> dict[str, Any]:
+    """A claim that holds by construction: ``fails`` with the problems as the reason, else ``holds``."""
+    word = "fails" if problems else "holds"
     return {"label": label} | asdict(Verdict(word, "; ".join(problems) or fine, tolerance))
 
 
@@ -79,8 +88,10 @@ def _not_checked(label: str, reason: str) -> dict[str, Any]:
 
 
 _CURVE_TEXT = (
-    f"difference at most {_pct(CURVE_TOL)} of the exact curve's largest magnitude (for $F_d$, of the time"
-    " integral of $|F_d|$), equal numbers of reversals, rest on the same side of zero"
+    f"the motion, up to the later of the two stops: difference at most {_pct(CURVE_TOL)} of the exact curve's"
+    " largest magnitude (for $F_d$, of the time integral of $|F_d|$ over the exact motion), equal numbers of"
+    f" reversals; the rest state: rest on the same side of zero, held values at most {_pct(CURVE_TOL)} of the exact"
+    " curve's largest magnitude apart; neither depends on the end time of the run"
 )
 _EQ19 = {
     "eq19_max_x": "$max|x|$",
@@ -91,7 +102,12 @@ _EQ19 = {
 
 
 def _curve_scale(q: str, ex: dict[str, Any], osc: Oscillator) -> float:
-    """The exact curve's largest magnitude, or a floor for a curve that stays at zero."""
+    """The exact curve's largest magnitude, or a floor for a curve that stays at zero.
+
+    For ``F_d`` this is the time integral of ``|F_d|`` over the exact motion
+    (N s), the scale of the motion's ``int_F_d``; :func:`_rest_scale` gives
+    the pointwise one.
+    """
     band, k, tau = osc.static_band, osc.stiffness, osc.threshold
     return {
         "x": max(ex["peak_x"], band),
@@ -101,13 +117,42 @@ def _curve_scale(q: str, ex: dict[str, Any], osc: Oscillator) -> float:
     }[q]
 
 
+def _rest_scale(q: str, ex: dict[str, Any], osc: Oscillator) -> float:
+    """The exact curve's largest magnitude, pointwise (``F_d`` in N), for the rest state."""
+    return max(ex["peak_F_d"], osc.threshold) if q == "F_d" else _curve_scale(q, ex, osc)
+
+
 _UNITS = {"x": "m", "v": "m/s", "F_s": "N", "F_d": "N s"}
+_REST_UNITS = {"x": "m", "v": "m/s", "F_s": "N", "F_d": "N"}
 
 
 def _curve_difference(q: str, err: dict[str, Any]) -> tuple[str, float]:
     if q == "F_d":
-        return "$integral |Delta F_d| dif t$", err["int_F_d"]
+        return "$integral |Delta F_d| dif t$ over the motion", err["int_F_d"]
     return f"$max|Delta {q}|$", err[f"max_{q}"]
+
+
+def _rest_difference(q: str, err: dict[str, Any], osc: Oscillator) -> float:
+    """How far apart the two rest states hold ``q``: 0 for ``v``, ``k |Delta x_rest|`` for the forces."""
+    return {"x": 1.0, "v": 0.0, "F_s": osc.stiffness, "F_d": osc.stiffness}[q] * err["rest_position"]
+
+
+def _rest_state(q: str, block: dict[str, Any], suffix: str, osc: Oscillator) -> tuple[list[str], str]:
+    """The rest state's problems (empty if it agrees) and a phrase with its numbers."""
+    ex, err = block["exact"], block["error" + suffix]
+    if isinstance(ex["rest_position"], str) or isinstance(block["be" + suffix]["rest_position"], str):
+        return [], ""
+    diff, scale, unit = _rest_difference(q, err, osc), _rest_scale(q, ex, osc), _REST_UNITS[q]
+    if diff == 0:
+        return [], ""
+    phrase = (
+        f"at rest the held {_HELD[q]} differs by {_num(diff, 2)} {unit},"
+        f" {_pct(diff / scale)} of the exact curve's largest {_num(scale)} {unit}"
+    )
+    return [phrase] * (diff > CURVE_TOL * scale), phrase
+
+
+_HELD = {"x": "position", "v": "velocity", "F_s": "spring force", "F_d": "dashpot force"}
 
 
 def _end_problems(ex: dict[str, Any], be: dict[str, Any]) -> list[str]:
@@ -126,15 +171,20 @@ def _end_problems(ex: dict[str, Any], be: dict[str, Any]) -> list[str]:
 
 
 def _curve_verdict(n: int, q: str, block: dict[str, Any], suffix: str, osc: Oscillator) -> dict[str, Any]:
-    """A time-history figure: Algorithm 1's curve of ``q`` against the exact one."""
-    ex, be, err = block["exact"], block["be" + suffix], block["error" + suffix]
+    """A time-history figure: Algorithm 1's curve of ``q`` against the exact one, motion and rest state apart."""
+    ex, err = block["exact"], block["error" + suffix]
     what, diff = _curve_difference(q, err)
     scale = _curve_scale(q, ex, osc)
     unit = _UNITS[q]
     share = f"{what} = {_num(diff, 2)} {unit}, {_pct(diff / scale)} of the exact curve's {_num(scale)} {unit}"
-    problems = [share] * (diff > CURVE_TOL * scale) + _end_problems(ex, be)
+    rest_problems, rest = _rest_state(q, block, suffix, osc)
+    problems = [share] * (diff > CURVE_TOL * scale) + _end_problems(ex, block["be" + suffix]) + rest_problems
+    if problems and diff <= CURVE_TOL * scale:
+        problems.insert(0, f"the motion agrees ({share}), but")
     ending = (
-        "still moving at the end in both" if isinstance(ex["rest_position"], str) else "rest on the same side of zero"
+        "still moving at the end in both"
+        if isinstance(ex["rest_position"], str)
+        else "rest on the same side of zero" + (f"; {rest}" if rest else "")
     )
     fine = f"{share}; {ex['reversals']} reversals in both; {ending}"
     return _verdict(f"Figure {n}", problems, fine, _CURVE_TEXT)
@@ -144,7 +194,7 @@ def _figure1(osc: Oscillator) -> dict[str, Any]:
     """The velocity is a function of the force: true of eq. (6) for gamma < inf only."""
     rule = "eq. (6) with the configured $gamma$: $v$ is single-valued in $F_d$ if and only if $gamma < infinity$"
     if math.isinf(osc.dashpot.gamma):
-        return _verdict(
+        return _check(
             "Figure 1",
             [
                 "with $gamma = infinity$ the configured law is Coulomb friction, whose"
@@ -153,7 +203,7 @@ def _figure1(osc: Oscillator) -> dict[str, Any]:
             "",
             rule,
         )
-    return _verdict("Figure 1", [], "$gamma < infinity$: $v$ is a single-valued function of $F_d$", rule)
+    return _check("Figure 1", [], "$gamma < infinity$: $v$ is a single-valued function of $F_d$", rule)
 
 
 def _remark_3_1(cfg: dict[str, Any]) -> dict[str, Any]:
@@ -162,7 +212,7 @@ def _remark_3_1(cfg: dict[str, Any]) -> dict[str, Any]:
     problems = [f"$max F_1$ = {_num(small)} N is not below $mu_s N_f$ = {_num(tau)} N"] * (small >= tau)
     problems += [f"$max F_2$ = {_num(large)} N is not above $mu_s N_f$ = {_num(tau)} N"] * (large <= tau)
     fine = f"$max F_1$ = {_num(small)} N $<$ $mu_s N_f$ = {_num(tau)} N $<$ $max F_2$ = {_num(large)} N"
-    return _verdict("Remark 3.1", problems, fine, "eq. (18), strict inequalities")
+    return _check("Remark 3.1", problems, fine, "eq. (18), strict inequalities")
 
 
 def _figure5(cfg: dict[str, Any], eq19: dict[str, float], osc: Oscillator) -> dict[str, Any]:
@@ -233,6 +283,10 @@ def _rest_stretched(block: dict[str, Any], suffix: str, osc: Oscillator) -> dict
     return _verdict(label, problems, fine, tolerance)
 
 
+#: Claims that hold by construction (pictures drawn from the text, an inequality
+#: between parameters): checked, but not counted among the reproduced results,
+#: which compare Algorithm 1 with the exact solution.
+CHECKS = ("figure_1", "figure_2", "figure_3", "figure_4", "remark_3_1")
 #: The verdicts' keys, in the article's order.
 VERDICT_KEYS = (
     "figure_1",
@@ -250,9 +304,9 @@ def verdicts(cfg: dict[str, Any], out: dict[str, Any], suffix: str, osc: Oscilla
     drawn = "redrawn from the original's description; no configured value enters"
     v: dict[str, Any] = {
         "figure_1": _figure1(osc),
-        "figure_2": _verdict("Figure 2", [], drawn, None),
-        "figure_3": _verdict("Figure 3", [], drawn, None),
-        "figure_4": _verdict("Figure 4", [], "drawn from eq. (6) with the configured $mu_s N_f$ and $gamma$", None),
+        "figure_2": _check("Figure 2", [], drawn, None),
+        "figure_3": _check("Figure 3", [], drawn, None),
+        "figure_4": _check("Figure 4", [], "drawn from eq. (6) with the configured $mu_s N_f$ and $gamma$", None),
         "remark_3_1": _remark_3_1(cfg),
         "figure_5": _figure5(cfg, out["forced_small"]["eq19" + suffix], osc),
         "figure_10": _figure10(cfg, out["free_small"], suffix, osc),
@@ -265,6 +319,7 @@ def verdicts(cfg: dict[str, Any], out: dict[str, Any], suffix: str, osc: Oscilla
 
 
 def summary(verdicts: dict[str, Any]) -> dict[str, list[str]]:
-    """Labels of the claims, grouped by verdict, in the article's order."""
-    words = ("reproduced", "deviates", "not checked")
+    """Labels grouped by verdict, in the article's order: the results (Algorithm 1 against the exact
+    solution: ``reproduced``, ``deviates``, ``not_checked``) apart from the :data:`CHECKS` (``holds``, ``fails``)."""
+    words = ("reproduced", "deviates", "not checked", "holds", "fails")
     return {w.replace(" ", "_"): [d["label"] for d in verdicts.values() if d["verdict"] == w] for w in words}

@@ -1,0 +1,104 @@
+"""``python -m lumped fit``: estimate a system file's parameters from a measured record (:mod:`lumped.drivers.fit`)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from lumped.cli.options import HelpFormatter
+from lumped.cli.output import Output, check_output
+from lumped.cli.sensitivity import refuse_ground_mass
+
+_DESCRIPTION = """\
+Estimate parameters of a system file from a measured record by least squares
+(SciPy's least_squares), with the exact Jacobian from the sensitivities of the
+exact solution, starting from the file's values.  The record is a CSV file
+with the columns t (s, from 0, increasing) and x_<mass> (m) for the measured
+masses; other columns are not read.  --free names the parameters to estimate,
+element.key or mass.key as in the file: an element's threshold, gamma,
+stiffness, a mass's mass, x0, v0 (and force.amplitude, force.omega,
+force.phase of a single sine load).  The system: one mass on springs and a
+Bingham or Coulomb dashpot, all to the ground, under a sine or a constant load.
+The summary gives each estimate with its standard error; --output writes them
+to a JSON file with the residual standard deviation, the correlation matrix
+and the combinations of the parameters that the data identify or do not."""
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    """The ``fit`` subcommand."""
+    fp = sub.add_parser(
+        "fit",
+        help="estimate a system file's parameters from a measured record",
+        description=_DESCRIPTION,
+        allow_abbrev=False,
+        formatter_class=HelpFormatter,
+    )
+    required = fp.add_argument_group("required arguments")
+    required.add_argument("--system", required=True, metavar="FILE.toml", help="the system file, with the start values")
+    required.add_argument("--data", required=True, metavar="RECORD.csv", help="the record: columns t and x_<mass>")
+    required.add_argument(
+        "--free", required=True, metavar="NAME[,NAME...]", help="the parameters to estimate (dashpot.threshold,m.x0)"
+    )
+    fp.add_argument(
+        "--output", default=None, metavar="FIT.json", help="write the estimates and statistics to a .json file"
+    )
+
+
+def run(args: argparse.Namespace, output: Output | None) -> str:
+    """Validate, read the system and the record, reserve the output, fit, write; returns the summary."""
+    from lumped.drivers.fit import fit
+    from lumped.model.files import load_system
+    from lumped.model.records import read_record
+    from lumped.model.system_parameters import system_parameters
+
+    if args.output is not None:
+        check_output(args.output, (".json",))
+    network = load_system(args.system)
+    refuse_ground_mass(args.system, system_parameters(network, args.free, "--free"), "--free")
+    record = read_record(args.data, network.mass_names)
+    if output is not None:
+        output.create()
+    try:
+        result = fit(network, record, args.free)
+    except ValueError as err:
+        message = str(err)
+        raise ValueError("--free" + message[len("free") :] if message.startswith("free:") else message) from None
+    if output is not None:
+        output.commit(as_json(result))
+    return result.summary()
+
+
+def as_json(result: object) -> dict:
+    """The fit as strict JSON (no NaN: a missing standard error or correlation is ``null``)."""
+    from lumped.studies.strict_json import clean
+
+    r = result
+    names = list(r.parameters)  # type: ignore[attr-defined]
+    return clean(
+        {
+            "parameters": {
+                name: {
+                    "start": r.start[j],  # type: ignore[attr-defined]
+                    "estimate": r.estimate[j],  # type: ignore[attr-defined]
+                    "standard_error": r.standard_error[j],  # type: ignore[attr-defined]
+                    "identified": bool(r.identified[j]),  # type: ignore[attr-defined]
+                }
+                for j, name in enumerate(names)
+            },
+            "residual_std": r.residual_std,  # type: ignore[attr-defined]
+            "points": int(sum(x.size for x in r.record.x.values())),  # type: ignore[attr-defined]
+            "correlation": r.correlation.tolist(),  # type: ignore[attr-defined]
+            "combinations": [
+                {
+                    "coefficients": dict(zip(names, c.coefficients.tolist())),
+                    "text": c.text(names),
+                    "singular_value_ratio": c.ratio,
+                    "standard_error": c.standard_error if math.isfinite(c.standard_error) else None,
+                    "identified": c.identified,
+                }
+                for c in r.combinations  # type: ignore[attr-defined]
+            ],
+            "evaluations": r.evaluations,  # type: ignore[attr-defined]
+            "message": r.message,  # type: ignore[attr-defined]
+        }
+    )

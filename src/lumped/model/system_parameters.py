@@ -1,0 +1,125 @@
+"""The numeric parameters of a system, named as in its file: ``mass.key``, ``element.key`` and ``force.key``.
+
+A system file (:mod:`lumped.model.files`) names its masses and elements;
+each number in it is then ``<name>.<key>``: a mass's ``mass``, ``x0`` or
+``v0`` (``m.x0``), an element's parameter (``dashpot.threshold``,
+``spring.stiffness``, ``damper.damping``), and, for a system with a single
+load, that load's ``force.amplitude``, ``force.omega``, ``force.phase``,
+``force.until`` (a sine) or ``force.value``, ``force.until`` (a constant).
+The sensitivities (``simulate --sensitivities``) and the fit (``lumped
+fit``) name their parameters so; :func:`system_parameters` reads such
+names and :func:`with_values` writes new values into a system.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Sequence
+from typing import NamedTuple
+
+from lumped.model.forcing import Constant, SwitchedSine
+from lumped.model.network import Load, Network, listed
+
+__all__ = ["MASS_KEYS", "SystemParameter", "system_parameters", "with_values"]
+
+#: A mass's numeric keys.
+MASS_KEYS = ("mass", "x0", "v0")
+#: A load's numeric keys, by its type.
+_LOAD_KEYS = {SwitchedSine: ("amplitude", "omega", "phase", "until"), Constant: ("value", "until")}
+#: The loads' table in a system file, which is the first part of their names.
+LOAD = "force"
+
+
+class SystemParameter(NamedTuple):
+    """A numeric parameter of a system: its ``name`` (``element.key``), the ``table`` holding it
+    (``"mass"``, ``"element"`` or ``"force"``), the item's ``index`` in it, the ``key`` and its ``value``."""
+
+    name: str
+    table: str
+    index: int
+    key: str
+    value: float
+
+
+def _element_keys(el: object) -> tuple[str, ...]:
+    """The numeric parameters of an element: its dataclass fields after ``name`` and ``between`` that hold floats."""
+    return tuple(
+        f.name
+        for f in dataclasses.fields(el)  # type: ignore[arg-type]
+        if f.name not in ("name", "between") and isinstance(getattr(el, f.name), float)
+    )
+
+
+def _choices(network: Network) -> list[str]:
+    """Every parameter name of ``network``, masses first."""
+    names = [f"{m.name}.{key}" for m in network.masses for key in MASS_KEYS]
+    names += [f"{el.name}.{key}" for el in network.elements for key in _element_keys(el)]
+    if len(network.loads) == 1 and type(network.loads[0].force) in _LOAD_KEYS:
+        names += [f"{LOAD}.{key}" for key in _LOAD_KEYS[type(network.loads[0].force)]]
+    return names
+
+
+def _one(network: Network, name: str, what: str) -> SystemParameter:
+    """The parameter called ``name``, or a ``ValueError`` that begins with ``what``."""
+    item, dot, key = name.rpartition(".")
+    if not dot or not item or not key:
+        raise ValueError(f"{what}: {name!r} is not a parameter's name; write it element.key or mass.key (m.x0)")
+    for i, m in enumerate(network.masses):
+        if m.name == item and key in MASS_KEYS:
+            return SystemParameter(name, "mass", i, key, float(getattr(m, key)))
+    for i, el in enumerate(network.elements):
+        if el.name == item and key in _element_keys(el):
+            return SystemParameter(name, "element", i, key, float(getattr(el, key)))
+    if item == LOAD and network.loads:
+        force = network.loads[0].force
+        if len(network.loads) > 1 or type(force) not in _LOAD_KEYS:
+            raise ValueError(f"{what}: {name!r}: only a system with one sine or constant load names it {LOAD}.<key>")
+        if key in _LOAD_KEYS[type(force)]:
+            return SystemParameter(name, "force", 0, key, float(getattr(force, key)))
+    raise ValueError(f"{what}: unknown parameter {name!r}; this system's are {listed(_choices(network), 12)}")
+
+
+def system_parameters(
+    network: Network, names: str | Sequence[str], what: str = "parameters"
+) -> tuple[SystemParameter, ...]:
+    """The parameters of ``network`` called ``names`` (a sequence, or one string separated by commas).
+
+    Raises
+    ------
+    ValueError
+        One line beginning with ``what``: no name, a name given twice, or one
+        that is not a parameter of ``network`` (the message lists those it has).
+    """
+    if isinstance(names, str):
+        names = [n.strip() for n in names.split(",")]
+    names = list(names)
+    if not names or any(not isinstance(n, str) or not n for n in names):
+        raise ValueError(f"{what}: expected names such as dashpot.threshold,m.x0 separated by commas, got {names!r}")
+    twice = [n for i, n in enumerate(names) if n in names[:i]]
+    if twice:
+        raise ValueError(f"{what}: {twice[0]!r} is named twice")
+    return tuple(_one(network, n, what) for n in names)
+
+
+def with_values(network: Network, parameters: Sequence[SystemParameter], values: Sequence[float]) -> Network:
+    """``network`` with each of ``parameters`` set to the matching number of ``values`` (checked by the items).
+
+    Raises
+    ------
+    ValueError
+        A value the mass, element or load refuses (its own message).
+    """
+    if not all(math.isfinite(float(v)) for v in values):
+        raise ValueError(f"values must be finite numbers, got {list(values)!r}")
+    masses, elements, loads = list(network.masses), list(network.elements), list(network.loads)
+    for p, value in zip(parameters, values, strict=True):
+        value = float(value)
+        if p.table == "mass":
+            masses[p.index] = dataclasses.replace(masses[p.index], **{p.key: value})
+        elif p.table == "element":
+            elements[p.index] = dataclasses.replace(elements[p.index], **{p.key: value})
+        else:
+            load = loads[p.index]
+            loads[p.index] = Load(load.on, dataclasses.replace(load.force, **{p.key: value}))  # type: ignore[type-var]
+    return Network(masses, elements, loads)
