@@ -70,7 +70,7 @@ NOTEBOOK_FIGURES = {
     "10_where_it_rests": ["st01_rest_position", "st02_wrong_side"],
     "11_den_hartog": ["dh01_amplitude", "dh02_steady_state"],
     "12_stops_per_cycle": ["sp01_stops_map", "sp02_stop_histories"],
-    "13_response_curves": ["rc01_response_curves"],
+    "13_response_curves": ["rc01_response_curves", "rc02_two_mass_response"],
     "14_sensitivities_and_fit": ["fit01_rest_kinks", "fit02_free_decay_fit"],
 }
 
@@ -80,7 +80,7 @@ NOTEBOOK_DATA = {
     "10_where_it_rests": ["results/studies/rest.csv"],
     "11_den_hartog": ["results/studies/den_hartog.csv"],
     "12_stops_per_cycle": ["results/studies/stops.csv"],
-    "13_response_curves": ["results/studies/den_hartog.csv"],
+    "13_response_curves": ["results/studies/den_hartog.csv", "examples/two_mass_response.toml"],
 }
 
 #: Report section of each notebook.
@@ -95,7 +95,7 @@ CATEGORY = {
     "10_where_it_rests": "Study: where the mass comes to rest (st01-st02)",
     "11_den_hartog": "Study: Den Hartog's forced oscillator with friction (dh01-dh02)",
     "12_stops_per_cycle": "Study: stops per cycle of the forced Coulomb oscillator (sp01-sp02)",
-    "13_response_curves": "Tutorial: response curves by shooting and continuation (rc01)",
+    "13_response_curves": "Tutorial: response curves by shooting and continuation (rc01-rc02)",
     "14_sensitivities_and_fit": "Tutorial: sensitivities through stick and slip, and a fit (fit01-fit02)",
 }
 

@@ -2,7 +2,8 @@
 
 * Every ``examples/*.toml`` says in its header comment what it is, how to run
   it (``Run it with`` and the command) and what to look at; the command runs,
-  here, in a copy of ``examples/``, and writes the columns of its network.
+  here, in a copy of ``examples/``, and writes the columns of its network
+  (``simulate``), or of its response curve (``response``).
 * Every example has a test of its motion (:data:`TESTS`):
   ``figure3.toml`` gives Algorithm 1's numbers bit for bit
   (``tests/test_readme.py``); ``maxwell_creep.toml`` follows the closed form
@@ -16,7 +17,9 @@
   string goes taut, then rests at the string's length with the intervals of
   the hand calculation; ``friction_pads.toml`` moves as Algorithm 1 with one
   pad of the summed threshold, rests where the closed form says, and its pads'
-  intervals are what each one's threshold leaves the other.
+  intervals are what each one's threshold leaves the other;
+  ``two_mass_response.toml`` without friction has the linear two-degree-of-
+  freedom response (``tests/test_response_network.py``).
 * ``scripts/ground_record.py`` writes the committed record, byte for byte.
 """
 
@@ -47,10 +50,15 @@ TESTS = {
     "building": "test_examples.py::test_the_building_with_locked_dampers_is_the_linear_shear_frame",
     "figure2_beside_dashpot": "test_examples.py::test_figure2_beside_the_dashpot_holds_at_the_strings_length",
     "friction_pads": "test_examples.py::test_two_pads_move_as_one_and_share_the_held_force",
+    "two_mass_response": (
+        "test_response_network.py::test_without_friction_the_example_is_the_linear_two_degree_of_freedom_response"
+    ),
 }
 #: The examples whose elements close a loop that is rigid at some saved point: their non-unique forces.
 INTERVALS = {"figure2_beside_dashpot": ["string", "dashpot"], "friction_pads": ["pad1", "pad2"]}
 FILES = sorted(FOLDER.glob("*.toml"))
+#: The columns of ``python -m lumped response`` after ``omega`` and the amplitudes.
+RESPONSE_COLUMNS = ["stops_per_period", "stable", "max_multiplier", "kind"]
 
 
 def header(path: Path) -> list[str]:
@@ -63,7 +71,9 @@ def command(path: Path) -> list[str]:
     """The arguments of the ``python -m lumped`` command under ``Run it with``."""
     lines = header(path)
     line = lines[next(i for i, s in enumerate(lines) if s.endswith("Run it with")) + 1]
-    assert line.startswith("python -m lumped simulate --system examples/"), line
+    assert line.startswith(
+        ("python -m lumped simulate --system examples/", "python -m lumped response --system examples/")
+    )
     return shlex.split(line)[3:]
 
 
@@ -96,12 +106,18 @@ def test_an_example_says_what_it_is_and_runs_as_it_says(path: Path, runs: dict[s
         assert words in text, f"{path.name}: the header comment does not say {words!r}"
     network = L.load_system(path)
     names = network.mass_names
+    args = command(path)
+    if args[0] == "response":  # the curve from START to STOP, an amplitude per mass
+        start, stop = (float(w) for w in args[args.index("--omega") + 1].split(":"))
+        run = runs[path.stem]
+        assert list(run.dtype.names) == ["omega", *(f"amplitude_{n}" for n in names), *RESPONSE_COLUMNS]
+        assert run["omega"][0] == start and run["omega"][-1] == stop
+        return
     columns = ["t"] + [f"{q}_{n}" for q in ("x", "v") for n in names]
     for n in network.element_names:
         shared = n in INTERVALS.get(path.stem, [])
         columns += [f"F_{n}", f"force_min_{n}", f"force_max_{n}"] if shared else [f"F_{n}"]
     columns += [f"load_{n}" for n in names]
-    args = command(path)
     value = {key: float(args[args.index(key) + 1]) for key in ("--t-end", "--dt")}
     every = int(args[args.index("--save-every") + 1]) if "--save-every" in args else 1
     run = runs[path.stem]

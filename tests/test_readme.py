@@ -105,6 +105,9 @@ EXAMPLES = [(str(README.relative_to(ROOT)), b) for b in python_blocks(README) if
 ]
 STEPS = steps(quick_start())
 QUICK_START = [command for step in STEPS for command in step.commands]
+#: Quick-start commands that take more than a few seconds run with the slow tests (``-m slow``); the response
+#: curve's command is also its example's header command, run by tests/test_examples.py.
+SLOW = (" response --system examples/",)
 
 
 def test_readme_has_an_example() -> None:
@@ -117,16 +120,22 @@ def test_readme_example_runs_and_matches_its_comments(source: str, block: str, c
     check_printed(source, block, capsys.readouterr().out)
 
 
-def test_the_quick_start_has_its_three_steps() -> None:
-    """One mass, one system file, one sweep: each a command of the quick start, each shown printing."""
+def test_the_quick_start_has_its_four_steps() -> None:
+    """One mass, one system file, one sweep, one response curve: each a command of the quick start, each shown
+    printing."""
     lines = [c.line for c in QUICK_START]
     assert any(" simulate --x0" in c for c in lines)
     assert any(" simulate --system examples/" in c for c in lines)
     assert any(" sweep --vary" in c for c in lines)
+    assert any(" response --system examples/" in c for c in lines)
     assert all(c.printed for c in QUICK_START), [c.line for c in QUICK_START if not c.printed]
 
 
-@pytest.mark.parametrize("step", STEPS, ids=[step.commands[0].line.split(" --output")[0] for step in STEPS])
+@pytest.mark.parametrize(
+    "step",
+    [pytest.param(s, marks=pytest.mark.slow) if any(w in s.commands[0].line for w in SLOW) else s for s in STEPS],
+    ids=[step.commands[0].line.split(" --output")[0] for step in STEPS],
+)
 def test_a_quick_start_block_runs_and_prints_what_the_readme_shows(
     step: Step, tmp_path: Path, monkeypatch: pytest.MonkeyPatch, capsys: pytest.CaptureFixture[str]
 ) -> None:

@@ -1,6 +1,6 @@
 """Response curves (issue 23): the monodromy matrix, the periodic motions and the continuation against
 independent references (finite differences of the exact map, the textbook curve, Den Hartog's closed form and
-its boundary, long runs of the exact solver), and the ``response`` command."""
+its boundary, long runs of the exact solver), and the ``response`` command; networks are in test_response_network."""
 
 from __future__ import annotations
 
@@ -14,7 +14,6 @@ import numpy as np
 import pytest
 
 from lumped.drivers.response import NEWTON_TOL, continue_orbits, find_orbit
-from lumped.model.files import load_system
 from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator
 from lumped.solvers.exact import solve_exact
@@ -183,7 +182,6 @@ def test_command_writes_the_curve_from_start_to_stop(tmp_path):
         (("--omega", "0:3"), "0 < START < STOP"),
         (("--points", "1"), "--points must be at least 2"),
         (("--force-on", "q"), "no mass named 'q'"),
-        (("--system", str(ROOT / "examples" / "chain.toml")), "not yet supported"),
         (("--system", str(ROOT / "examples" / "maxwell_creep.toml")), "loads of its own"),
         (("--system", "missing.toml"), "cannot read it"),
         (("--output", "out.txt"), "--output must end in .csv or .npz"),
@@ -202,10 +200,3 @@ def test_command_refuses_bad_input_in_one_line(tmp_path, change, words):
     assert done.returncode == 2
     assert len(done.stderr.strip().splitlines()) == 1 and words in done.stderr, done.stderr
     assert list(tmp_path.iterdir()) == []  # nothing written, no temporary file left
-
-
-def test_network_of_several_masses_is_refused_by_the_api():
-    with pytest.raises(ValueError, match="not yet supported"):
-        from lumped.drivers.response.curve import response_oscillator
-
-        response_oscillator(load_system(ROOT / "examples" / "chain.toml"), "m1")

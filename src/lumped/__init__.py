@@ -12,13 +12,15 @@ trajectories), :mod:`~lumped.kernels` (the compiled loops),
 :mod:`~lumped.solvers` (one module per method), :mod:`~lumped.drivers`
 (:func:`solve`, which runs any :class:`Problem` by any method, with
 :func:`simulate` for one oscillator and :func:`simulate_network` for
-backward Euler's choice of step solver; the method registry; the sweep), :mod:`~lumped.studies`, :mod:`~lumped.plotting` and
+backward Euler's choice of step solver; the method registry; the sweep; the response curves, :func:`response_curve`), :mod:`~lumped.studies`, :mod:`~lumped.plotting` and
 :mod:`~lumped.cli`.  The names below are the public API.
 """
 
 from lumped.drivers.fit import FitResult, fit
 from lumped.drivers.methods import METHODS
 from lumped.drivers.network import simulate_network
+from lumped.drivers.response import continue_orbits, find_orbit
+from lumped.drivers.response.curve import response_curve
 from lumped.drivers.sensitivity import system_sensitivities
 from lumped.drivers.simulation import simulate, solve
 from lumped.laws import (
@@ -94,13 +96,16 @@ __all__ = [
     "Trajectory",
     "algorithm1",
     "backward_euler",
+    "continue_orbits",
     "coulomb",
     "event_capturing",
+    "find_orbit",
     "fit",
     "load_system",
     "parse_system",
     "read_record",
     "read_table",
+    "response_curve",
     "sensitivities",
     "simulate",
     "simulate_network",

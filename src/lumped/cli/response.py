@@ -10,16 +10,21 @@ from lumped.cli.output import Output, check_output
 from lumped.numerics import validate
 
 _DESCRIPTION = """\
-Follow the periodic motion of the forcing's period of a system file's mass
-under P sin(omega t), from omega = START to STOP (rad/s), by shooting on the
-exact period map and pseudo-arclength continuation, folds included.  One row
-per point along the branch, the first at START and the last at STOP when the
-branch gets there: omega, amplitude_<mass> (half of max x minus min x over the
-period, m), stops_per_period, stable (true when every Floquet multiplier lies
-inside the unit circle), max_multiplier (the largest modulus) and kind
+Follow the periodic motion of the forcing's period of a system under
+P sin(omega t) on one of its masses, from omega = START to STOP (rad/s), by
+shooting on the exact period map and pseudo-arclength continuation, folds
+included.  One row per point along the branch, the first at START and the last
+at STOP when the branch gets there: omega, amplitude_<mass> for each mass (half
+of max x minus min x over the period, m), stops_per_period (slip-to-stick
+switches of the friction elements), stable (true when every Floquet multiplier
+lies inside the unit circle), max_multiplier (the largest modulus) and kind
 (regular, fold, period-doubling or stops-change, the located point of a change).
-The system: one mass on linear springs and a Bingham or Coulomb dashpot, all
-to the ground, and no loads of its own (its x0 and v0 are not used)."""
+The system: one mass on linear springs and a Bingham or Coulomb dashpot, or a
+network of linear springs, Bingham and Coulomb elements and linear dashpots
+whose springs hold every mass to the ground; no loads of its own (its x0 and
+v0 are not used).  An element that sticks through a whole period may hold any
+elongation in its band: it keeps the one it has along the branch, and its
+neutral multiplier (exactly 1) is left out of stable and max_multiplier."""
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -60,7 +65,8 @@ def _interval(text: str) -> tuple[float, float]:
 
 def run(args: argparse.Namespace, output: Output) -> str:
     """Validate, read the system, reserve the output, follow the branch, write; returns the summary."""
-    from lumped.drivers.response.curve import response_curve, response_oscillator
+    from lumped.drivers.response.curve import response_curve
+    from lumped.drivers.response.systems import response_system
     from lumped.drivers.sweep import Progress
     from lumped.model.files import load_system
 
@@ -74,7 +80,7 @@ def run(args: argparse.Namespace, output: Output) -> str:
     check_output(args.output)
     network = load_system(args.system)
     try:
-        response_oscillator(network, args.force_on)
+        response_system(network, args.force_on)
     except ValueError as err:
         raise ValueError(f"{args.system}: {str(err).split(': ', 1)[1]}") from None
     output.create()

@@ -34,7 +34,7 @@ from lumped.plotting.histories import (
     time_history_panels,
 )
 from lumped.plotting.networks import chain_positions, locking_graph, network_history, network_panels, stick_map
-from lumped.plotting.response import response_curves
+from lumped.plotting.response import network_response, response_curves
 from lumped.plotting.studies import (
     den_hartog_amplitudes,
     den_hartog_history,
@@ -60,6 +60,7 @@ __all__ = [
     "legend_above",
     "locking_graph",
     "network_history",
+    "network_response",
     "network_panels",
     "new_axes",
     "oscillator_schematic",

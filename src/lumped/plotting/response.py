@@ -1,4 +1,5 @@
-"""The response curves of notebook 13 (issue 23): amplitude against frequency along branches of periodic motion."""
+"""The response curves of notebook 13 (issue 23): amplitude against frequency along branches of periodic motion,
+of one mass (rc01) and of each mass of a network (rc02)."""
 
 from __future__ import annotations
 
@@ -11,7 +12,7 @@ from matplotlib.figure import Figure
 
 from lumped.plotting._base import styled
 
-__all__ = ["response_curves"]
+__all__ = ["network_response", "response_curves"]
 
 
 @styled
@@ -68,3 +69,51 @@ def _panel(ax: Axes, branch: Mapping[str, np.ndarray], fp: float, colour: str) -
         ax.plot(r, np.where(stable, np.nan, ratio), "--", color=colour, lw=1.2)
     change = np.asarray(branch["kind"]) == "stops-change"
     ax.plot(r[change], ratio[change], "s", color=colour, ms=4)
+
+
+@styled
+def network_response(
+    omega: np.ndarray,
+    amplitudes: Mapping[str, np.ndarray],
+    stable: np.ndarray,
+    kind: np.ndarray,
+    linear: tuple[np.ndarray, Mapping[str, np.ndarray]] | None = None,
+    natural: Sequence[float] = (),
+    ax: Axes | None = None,
+) -> Figure:
+    """The amplitude of each mass (mm) against ``omega`` (rad/s) along one branch of a network's periodic motions.
+
+    Parameters
+    ----------
+    omega : array (k,)
+        The branch's frequencies in order.
+    amplitudes : mapping of str to array (k,)
+        Mass name -> half of max x minus min x over the period (m): one colour per mass, solid where
+        ``stable``, dashed where not; the points where ``kind`` is ``stops-change`` marked with a square.
+    stable, kind : array (k,)
+    linear : (array, mapping), optional
+        ``(omega, {mass: amplitude})`` of a reference curve (the network without friction), thin dotted.
+    natural : sequence of float
+        Natural frequencies (rad/s), thin vertical lines.
+    ax : Axes, optional
+    """
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.4, 3.4))
+    stable, change = np.asarray(stable, dtype=bool), np.asarray(kind) == "stops-change"
+    for i, (name, amp) in enumerate(amplitudes.items()):
+        mm = 1e3 * np.asarray(amp)
+        ax.plot(omega, np.where(stable, mm, np.nan), "-", color=f"C{i}", lw=1.2, label=name)
+        if not stable.all():
+            ax.plot(omega, np.where(stable, np.nan, mm), "--", color=f"C{i}", lw=1.2)
+        ax.plot(omega[change], mm[change], "s", color=f"C{i}", ms=4)
+        if linear is not None:
+            ax.plot(linear[0], 1e3 * np.asarray(linear[1][name]), ":", color=f"C{i}", lw=0.9)
+    for w in natural:
+        ax.axvline(w, color="0.6", lw=0.6)
+    ax.plot([], [], "s", color="0.4", ms=4, label="stops change")
+    if linear is not None:
+        ax.plot([], [], ":", color="0.4", lw=0.9, label="without friction")
+    ax.set_xlabel(r"forcing frequency $\omega$ (rad/s)")
+    ax.set_ylabel("amplitude (mm)")
+    ax.legend(loc="upper right", fontsize=8)
+    return ax.figure  # type: ignore[return-value]

@@ -33,11 +33,12 @@ import numpy as np
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
+from lumped.numerics.expm import expm
 from lumped.numerics.roots import brentq
 from lumped.solvers.network_modes import NetworkEvent, event_rows, final_rest, initial_mode, select, zero_set
 from lumped.solvers.network_phase import Parts, Phase, parts, refusal, switch_times
 
-__all__ = ["NetworkEvent", "solve_exact_network", "MAX_EVENTS"]
+__all__ = ["NetworkEvent", "solve_exact_network", "march", "MAX_EVENTS"]
 
 #: Most phases of one run before it is refused (each costs a few matrix exponentials).
 MAX_EVENTS = 20_000
@@ -45,7 +46,7 @@ MAX_EVENTS = 20_000
 _PER_PERIOD = 50
 
 
-def _step_for(ph: Phase, span: float) -> float:
+def step_for(ph: Phase, span: float) -> float:
     """The bracketing sub-step: a fiftieth of the shortest period (of the motion and the loads)."""
     fastest = float(np.max(np.abs(np.linalg.eigvals(ph.a)), initial=0.0))
     if fastest == 0:
@@ -55,17 +56,15 @@ def _step_for(ph: Phase, span: float) -> float:
 
 def _next_event(p: Parts, ph: Phase, t_lim: float) -> tuple[float, list[tuple[int, str]]]:
     """The first event of ``ph`` in ``(start, t_lim]``: its time and ``(element, kind)`` fired; none at ``t_lim``."""
-    from scipy.linalg import expm  # here: importing the package loads no SciPy solver
-
     rows, _, what = event_rows(p, ph)
     if not what:
         return t_lim, []
-    h = _step_for(ph, t_lim - ph.start)
+    h = step_for(ph, t_lim - ph.start)
     step = expm(ph.a * h)
     t0, z = ph.start, ph.z0
     while t0 < t_lim:
         t1 = min(t0 + h, t_lim)
-        z1 = step @ z if t1 - t0 == h else expm(ph.a * (t1 - t0)) @ z
+        z1 = step @ z if t1 == t0 + h else expm(ph.a * (t1 - t0)) @ z
         g0, g1 = rows @ z, rows @ z1
         fired = np.flatnonzero(g1 <= 0) if t0 > ph.start else np.flatnonzero((g1 <= 0) & ~((g0 <= 0) & (g1 >= g0)))
         if fired.size:
@@ -74,14 +73,24 @@ def _next_event(p: Parts, ph: Phase, t_lim: float) -> tuple[float, list[tuple[in
     return t_lim, []
 
 
+def _comes_back(ph: Phase, row: np.ndarray, t0: float, z: np.ndarray, t1: float) -> float:
+    """When an event function that starts at zero (to round-off) is below zero at ``t1``: ``t0`` if it falls at
+    once, else (it first rises: a slip that reverses and stops again within the sub-step) the time in
+    ``(t0, t1]`` at which it comes back to zero, found past its peak."""
+    value = lambda s: float(row @ (expm(ph.a * (s - t0)) @ z))
+    rate = lambda s: float(row @ (ph.a @ (expm(ph.a * (s - t0)) @ z)))
+    if not (rate(t0) > 0 and rate(t1) < 0):
+        return t0
+    peak = brentq(rate, t0, t1)
+    return brentq(value, peak, t1) if value(peak) > 0 else t0
+
+
 def _locate(ph, rows, what, fired, t0, z, t1, g0) -> tuple[float, list[tuple[int, str]]]:  # noqa: ANN001
     """The earliest root among the rows ``fired`` in ``(t0, t1]``, and every row that fires there."""
-    from scipy.linalg import expm
-
     roots = {}
     for r in fired:
         if g0[r] <= 0:
-            roots[r] = t0
+            roots[r] = _comes_back(ph, rows[r], t0, z, t1) if t0 == ph.start else t0
             continue
         roots[r] = brentq(lambda s, r=r: float(rows[r] @ (expm(ph.a * (s - t0)) @ z)), t0, t1)
     first = min(roots.values())
@@ -89,10 +98,11 @@ def _locate(ph, rows, what, fired, t0, z, t1, g0) -> tuple[float, list[tuple[int
     return first, sorted({what[r] for r, s in roots.items() if s - first <= near})
 
 
-def _march(net: Network, p: Parts, t_end: float, max_events: int) -> tuple[list[Phase], list[NetworkEvent]]:
-    """The phases to ``t_end`` and the events between them."""
-    x, v = (a[:-1] for a in net.initial_positions())
-    names = net.element_names
+def march(
+    p: Parts, x: np.ndarray, v: np.ndarray, t_end: float, names: list[str], max_events: int = MAX_EVENTS
+) -> tuple[list[Phase], list[NetworkEvent]]:
+    """The phases from the state ``(x, v)`` (m, m/s; (n,) each) at ``t = 0`` to ``t_end`` and the events
+    between them (``names`` the elements', for the events)."""
     mode, zero = initial_mode(p, v)
     phases = [select(p, 0.0, x, v, mode, zero, {})]
     events: list[NetworkEvent] = []
@@ -158,7 +168,8 @@ def solve_exact_network(
         index = np.append(index, n)
     times = index * dt
     p = parts(network)
-    phases, events = _march(network, p, float(times[-1]), max_events)
+    x0, v0 = (a[:-1] for a in network.initial_positions())
+    phases, events = march(p, x0, v0, float(times[-1]), network.element_names, max_events)
     x, v, f, rigid = _sample(phases, times)
     rigid = rigid & p.friction[None, :]
     rigid[0] = False

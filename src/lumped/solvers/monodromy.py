@@ -70,6 +70,26 @@ class PeriodMap(NamedTuple):
         xs = [p.x_start for p in self.solution.phases] + [float(self.end[0])]
         return 0.5 * (max(xs) - min(xs))
 
+    @property
+    def amplitudes(self) -> np.ndarray:
+        """``[amplitude]``: the amplitude of each mass, as for a network."""
+        return np.array([self.amplitude])
+
+    @property
+    def multipliers(self) -> np.ndarray:
+        """The Floquet multipliers: eigenvalues of the monodromy matrix (complex, shape (2,))."""
+        return np.linalg.eigvals(self.monodromy)
+
+    @property
+    def neutral(self) -> np.ndarray:
+        """No neutral direction is set apart for one mass (shape (0, 2); see the network's period map)."""
+        return np.zeros((0, 2))
+
+    @property
+    def free_basis(self) -> np.ndarray:
+        """The whole state space (the identity)."""
+        return np.eye(2)
+
 
 def period_map(osc: Oscillator, amplitude: float, omega: float, x0: float, v0: float) -> PeriodMap:
     """The exact motion over ``T = 2 pi/omega`` under ``amplitude sin(omega t)`` from ``(x0, v0)``, with its derivative.

@@ -12,8 +12,8 @@ sticking elements into groups, writes the motion of the free groups as
 (``P`` the membership of masses in free groups, ``u`` their displacement
 since the phase began) and augments it with the loads' generators (``1``,
 ``cos omega t``, ``sin omega t``), so that the state ``z`` obeys ``z' = A z``
-and ``z(t) = expm(A (t - t_0)) z_0`` exactly, whatever the damping, the
-resonance or the rigid-body modes.  Positions, velocities, accelerations and
+and ``z(t) = expm(A (t - t_0)) z_0`` exactly (:func:`lumped.numerics.expm.expm`),
+whatever the damping, the resonance or the rigid-body modes.  Positions, velocities, accelerations and
 every element's force (the sticking ones' reactions from the momentum
 balance, unique on a forest of sticking elements) are linear maps of ``z``
 (:class:`Phase`).
@@ -28,8 +28,9 @@ import numpy as np
 from lumped.laws.element import Element
 from lumped.model.forcing import Constant, SwitchedSine, jumps, kind_of
 from lumped.model.network import Network, listed, rigid_loop
+from lumped.numerics.expm import expm
 
-__all__ = ["Parts", "Phase", "parts", "phase", "refusal"]
+__all__ = ["Parts", "Phase", "groups", "parts", "phase", "refusal"]
 
 #: What the closed forms of a phase take, for the refusals.
 _TAKES = "linear springs, Bingham or Coulomb elements and linear dashpots under sine and constant loads"
@@ -128,7 +129,7 @@ def switch_times(p: Parts, t_end: float) -> list[float]:
     return sorted(t for t in times if 0 < t < t_end)
 
 
-def _groups(p: Parts, mode: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+def groups(p: Parts, mode: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``P`` (n, G), the membership of each mass in a free group, and the grounded masses (n,)."""
     n = p.m.size
     parent = list(range(n + 1))  # the ground is n
@@ -171,8 +172,6 @@ class Phase(NamedTuple):
     feed: np.ndarray
 
     def z(self, t: float) -> np.ndarray:
-        from scipy.linalg import expm  # here: importing the package loads no SciPy solver
-
         return expm(self.a * (t - self.start)) @ self.z0
 
     def values(self, z: np.ndarray, load: np.ndarray | None = None) -> tuple[np.ndarray, ...]:
@@ -215,7 +214,7 @@ def phase(p: Parts, t: float, x: np.ndarray, v: np.ndarray, mode: np.ndarray) ->
     element's rate is zero).
     """
     n, g = p.m.size, None
-    member, grounded = _groups(p, mode)
+    member, grounded = groups(p, mode)
     g = member.shape[1]
     dim = 2 * g + 1 + 2 * len(p.omegas)
     base = 2 * g

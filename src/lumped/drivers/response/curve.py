@@ -1,9 +1,13 @@
 """The response curve of a system file's mass under ``P sin(omega t)``: the API of ``python -m lumped response``.
 
 :func:`response_curve` takes a :class:`~lumped.model.network.Network` (a
-system file read by :func:`lumped.model.files.load_system`) of one mass on
-linear springs and a Bingham or Coulomb dashpot, all to the ground, and
-returns the table of :data:`COLUMNS` along the branch of periodic motions
+system file read by :func:`lumped.model.files.load_system`): one mass on
+linear springs and a Bingham or Coulomb dashpot, all to the ground, or a
+network of linear springs, Bingham and Coulomb elements and linear dashpots
+whose springs hold every mass to the ground
+(:func:`~lumped.drivers.response.systems.response_system`), and returns the
+table of ``omega``, ``amplitude_<mass>`` for each mass and :data:`COLUMNS`
+along the branch of periodic motions
 (:func:`~lumped.drivers.response.continuation.continue_orbits`).  The file's
 initial state is not used (each row's is found), and the file may hold no
 load of its own: the command's sine is the one load.
@@ -25,12 +29,12 @@ import numpy as np
 
 from lumped.drivers.response.continuation import Branch, ResponsePoint, continue_orbits
 from lumped.drivers.response.shooting import Orbit, find_orbit
+from lumped.drivers.response.systems import LoadedNetwork, response_system
 from lumped.model.network import Network
 from lumped.model.oscillator import Oscillator
-from lumped.model.problem import one_mass_form
 from lumped.numerics import validate
 
-__all__ = ["COLUMNS", "Curve", "response_curve", "response_oscillator"]
+__all__ = ["COLUMNS", "Curve", "response_curve"]
 
 #: The columns after ``omega`` and ``amplitude_<mass>``.
 COLUMNS = ("stops_per_period", "stable", "max_multiplier", "kind")
@@ -43,31 +47,13 @@ class Curve(NamedTuple):
     summary: str
 
 
-def response_oscillator(network: Network, mass: str) -> Oscillator:
-    """The oscillator of a one-mass network whose mass is named ``mass``; ``ValueError`` naming what is not supported."""
-    names = [m.name for m in network.masses]
-    if len(names) != 1:
-        raise ValueError(
-            f"system: response curves of networks of {len(names)} masses are not yet supported (one mass only)"
-        )
-    if mass not in names:
-        raise ValueError(f"force_on: no mass named {mass!r} in the system (its mass: {names[0]!r})")
-    if network.loads:
-        raise ValueError("system: the file has loads of its own; the response command applies the one sine load")
-    try:
-        osc = one_mass_form(network).oscillator
-    except ValueError as err:
-        raise ValueError(f"system: the network {err}; response curves need springs and one dashpot") from None
-    if osc.dashpot.bingham_form() is None:
-        raise ValueError("system: response curves need a Bingham or Coulomb dashpot (the exact solver's phases)")
-    return osc
-
-
 def _branches(
-    osc: Oscillator, amplitude: float, start: float, stop: float, points: int, progress: Callable | None
+    osc: Oscillator | LoadedNetwork, amplitude: float, start: float, stop: float, points: int, progress: Callable | None
 ) -> list[Branch]:
-    """One branch, or two around an undamped resonance (module docstring)."""
+    """One branch, or for one mass two around an undamped resonance (module docstring)."""
     first = continue_orbits(osc, amplitude, start, stop, points, progress)
+    if not isinstance(osc, Oscillator):
+        return [first]
     wn = math.sqrt(osc.stiffness / osc.mass)
     last = first.points[-1].orbit.omega
     if first.end != "amplitude" or osc.dashpot.bingham_form().viscosity != 0 or not last < wn < stop:
@@ -92,7 +78,8 @@ def response_curve(
     Parameters
     ----------
     network : Network
-        One mass, springs and a Bingham or Coulomb dashpot to the ground, no loads.
+        One mass on springs and a Bingham or Coulomb dashpot, or a network of linear springs, Bingham and
+        Coulomb elements and linear dashpots, no loads (:func:`~lumped.drivers.response.systems.response_system`).
     mass : str
         The mass the force acts on (its name in the file).
     amplitude : float, N
@@ -106,8 +93,8 @@ def response_curve(
     Returns
     -------
     Curve
-        Columns ``omega``, ``amplitude_<mass>`` (half of max x minus min x over
-        the period, m), then :data:`COLUMNS`.
+        Columns ``omega``, ``amplitude_<mass>`` for each mass (half of max x
+        minus min x over the period, m), then :data:`COLUMNS`.
     """
     amplitude = validate.positive("force_amplitude", amplitude)
     start, stop = validate.positive("start", start), validate.positive("stop", stop)
@@ -116,17 +103,18 @@ def response_curve(
     points = validate.positive_int("points", points)
     if points < 2:
         raise ValueError(f"points must be at least 2, got {points}")
-    osc = response_oscillator(network, mass)
-    branches = _branches(osc, amplitude, start, stop, points, progress)
+    system = response_system(network, mass)
+    branches = _branches(system, amplitude, start, stop, points, progress)
     rows = [p for b in branches for p in b.points]
-    return Curve(_table(rows, mass), _summary(branches, rows))
+    return Curve(_table(rows, network.mass_names), _summary(branches, rows))
 
 
-def _table(rows: list[ResponsePoint], mass: str) -> dict[str, np.ndarray]:
+def _table(rows: list[ResponsePoint], masses: list[str]) -> dict[str, np.ndarray]:
     orbits: list[Orbit] = [p.orbit for p in rows]
+    amplitudes = np.array([o.amplitudes for o in orbits]).reshape(len(orbits), len(masses))
     return {
         "omega": np.array([o.omega for o in orbits]),
-        f"amplitude_{mass}": np.array([o.amplitude for o in orbits]),
+        **{f"amplitude_{name}": amplitudes[:, i] for i, name in enumerate(masses)},
         "stops_per_period": np.array([float(o.stops) for o in orbits]),
         "stable": np.array([o.stable for o in orbits]),
         "max_multiplier": np.array([o.max_multiplier for o in orbits]),

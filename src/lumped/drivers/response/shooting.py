@@ -1,29 +1,35 @@
 """Periodic motions by shooting: the fixed point of the exact period map, found by Newton with the monodromy matrix.
 
 A motion of the forcing's period ``T = 2 pi/omega`` is a fixed point of the
-period map ``Pi`` (:func:`lumped.solvers.monodromy.period_map`):
-``Pi(z) = z`` with ``z = (x, v)`` at ``t = 0``.  Newton's step solves
-``(M - I) dz = -(Pi(z) - z)`` with the analytic monodromy matrix ``M``
-(stick phases included: their projection makes ``M`` singular, never
-``M - I``).  Its eigenvalues are the Floquet multipliers: the motion is
-stable when all lie inside the unit circle.
+period map ``Pi`` (:func:`lumped.drivers.response.systems.period_map`: one
+mass's, :func:`lumped.solvers.monodromy.period_map`, or a network's,
+:func:`lumped.solvers.network_monodromy.network_period_map`):
+``Pi(z) = z`` with ``z`` the state at ``t = 0`` (``(x, v)``, or a network's
+positions then velocities).  Newton's step solves ``(M - I) dz = -(Pi(z) -
+z)`` with the analytic monodromy matrix ``M`` (stick phases included: their
+projection makes ``M`` singular, never ``M - I``, but for a network's
+element that sticks through the period, whose elongation is then free:
+:func:`newton_step` keeps it).  Its eigenvalues are the Floquet multipliers:
+the motion is stable when all lie inside the unit circle.
 
 Lengths are measured in the units of the problem: ``X_s = P/k`` (the static
 deflection) for ``x``, ``X_s omega_n`` for ``v``, ``omega_n = sqrt(k/m)`` for
-``omega`` (:class:`Scales`); :data:`NEWTON_TOL` is a residual in those units.
+``omega`` (:class:`~lumped.drivers.response.systems.Scales`);
+:data:`NEWTON_TOL` is a residual in those units.
 """
 
 from __future__ import annotations
 
-import math
 from typing import NamedTuple
 
 import numpy as np
 
+from lumped.drivers.response.systems import LoadedNetwork, Scales, period_map
 from lumped.model.oscillator import Oscillator
-from lumped.solvers.monodromy import PeriodMap, period_map
+from lumped.solvers.monodromy import PeriodMap
+from lumped.solvers.network_monodromy import NetworkPeriodMap
 
-__all__ = ["NEWTON_TOL", "Orbit", "Scales", "find_orbit"]
+__all__ = ["NEWTON_TOL", "Orbit", "Scales", "find_orbit", "newton_step"]
 
 #: Newton stops when ``|Pi(z) - z|`` (largest component, in :class:`Scales` units) is below this:
 #: some 1e5 ulps of unit amplitude, above the period map's own round-off (its event times are
@@ -35,36 +41,19 @@ MAX_NEWTON = 40
 SETTLE_PERIODS = 400
 
 
-class Scales(NamedTuple):
-    """The units of the continuation: ``x`` (m), ``v`` (m/s) and ``omega`` (rad/s)."""
-
-    x: float
-    v: float
-    omega: float
-
-    @classmethod
-    def of(cls, osc: Oscillator, amplitude: float) -> Scales:
-        """``X_s = P/k``, ``X_s omega_n`` and ``omega_n = sqrt(k/m)``."""
-        wn = math.sqrt(osc.stiffness / osc.mass)
-        xs = amplitude / osc.stiffness
-        return cls(xs, xs * wn, wn)
-
-    def state(self, z: np.ndarray) -> np.ndarray:
-        """``(x, v)`` in these units."""
-        return np.asarray(z, dtype=float) / np.array([self.x, self.v])
-
-
 class Orbit(NamedTuple):
-    """A periodic motion: its frequency (rad/s), its state ``(x, v)`` at ``t = 0`` and one period of it."""
+    """A periodic motion: its frequency (rad/s), its state (positions, then velocities) at ``t = 0`` and one
+    period of it."""
 
     omega: float
     state: np.ndarray
-    period: PeriodMap
+    period: PeriodMap | NetworkPeriodMap
 
     @property
     def multipliers(self) -> np.ndarray:
-        """The Floquet multipliers: eigenvalues of the monodromy matrix (complex, shape (2,))."""
-        return np.linalg.eigvals(self.period.monodromy)
+        """The Floquet multipliers (complex): eigenvalues of the monodromy matrix, but for a network the
+        neutral ones of elements that stick through the period (see :attr:`NetworkPeriodMap.multipliers`)."""
+        return self.period.multipliers
 
     @property
     def max_multiplier(self) -> float:
@@ -78,8 +67,13 @@ class Orbit(NamedTuple):
 
     @property
     def amplitude(self) -> float:
-        """Half of ``max x - min x`` over the period (m)."""
+        """Half of ``max x - min x`` over the period (m), of the loaded mass."""
         return self.period.amplitude
+
+    @property
+    def amplitudes(self) -> np.ndarray:
+        """Half of ``max x - min x`` over the period (m), of each mass."""
+        return self.period.amplitudes
 
     @property
     def stops(self) -> int:
@@ -87,31 +81,47 @@ class Orbit(NamedTuple):
         return self.period.stops
 
 
-def _settle(osc: Oscillator, amplitude: float, omega: float, scales: Scales) -> np.ndarray:
+def _settle(system: Oscillator | LoadedNetwork, amplitude: float, omega: float, scales: Scales) -> np.ndarray:
     """The state after up to :data:`SETTLE_PERIODS` periods from rest (until two periods agree to 1e-3)."""
-    z = np.zeros(2)
+    z = np.zeros(2 if isinstance(system, Oscillator) else 2 * system.parts.m.size)
     for _ in range(SETTLE_PERIODS):
-        nxt = period_map(osc, amplitude, omega, *z).end
+        nxt = period_map(system, amplitude, omega, z).end
         if np.max(np.abs(scales.state(nxt - z))) < 1e-3:
             return nxt
         z = nxt
     return z
 
 
+def newton_step(pm: PeriodMap | NetworkPeriodMap, z: np.ndarray) -> np.ndarray:
+    """The Newton step on ``Pi(z) = z``: ``(M - I) dz = -(Pi(z) - z)``; with held elements (a network's
+    elements that stick through the period) within the states that keep their elongations, where ``M - I`` is
+    regular: ``W^T (M - I) W a = -W^T (Pi(z) - z)``, ``dz = W a``."""
+    if not pm.neutral.shape[0]:
+        return -np.linalg.solve(pm.monodromy - np.eye(z.size), pm.end - z)
+    w = pm.free_basis
+    return -w @ np.linalg.solve(w.T @ (pm.monodromy - np.eye(z.size)) @ w, w.T @ (pm.end - z))
+
+
 def find_orbit(
-    osc: Oscillator, amplitude: float, omega: float, guess: np.ndarray | None = None, tol: float = NEWTON_TOL
+    system: Oscillator | LoadedNetwork,
+    amplitude: float,
+    omega: float,
+    guess: np.ndarray | None = None,
+    tol: float = NEWTON_TOL,
 ) -> Orbit:
     """The periodic motion under ``amplitude sin(omega t)`` near ``guess`` (or the one reached from rest).
 
     Parameters
     ----------
-    osc : Oscillator
-        A Bingham or Coulomb dashpot.
+    system : Oscillator or LoadedNetwork
+        A Bingham or Coulomb oscillator, or a network with its loaded mass
+        (:mod:`~lumped.drivers.response.systems`).
     amplitude, omega : float
         ``P`` (N) and ``omega`` (rad/s), both ``> 0``.
-    guess : array of shape (2,), optional
-        ``(x, v)`` at ``t = 0`` to start Newton from; without it, the state
-        after a run from rest (:data:`SETTLE_PERIODS` periods at most).
+    guess : array of shape (2,) or (2n,), optional
+        The state (positions, then velocities) at ``t = 0`` to start Newton
+        from; without it, the state after a run from rest
+        (:data:`SETTLE_PERIODS` periods at most).
     tol : float
         :data:`NEWTON_TOL` by default.
 
@@ -120,11 +130,11 @@ def find_orbit(
     ValueError
         ``force_omega: ...`` when Newton does not converge in :data:`MAX_NEWTON` steps.
     """
-    scales = Scales.of(osc, amplitude)
-    z = _settle(osc, amplitude, omega, scales) if guess is None else np.asarray(guess, dtype=float)
+    scales = Scales.of(system, amplitude)
+    z = _settle(system, amplitude, omega, scales) if guess is None else np.asarray(guess, dtype=float)
     for _ in range(MAX_NEWTON):
-        pm = period_map(osc, amplitude, omega, *z)
+        pm = period_map(system, amplitude, omega, z)
         if np.max(np.abs(scales.state(pm.end - z))) <= tol:
             return Orbit(omega, z, pm)
-        z = z - np.linalg.solve(pm.monodromy - np.eye(2), pm.end - z)
+        z = z + newton_step(pm, z)
     raise ValueError(f"force_omega: Newton found no periodic motion at omega = {omega:.6g} rad/s in {MAX_NEWTON} steps")
