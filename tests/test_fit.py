@@ -7,11 +7,11 @@ import csv
 import json
 import math
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_run import run_lumped
 
 from lumped.drivers.fit import fit
 from lumped.drivers.sensitivity import system_sensitivities
@@ -104,7 +104,7 @@ def test_bad_records_are_refused_in_one_line(tmp_path, text, message):
 def test_a_simulate_output_reads_as_a_record(tmp_path):
     out = tmp_path / "run.csv"
     cmd = ["simulate", "--system", str(FIGURE3), "--t-end", "1", "--dt", "0.01", "--method", "exact"]
-    subprocess.run([sys.executable, "-m", "lumped", *cmd, "--output", str(out)], check=True, capture_output=True)
+    assert run_lumped(*cmd, "--output", str(out)).returncode == 0
     record = read_record(out, ["m"])
     assert record.t.size == 101 and set(record.x) == {"m"}
 
@@ -176,7 +176,7 @@ def test_the_standard_errors_cover_the_truth_in_at_least_90_of_100_trials():
 
 
 def _lumped(*args: str, cwd: Path | None = None) -> subprocess.CompletedProcess:
-    return subprocess.run([sys.executable, "-m", "lumped", *args], capture_output=True, text=True, cwd=cwd, check=False)
+    return run_lumped(*args, cwd=cwd)
 
 
 def test_the_fit_command_writes_the_estimates_as_json(tmp_path):

@@ -8,11 +8,10 @@ API (and the closed form of :mod:`test_loads`).
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 
 import numpy as np
 import pytest
+from cli_run import run_lumped
 from test_loads import coulomb
 
 import lumped as L
@@ -225,9 +224,7 @@ SWEEP_ZERO = [
 @pytest.mark.parametrize(("args", "message"), SWEEP_ZERO, ids=[" ".join(a) for a, _ in SWEEP_ZERO])
 def test_a_sweep_whose_every_sine_is_zero_is_refused_in_one_line(tmp_path, args, message):
     out = tmp_path / "sweep.csv"
-    run = subprocess.run(
-        [sys.executable, "-m", "lumped", "sweep", *args, "--output", str(out)], capture_output=True, text=True
-    )
+    run = run_lumped("sweep", *args, "--output", out)
     assert run.returncode == 2 and run.stderr.count("\n") == 1, run.stderr
     assert run.stderr.startswith(f"lumped sweep: error: {message}: with --force-omega 0 and --force-phase 0")
     assert not out.exists()
@@ -236,5 +233,5 @@ def test_a_sweep_whose_every_sine_is_zero_is_refused_in_one_line(tmp_path, args,
 def test_a_sweep_of_a_constant_load_still_runs(tmp_path):
     args = ["--force-amplitude", "3", "--force-phase", "1.5707963267948966", "--vary", "x0=0.1:0.2:2"]
     out = tmp_path / "sweep.csv"
-    run = subprocess.run([sys.executable, "-m", "lumped", "sweep", *args, "--output", str(out)], capture_output=True)
+    run = run_lumped("sweep", *args, "--output", out)
     assert run.returncode == 0 and len(out.read_text().splitlines()) == 3

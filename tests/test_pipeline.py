@@ -61,6 +61,7 @@ def dry_run() -> dict[str, str]:
     return _outputs_by_rule(_snakemake("--dry-run", "--forceall"))
 
 
+@pytest.mark.slow  # a snakemake or convergence run: the slow suite (.ci/run runs it)
 @pytest.mark.parametrize("number", FIGURES)
 @pytest.mark.parametrize("ext", ["pdf", "png"])
 def test_every_paper_figure_has_a_job(dry_run, number, ext):
@@ -70,6 +71,7 @@ def test_every_paper_figure_has_a_job(dry_run, number, ext):
     assert rule.startswith("notebook_"), f"figure {number} is made by rule {rule}"
 
 
+@pytest.mark.slow  # a snakemake or convergence run: the slow suite (.ci/run runs it)
 @pytest.mark.parametrize("number", EXTENSIONS)
 @pytest.mark.parametrize("ext", ["pdf", "png"])
 def test_every_tutorial_figure_has_a_job_and_stays_out_of_the_article(dry_run, number, ext):
@@ -82,6 +84,7 @@ def test_every_tutorial_figure_has_a_job_and_stays_out_of_the_article(dry_run, n
     assert f"`{Path(next(iter(made))).stem}`" in listed
 
 
+@pytest.mark.slow  # a snakemake or convergence run: the slow suite (.ci/run runs it)
 def test_the_article_embeds_only_the_paper_figures():
     text = _snakemake("--dry-run", "--forceall", "paper/paper.pdf")
     (inputs,) = [fields["input"] for rule, fields in _jobs(text) if rule == "paper"]
@@ -89,6 +92,7 @@ def test_the_article_embeds_only_the_paper_figures():
     assert len(figures) == 14 and all(re.fullmatch(r"figures/fig\d\d_\w+\.pdf", p) for p in figures), figures
 
 
+@pytest.mark.slow  # a snakemake or convergence run: the slow suite (.ci/run runs it)
 def test_every_notebook_is_executed_and_figures_come_from_notebooks(dry_run):
     executed = {p for p in dry_run if p.startswith("results/notebooks/")}
     sources = sorted(Path(ROOT, "notebooks").glob("[0-9][0-9]_*.py"))
@@ -148,6 +152,7 @@ def plans(up_to_date) -> dict[tuple[str, ...], str]:
     return texts
 
 
+@pytest.mark.slow  # a snakemake or convergence run: the slow suite (.ci/run runs it)
 @pytest.mark.parametrize("overrides", OVERRIDES[:2], ids=["none", "dt=1e-4"])
 def test_nothing_is_planned_when_up_to_date_or_overridden_with_the_default(plans, overrides):
     """The baseline of the next test: an override equal to the default changes nothing."""
@@ -155,6 +160,7 @@ def test_nothing_is_planned_when_up_to_date_or_overridden_with_the_default(plans
     assert "Nothing to be done" in text and _reasons_by_rule(text) == {}, text[-2000:]
 
 
+@pytest.mark.slow  # a snakemake or convergence run: the slow suite (.ci/run runs it)
 @pytest.mark.parametrize(("overrides", "before", "after"), CHANGES, ids=[" ".join(c[0]) for c in CHANGES])
 def test_config_override_reruns_the_config_and_every_notebook(plans, overrides, before, after):
     """From an up-to-date tree, an override that changes a value plans effective_config
@@ -189,6 +195,7 @@ STUDY_JOBS = {
 }
 
 
+@pytest.mark.slow  # a snakemake or convergence run: the slow suite (.ci/run runs it)
 @pytest.mark.parametrize("studies", [None, "full"])
 def test_every_study_is_chunk_jobs_merged_by_one_rule_and_read_by_its_notebook(studies):
     """One study_<name>_chunk job per chunk of the study module's CHUNKS, merged in order by study_<name>."""

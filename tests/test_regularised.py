@@ -86,6 +86,7 @@ def _slope(dts: list[float], errors: list[float]) -> float:
     return float(np.polyfit(np.log(dts), np.log(errors), 1)[0])
 
 
+@pytest.mark.slow  # a convergence study: the slow suite (.ci/run runs it)
 @pytest.mark.parametrize(("method", "order"), [("backward_euler", 1), ("theta_method", 2)])
 def test_time_stepping_converges_at_its_order_to_the_smooth_ode(method, order):
     # eps = 1e-2 keeps the ODE smooth on the scale of the steps; the slope of
@@ -148,6 +149,7 @@ def test_eps_to_zero_approaches_the_exact_bingham_solution_within_the_derived_bo
     assert gap <= bound
 
 
+@pytest.mark.slow  # a convergence study: the slow suite (.ci/run runs it)
 def test_the_gap_to_bingham_shrinks_with_eps():
     t = np.linspace(0.0, T_END, 1001)
     exact = L.solve_exact(L.Oscillator.bingham(M, K, TAU, 1.0), T_END, x0=X0).sample(1e-3).x

@@ -7,11 +7,11 @@ from __future__ import annotations
 import csv
 import math
 import subprocess
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_run import run_lumped
 
 from lumped.drivers.response import NEWTON_TOL, continue_orbits, find_orbit
 from lumped.model.forcing import SwitchedSine
@@ -135,9 +135,7 @@ def test_stable_orbit_is_where_a_long_run_from_rest_settles(gamma, r):
 
 
 def _run(tmp_path: Path, *args: str) -> subprocess.CompletedProcess:
-    return subprocess.run(
-        [sys.executable, "-m", "lumped", "response", *args], check=False, cwd=tmp_path, capture_output=True, text=True
-    )
+    return run_lumped("response", *args, cwd=tmp_path)
 
 
 def test_command_writes_the_curve_from_start_to_stop(tmp_path):

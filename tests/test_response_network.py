@@ -8,12 +8,12 @@ from __future__ import annotations
 import csv
 import math
 import subprocess
-import sys
 import tomllib
 from pathlib import Path
 
 import numpy as np
 import pytest
+from cli_run import run_lumped
 from scipy.linalg import sqrtm
 
 import lumped as L
@@ -318,9 +318,7 @@ def test_fold_and_period_doubling_are_told_by_the_sign_of_det_m_minus_and_plus_i
 
 
 def _run(tmp_path: Path, *args: str) -> subprocess.CompletedProcess:
-    return subprocess.run(
-        [sys.executable, "-m", "lumped", "response", *args], check=False, cwd=tmp_path, capture_output=True, text=True
-    )
+    return run_lumped("response", *args, cwd=tmp_path)
 
 
 def test_command_writes_an_amplitude_column_for_each_mass(tmp_path):
