@@ -27,7 +27,7 @@ order two within a mode, and a crossing located on its partial step is in
 error by ``O(dt^3)`` locally.  It is A-stable, so stiff viscous branches do
 not limit the step.  The one-mass method steps the dashpot's resolvent and
 so runs any monotone law; this one steps the linear ODE of each mode, so it
-runs the networks whose modes are linear (:func:`refusal`).  Between the
+runs the networks whose modes are linear (:func:`lumped.solvers.network_phase.refusal`).  Between the
 trapezoidal rule and the ``exact`` method (the same modes, the same
 switching rule, but each phase by the matrix exponential) the only
 difference is the integration within a mode, which is what the
@@ -44,10 +44,9 @@ import numpy as np
 from lumped.model.forcing import jumps
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
-from lumped.numerics import validate
 from lumped.numerics.roots import brentq
-from lumped.solvers.network_modes import NetworkEvent, event_rows, final_rest, initial_mode, select, zero_set
-from lumped.solvers.network_phase import Parts, Phase, parts, refusal
+from lumped.solvers.network_modes import NetworkEvent, event_rows, grid_rows, initial_mode, select, trajectory, zero_set
+from lumped.solvers.network_phase import Parts, Phase, parts
 
 __all__ = ["MAX_SWITCHES_PER_STEP", "solve_capturing_network"]
 
@@ -189,42 +188,15 @@ def solve_capturing_network(network: Network, t_end: float, dt: float, *, save_e
         For a bad argument, or a network with a mode that is not linear
         (one line naming the element that blocks it).
     """
-    if not isinstance(network, Network):
-        raise ValueError(f"network must be a Network, got {type(network).__name__}")
-    if (reason := refusal(network, "event-capturing", any_load=True)) is not None:
-        raise ValueError(reason)
-    t_end, dt = validate.positive("t_end", t_end), validate.positive("dt", dt)
-    save_every = validate.stride("save_every", save_every)
-    n = validate.step_count(t_end, dt)
-    validate.output_size(n, save_every)
-    index = np.arange(0, n + 1, save_every)
-    if index[-1] != n:
-        index = np.append(index, n)
+    index, dt, save_every = grid_rows(network, "event-capturing", t_end, dt, save_every, any_load=True)
+    n = int(index[-1])
     p = parts(network)._replace(loads=(), omegas=())  # the loads are stepped as functions of time
     march = _March(network, p, dt, n * dt)
-    rows: list[tuple[np.ndarray, ...]] = [march.sample()]
+    samples: list[tuple[np.ndarray, ...]] = [march.sample()]
     kept = set(index.tolist())
     for step in range(1, n + 1):
         march.step_to(step * dt)
         if step in kept:
-            rows.append(march.sample())
-    x, v, f, rigid = (np.array(r) for r in zip(*rows))
-    times = index * dt
-    rigid = rigid & p.friction[None, :]
-    rigid[0] = False
-    return Trajectory(
-        t=times,
-        positions=x,
-        velocities=v,
-        forces=f,
-        applied=network.load_table(times),
-        network=network,
-        method="event-capturing",
-        dt=dt,
-        save_every=save_every,
-        states=np.where(p.k[None, :] > 0, f, 0.0),
-        rigid=rigid,
-        final_rest=final_rest(march.phases, x[-1]),
-        solver="event-capturing",
-        events=tuple(march.events),
-    )
+            samples.append(march.sample())
+    rows = tuple(np.array(r) for r in zip(*samples))
+    return trajectory(network, p, index, dt, save_every, rows, march.phases, march.events, "event-capturing")

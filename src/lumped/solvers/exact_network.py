@@ -32,11 +32,18 @@ import math
 import numpy as np
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
-from lumped.numerics import validate
 from lumped.numerics.expm import expm
 from lumped.numerics.roots import brentq
-from lumped.solvers.network_modes import NetworkEvent, event_rows, final_rest, initial_mode, select, zero_set
-from lumped.solvers.network_phase import Parts, Phase, parts, refusal, switch_times
+from lumped.solvers.network_modes import (
+    NetworkEvent,
+    event_rows,
+    grid_rows,
+    initial_mode,
+    select,
+    trajectory,
+    zero_set,
+)
+from lumped.solvers.network_phase import Parts, Phase, parts, switch_times
 
 __all__ = ["NetworkEvent", "solve_exact_network", "march", "MAX_EVENTS"]
 
@@ -155,38 +162,9 @@ def solve_exact_network(
         For a bad argument, or a network whose phases have no closed form
         (one line naming the element or load that blocks it).
     """
-    if not isinstance(network, Network):
-        raise ValueError(f"network must be a Network, got {type(network).__name__}")
-    if (reason := refusal(network)) is not None:
-        raise ValueError(reason)
-    t_end, dt = validate.positive("t_end", t_end), validate.positive("dt", dt)
-    save_every = validate.stride("save_every", save_every)
-    n = validate.step_count(t_end, dt)
-    validate.output_size(n, save_every)
-    index = np.arange(0, n + 1, save_every)
-    if index[-1] != n:
-        index = np.append(index, n)
-    times = index * dt
+    index, dt, save_every = grid_rows(network, "exact", t_end, dt, save_every, any_load=False)
     p = parts(network)
     x0, v0 = (a[:-1] for a in network.initial_positions())
-    phases, events = march(p, x0, v0, float(times[-1]), network.element_names, max_events)
-    x, v, f, rigid = _sample(phases, times)
-    rigid = rigid & p.friction[None, :]
-    rigid[0] = False
-    states = np.where(p.k[None, :] > 0, f, 0.0)
-    return Trajectory(
-        t=times,
-        positions=x,
-        velocities=v,
-        forces=f,
-        applied=network.load_table(times),
-        network=network,
-        method="exact",
-        dt=dt,
-        save_every=save_every,
-        states=states,
-        rigid=rigid,
-        final_rest=final_rest(phases, x[-1]),
-        solver="exact",
-        events=tuple(events),
-    )
+    phases, events = march(p, x0, v0, float(index[-1] * dt), network.element_names, max_events)
+    rows = _sample(phases, index * dt)
+    return trajectory(network, p, index, dt, save_every, rows, phases, events, "exact")

@@ -26,9 +26,22 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from lumped.solvers.network_phase import Parts, Phase, phase
+from lumped.model.network import Network
+from lumped.model.trajectory import Trajectory
+from lumped.numerics import validate
+from lumped.solvers.network_phase import Parts, Phase, phase, refusal
 
-__all__ = ["BAND", "NetworkEvent", "event_rows", "final_rest", "initial_mode", "select", "zero_set"]
+__all__ = [
+    "BAND",
+    "NetworkEvent",
+    "event_rows",
+    "final_rest",
+    "grid_rows",
+    "initial_mode",
+    "select",
+    "trajectory",
+    "zero_set",
+]
 
 #: A sticking element's reaction may exceed its threshold by this fraction (round-off) and still stick.
 BAND = 1e-9
@@ -129,3 +142,55 @@ def final_rest(phases: list[Phase], x_end: np.ndarray) -> tuple[np.ndarray, np.n
                 break
             rest[i] = ph.start
     return rest, np.where(np.isnan(rest), math.nan, x_end)
+
+
+def grid_rows(
+    network: object, method: str, t_end: float, dt: float, save_every: int, *, any_load: bool
+) -> tuple[np.ndarray, float, int]:
+    """``(index, dt, save_every)``: the saved grid indices ``n`` of ``t_n = n*dt`` (the last always kept)
+    and the checked arguments, after the method's refusal of ``network`` (one line naming what blocks it)."""
+    if not isinstance(network, Network):
+        raise ValueError(f"network must be a Network, got {type(network).__name__}")
+    if (reason := refusal(network, method, any_load=any_load)) is not None:
+        raise ValueError(reason)
+    t_end, dt = validate.positive("t_end", t_end), validate.positive("dt", dt)
+    save_every = validate.stride("save_every", save_every)
+    n = validate.step_count(t_end, dt)
+    validate.output_size(n, save_every)
+    index = np.arange(0, n + 1, save_every)
+    return (index if index[-1] == n else np.append(index, n)), dt, save_every
+
+
+def trajectory(
+    network: Network,
+    p: Parts,
+    index: np.ndarray,
+    dt: float,
+    save_every: int,
+    rows: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
+    phases: list[Phase],
+    events: list[NetworkEvent],
+    method: str,
+) -> Trajectory:
+    """The :class:`Trajectory` of a run by phases: ``rows`` are positions, velocities, forces and the
+    sticking flags at the saved times (springs' states are their forces; no element is rigid at t = 0)."""
+    x, v, f, rigid = rows
+    times = index * dt
+    rigid = rigid & p.friction[None, :]
+    rigid[0] = False
+    return Trajectory(
+        t=times,
+        positions=x,
+        velocities=v,
+        forces=f,
+        applied=network.load_table(times),
+        network=network,
+        method=method,
+        dt=dt,
+        save_every=save_every,
+        states=np.where(p.k[None, :] > 0, f, 0.0),
+        rigid=rigid,
+        final_rest=final_rest(phases, x[-1]),
+        solver=method,
+        events=tuple(events),
+    )
