@@ -202,9 +202,14 @@ steps = (2e-3, 1e-3, 5e-4)
 orders = AN.network_orders(AN.network_study(steps), steps)
 print(f"steps {steps} s; fitted orders, smallest to largest over {len(AN.NETWORK_CASES)} networks")
 print(f"{'':18s}" + "".join(f"{kind:>16s}" for kind in (*AN.NETWORK_KINDS, "max |x - x_ref|")))
+
+def two(x: float) -> str:
+    return f"{round(x, 2) + 0.0:.2f}"  # + 0.0: a slope of -1e-15 (round-off about 0) prints 0.00, not -0.00
+
+
 for method, row in orders.items():
     cells = [row[q] for q in (*AN.NETWORK_KINDS, "max_x")]
-    print(f"{method:18s}" + "".join(f"{f'{c[0]:.2f} to {c[1]:.2f}' if c else '-':>16s}" for c in cells))
+    print(f"{method:18s}" + "".join(f"{f'{two(c[0])} to {two(c[1])}' if c else '-':>16s}" for c in cells))
 
 # %% [markdown]
 # The event-capturing method keeps order two through every kind of event, as
