@@ -48,7 +48,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="with --method exact: add the columns dx_<mass>/d<NAME>, the derivative of each mass's x at each "
         "time with respect to the parameters NAME, written element.key, mass.key or force.key as in the system "
         "file (without --system the mass is m, its elements spring and dashpot: m.x0, dashpot.threshold, "
-        "dashpot.gamma, spring.stiffness, force.amplitude, ...); one mass only",
+        "dashpot.gamma, spring.stiffness, force.amplitude, ...); a network's for every mass",
     )
     required = sim.add_argument_group("required arguments")
     required.add_argument("--output", required=True, help="output file, .csv or .npz")
