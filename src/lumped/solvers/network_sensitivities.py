@@ -24,7 +24,7 @@ elements that do not stick, ``G = S (S^T m S)^-1 S^T`` (module Notes of
 * A parameter ``p``'s derivative at a fixed time, ``u = dY/dp``, obeys ``u' = A
   u + (dA/dp) Y``: both are solved at once by the exponential of the block
   matrix ``[[A, 0], [dA/dp, A]]`` (Van Loan, IEEE Trans. Automat. Control 23
-  (1978) 395-404), one block row per parameter.  ``dN/dp`` is
+  (1978) 395-404), one such block per parameter.  ``dN/dp`` is
   ``-a_e a_e^T`` on ``x`` for a spring's stiffness, on ``v`` for a
   viscosity (``a_e`` the element's column of the incidence; 0 while it
   sticks), ``-mu_e a_e`` on the generator 1 for a slipping threshold, and
@@ -226,7 +226,8 @@ class _Carry:
             if prm.kind in ("x0", "v0"):
                 D[1 + prm.index + (n if prm.kind == "v0" else 0), j] = 1.0
         self.starts: list[np.ndarray] = []
-        self.pieces: list[tuple[float, np.ndarray, np.ndarray]] = []
+        #: per phase: its start, each parameter's block matrix and initial vector ``(Y_a, u_a)``.
+        self.pieces: list[tuple[float, list[np.ndarray], list[np.ndarray]]] = []
         self.events: list[NetworkEventSensitivity] = []
         for k, ph in enumerate(phases):  # phase k + 1 begins at event k; the last runs to the end
             self.starts.append(D)
@@ -247,13 +248,15 @@ class _Carry:
         q[: 2 * n, : 2 * n] = fl.q
         y_a = self._state(ph, ph.z0)
         u_a = q @ (D[1:] - np.outer(a @ y_a, D[0]))
-        block = np.kron(np.eye(width + 1), a)
-        block[dim:, :dim] = da.reshape(width * dim, dim)
-        w_a = np.concatenate([y_a, u_a.T.ravel()])
-        self.pieces.append((ph.start, block, w_a))
+        blocks = [np.block([[a, np.zeros_like(a)], [da[j], a]]) for j in range(width)]
+        w_a = [np.concatenate([y_a, u_a[:, j]]) for j in range(width)]
+        self.pieces.append((ph.start, blocks, w_a))
         if event is None:
             return D
-        u_b = (expm(block * (event.time - ph.start)) @ w_a)[dim:].reshape(width, dim).T
+        h = event.time - ph.start
+        u_b = np.zeros((dim, width))
+        for j in range(width):  # a block of 2 dim per parameter: cheaper than one of (p + 1) dim for all
+            u_b[:, j] = (expm(blocks[j] * h) @ w_a[j])[dim:]
         z_b = ph.z(event.time)
         y_b = self._state(ph, z_b)
         dt, margin, e = self._event(ph, fl, event, after, y_b, u_b, z_b, frow, dfrow)
@@ -289,9 +292,10 @@ class _Carry:
         which = np.clip(np.searchsorted(starts, t, side="right") - 1, 0, len(starts) - 1)
         for k in np.unique(which):
             sel = np.flatnonzero(which == k)
-            start, block, w_a = self.pieces[k]
-            u = flow(block, w_a, t[sel] - start)[:, dim:].reshape(sel.size, width, dim)
-            dx[sel], dv[sel] = u[:, :, :n].transpose(0, 2, 1), u[:, :, n : 2 * n].transpose(0, 2, 1)
+            start, blocks, w_a = self.pieces[k]
+            for j in range(width):
+                u = flow(blocks[j], w_a[j], t[sel] - start)[:, dim:]
+                dx[sel, :, j], dv[sel, :, j] = u[:, :n], u[:, n : 2 * n]
         return dx, dv
 
 
