@@ -202,7 +202,7 @@ def test_a_one_mass_network_agrees_with_the_one_mass_sensitivities(text):
     net = parse_system(text)
     names = [n for n in ONE_MASS if n.startswith(("m.", "spring", "dashpot")) or "force" in text]
     t = np.linspace(0.0, 4.0, 161)
-    solution, one = system_sensitivities(net, t, names)
+    _, one = system_sensitivities(net, t, names)
     ours = network_sensitivities(parts(net), [0.5], [0.0], t, [ONE_MASS[n] for n in names], net.element_names)
     assert one.smallest_margin() > 1e-2
     scale = np.abs(one.x).max(axis=0)

@@ -261,7 +261,7 @@ class _Carry:
         y_b = self._state(ph, z_b)
         dt, margin, e = self._event(ph, fl, event, after, y_b, u_b, z_b, frow, dfrow)
         D = np.vstack([dt, u_b + np.outer(a @ y_b, dt)])
-        self.events.append(NetworkEventSensitivity(event, dt, D[1 : 1 + n], margin, e))
+        self.events.append(NetworkEventSensitivity(event, dt, D[1 : 1 + n], float(margin), e))
         return D
 
     def _event(self, ph, fl, event, after, y_b, u_b, z_b, frow, dfrow) -> tuple[np.ndarray, float, int]:
