@@ -50,13 +50,15 @@ elements that do not stick, ``G = S (S^T m S)^-1 S^T`` (module Notes of
 
 Where the sequence of events changes with a parameter the solution is not
 differentiable there; each event carries its distance from such a change
-(:attr:`NetworkEventSensitivity.margin`, dimensionless): the event
-function's rate ``|g'|`` (``m_e |g'|/tau_e`` for a stop, ``m_e`` the
-smaller mass at the element's ends; ``|g'|/(tau_e w_max)`` for a breakaway,
-``w_max`` the phase's fastest rate), and for each element that sticks after
-it ``(tau_e - |f_e|)/tau_e``, for each that stopped or stuck and slips after
-it ``(|f_e| - tau_e)/tau_e`` (``f_e`` its reaction were it to stick).  Near
-0 the derivatives are one-sided.
+(:attr:`NetworkEventSensitivity.margin`, dimensionless), the smallest of:
+the event function's rate ``|g'|`` (``m_e |g'|/tau_e`` for a stop, ``m_e``
+the smaller mass at the element's ends; ``|g'|/(tau_e w_max)`` for a
+breakaway, ``w_max`` the fastest rate of the phase it ends); the time since
+the event before, ``w_max (t_b - t_a)`` (two events at one instant, which
+may swap; 0 for an event of two elements at once); for each element that sticks after it ``(tau_e - |f_e|)/tau_e``,
+for each that stopped or stuck and slips after it ``(|f_e| - tau_e)/tau_e``
+(``f_e`` its reaction were it to stick).  A switch has only the last two.
+Near 0 the derivatives are one-sided.
 """
 
 from __future__ import annotations
@@ -273,16 +275,19 @@ class _Carry:
             return dt, _band(p, ph, after, ()), -1
         e, s, r, rate = event_gradient(p, ph, fl, event, self.names, z_b)
         dg = r @ u_b[: 2 * n]
+        fastest = float(np.max(np.abs(np.linalg.eigvals(ph.a)), initial=0.0))
+        apart = (event.time - ph.start) * fastest if fastest > 0 else math.inf  # from the event before
+        if len(set(event.elements)) > 1:  # two elements at one instant (to the events' precision)
+            apart = 0.0
         if event.kind == "breakaway":
             row = int(np.flatnonzero(fl.sticking == e)[0])
             dg = dg - s * (frow[row, 2 * n :] @ u_b[2 * n :]) - s * (dfrow[:, row] @ y_b)
             dg += np.array([1.0 if prm == Parameter("threshold", e) else 0.0 for prm in self.params])
-            fastest = float(np.max(np.abs(np.linalg.eigvals(ph.a)), initial=0.0))
             steep = abs(rate) / (p.tau[e] * fastest) if fastest > 0 else math.inf
-            return -dg / rate, min(steep, _band(p, ph, after, (), skip=e)), e
+            return -dg / rate, min(steep, apart, _band(p, ph, after, (), skip=e)), e
         ends = [i for i in range(n) if p.b[i, e] != 0]
         steep = float(np.min(p.m[ends])) * abs(rate) / p.tau[e]
-        return -dg / rate, min(steep, _band(p, ph, after, (e,))), e
+        return -dg / rate, min(steep, apart, _band(p, ph, after, (e,))), e
 
     def sample(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``dx/dp`` and ``dv/dp`` (T, n, p) at the times ``t``, each in the phase that holds it."""
@@ -294,7 +299,7 @@ class _Carry:
             sel = np.flatnonzero(which == k)
             start, blocks, w_a = self.pieces[k]
             for j in range(width):
-                u = flow(blocks[j], w_a[j], t[sel] - start)[:, dim:]
+                u = flow(blocks[j], w_a[j], t[sel] - start, expm)[:, dim:]
                 dx[sel, :, j], dv[sel, :, j] = u[:, :n], u[:, n : 2 * n]
         return dx, dv
 
