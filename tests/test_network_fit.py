@@ -51,6 +51,8 @@ def test_the_network_fits_standard_errors_cover_the_truth_in_at_least_90_of_100_
     # As the one-mass test in tests/test_fit.py: each parameter within two standard errors of the truth in at
     # least 90 of 100 seeded records (95 expected for a linearised Gaussian model; 90 is 2.3 standard
     # deviations of a binomial below), and the mean of z^2 within 3 standard deviations, 3 sqrt(2/100), of 1.
+    # On one machine: 93, 92 and 94 hits, mean z^2 1.25, 1.22, 1.03; no |z| within 0.025 of 2, so round-off
+    # cannot move a trial across the line.
     start = _start()
     z = np.array([(r.estimate - TRUTH) / r.standard_error for r in (fit(start, _record(s), FREE) for s in range(100))])
     hits = np.sum(np.abs(z) <= 2, axis=0)
