@@ -153,7 +153,7 @@ def _differences(name: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 def test_the_case_is_away_from_every_change_of_its_event_sequence(exact):
     assert exact.smallest_margin() > 0.05
     assert len(exact.events) == 32 and np.all(np.isfinite(exact.rest_time))  # both masses come to rest
-    # stop_times: the slip-to-stick events, checked on the phases (4 of the 29 stops; the others slip back)
+    # stop_times: the slip-to-stick events, checked on the phases (4 of the 29 stops: at the others the element does not stick)
     names, phases = parse_system(TWO).element_names, exact.motion.phases
     sticks = [
         (names[e], ph.start)
