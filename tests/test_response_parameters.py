@@ -119,9 +119,23 @@ def test_a_mass_held_through_the_period_is_a_neutral_motion_not_an_unstable_one(
 def test_command_follows_a_parameter_of_the_file(tmp_path):
     out = tmp_path / "threshold.csv"
     done = run_lumped(
-        "response", "--system", str(FIGURE3), "--force-on", "m", "--amplitude", "2.5", "--omega", "8",
-        "--vary", "dashpot.threshold=0.2:2", "--points", "10", "--output", str(out), cwd=tmp_path,
-    )  # fmt: skip
+        "response",
+        "--system",
+        str(FIGURE3),
+        "--force-on",
+        "m",
+        "--amplitude",
+        "2.5",
+        "--omega",
+        "8",
+        "--vary",
+        "dashpot.threshold=0.2:2",
+        "--points",
+        "10",
+        "--output",
+        str(out),
+        cwd=tmp_path,
+    )
     assert done.returncode == 0, done.stderr
     rows = list(csv.DictReader(out.open()))
     assert list(rows[0])[:2] == ["dashpot.threshold", "omega"]
@@ -146,9 +160,21 @@ def test_command_follows_a_parameter_of_the_file(tmp_path):
 )
 def test_command_refuses_a_bad_vary_in_one_line(tmp_path, omega, vary, words):
     done = run_lumped(
-        "response", "--system", str(FIGURE3), "--force-on", "m", "--amplitude", "2.5", "--omega", omega,
-        "--vary", vary, "--output", str(tmp_path / "r.csv"), cwd=tmp_path,
-    )  # fmt: skip
+        "response",
+        "--system",
+        str(FIGURE3),
+        "--force-on",
+        "m",
+        "--amplitude",
+        "2.5",
+        "--omega",
+        omega,
+        "--vary",
+        vary,
+        "--output",
+        str(tmp_path / "r.csv"),
+        cwd=tmp_path,
+    )
     assert done.returncode == 2
     assert len(done.stderr.strip().splitlines()) == 1 and words in done.stderr, done.stderr
     assert list(tmp_path.iterdir()) == []
