@@ -415,7 +415,11 @@ print(f"rest time jump {abs(cut.rest_time_jump):.4f} s against pi/q = {math.pi /
 # not jump. Where the change falls while the force is on, the
 # event sequence changes too (a reversal becomes a stop with a breakaway at
 # once, as for the steady amplitude above), but the motion keeps its
-# derivative: only the events' times have kinks. And a force that goes off
-# just as the mass would break away cuts a stick short: there the rest time
-# jumps by the rest of the stick (`tests/test_one_sided.py` checks these
-# cases against one-sided differences on each side).
+# derivative: only the events' times have kinks. Where the force only
+# touches the band's edge, a breakaway and a stop appear on one side, their
+# times with slopes that grow as $\delta^{-1/2}$, while the motion moves by
+# $\delta^2$ only. And a force that goes off just as the mass would break
+# away cuts a stick short: there the rest time jumps by the rest of the
+# stick (`tests/test_one_sided.py` checks these cases against one-sided
+# differences on each side, and the breakaway's slope against its closed
+# form).

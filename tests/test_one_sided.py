@@ -186,6 +186,32 @@ def test_across_a_lost_half_cycle_after_the_force_the_sides_are_the_closed_form_
         assert jump == pytest.approx(gain.rest_time_jump, abs=1e-9)  # half a damped period
 
 
+def test_a_force_that_only_touches_the_band_gives_event_times_of_unbounded_slope():
+    # A mass stuck at x = 0 under P sin(w t) with P = tau: the force touches the band's edge at its peaks and
+    # never leaves it.  Below, the mass never moves (no events); above, it breaks away at t_c = asin(tau/P)/w,
+    # whose slope dt_c/dP = -tau/(P^2 w sqrt(1 - tau^2/P^2)) grows as delta^(-1/2).  The chain at P = tau + delta
+    # is exact there: it must equal that closed form, to the closed form's own cancellation (1 - tau^2/P^2 =
+    # 2 delta carries eps/delta relatively: 1e-7, halved by the root).  The slip lasts ~delta^(1/2) with a force
+    # excess ~delta: x moves by ~delta^2, so its slope is ~delta on that side, 0 on the other: C^1.
+    w = 1.3
+    sol = solve_exact(Oscillator.bingham(1.0, 1.0, 1.0, 2.0), 10.0, force=SwitchedSine(1.0, w))
+    assert sol.events == ()
+    t = np.linspace(0.0, 10.0, 11)
+    slopes, x = [], []
+    for step in (1e-9, 1e-8):
+        (got,) = one_sided(sol, ["force_amplitude"], t, step=step)
+        assert not got.same_events and got.below.events == () and not got.below.x.any()
+        P = 1.0 + got.delta
+        first = got.above.events[0]
+        assert first.event.kind == "breakaway"
+        assert first.time[0] == pytest.approx(-1.0 / (P * P * w * math.sqrt(1.0 - 1.0 / P**2)), rel=1e-7)
+        slopes.append(first.time[0])
+        x.append(np.abs(got.above.x).max())
+        assert np.abs(got.x_jump).max() <= 1e-15
+    assert slopes[0] / slopes[1] == pytest.approx(math.sqrt(10.0), rel=1e-6)  # delta^(-1/2)
+    assert x[1] / x[0] == pytest.approx(10.0, rel=1e-3) and x[0] < 1e-8  # delta^1: C^1, the slope 0 at the edge
+
+
 def test_bad_arguments_are_refused_in_one_line():
     sol = _solve(CASES["force off at a breakaway"][0] | {"force_until": math.inf})
     coulomb = solve_exact(Oscillator.bingham(1.0, 1.0, 1.0, math.inf), 5.0, x0=2.0)
