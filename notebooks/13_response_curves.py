@@ -41,6 +41,7 @@ import lumped.studies.config
 from lumped import studies
 from lumped.drivers.response import find_orbit
 from lumped.drivers.response.curve import response_curve
+from lumped.model.files import parse_system
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import oscillator_network
 from lumped.solvers.monodromy import period_map
@@ -113,8 +114,14 @@ print(f"F/P 0.4, r 0.5: {orbit.stops} stops per period, |multipliers| {mu[0]:.3f
 # $\partial G/\partial u$) we step $ds$ along $t$ and correct with Newton on
 # $G = 0$ together with $t\cdot(u - u_{pred}) = 0$: because $\omega$ is an
 # unknown, a fold where the branch turns back in $\omega$ is passed like any
-# other point. $\partial G/\partial\omega$ is a central difference of the exact
-# map (the monodromy is analytic). Between neighbours the branch is tested for
+# other point. $\partial G/\partial\omega$ is exact too: it is carried through
+# the phases beside the monodromy, a slip phase moving with $\omega$ through its
+# particular solution, a breakaway through $P\sin\omega t_c$, and the period's
+# end through $dT/d\omega = -T/\omega$ (`lumped.solvers.monodromy.derivatives`;
+# a network's is a central difference). With both exact, each Newton iterate
+# costs one period map, and the predictor (a cubic through the last two points
+# and their tangents) is close enough that most points take two maps. Between
+# neighbours the branch is tested for
 # a change in the stops per period, and for a multiplier crossing $+1$
 # ($\det(M - I)$ changes sign: a fold) or $-1$ ($\det(M + I)$: period
 # doubling); each change is located by bisection and kept as a row of its kind.
@@ -133,9 +140,8 @@ for z, gamma in ((0.0, math.inf), (zeta, cfg["gamma"])):
             stops = curve["stops_per_period"]
             after = stops[min(j + 1, len(stops) - 1)]  # the regular neighbours, clear of the change itself
             changes.append((z, fp, curve["kind"][j], curve["omega"][j] / wn, stops[j - 1], after))
-n = sum(len(b["r"]) for b in branches.values())
 unstable = sum(int((~b["stable"]).sum()) for b in branches.values())
-print(f"{len(branches)} branches, {n} points, {unstable} unstable")
+print(f"{len(branches)} branches, {unstable} unstable points")
 for z, fp, kind, r, before, after in changes:
     print(f"zeta {z:g}, F/P {fp}: {kind} at r = {r:.3f} ({before:.0f} -> {after:.0f} stops)")
 
@@ -210,7 +216,8 @@ _ = P.save_figure(fig, "rc01_response_curves")
 # finds one motion per frequency, only if it settles, and only the one its
 # initial state leads to; near resonance notebook 11's runs had not settled
 # after 30 s. The branch gives every point at the cost of a few period maps
-# (some milliseconds each), with its stability from the multipliers instead of
+# (two or three per point, each a fraction of a millisecond; `benchmarks/bench_response.py`
+# times the curve against the long runs), with its stability from the multipliers instead of
 # from waiting; it would show a coexisting or an unstable motion, were there
 # one, which no run from rest can reach; and it places the start of motion
 # without stops to the bisection's precision instead of the grid's. At these
@@ -218,7 +225,35 @@ _ = P.save_figure(fig, "rc01_response_curves")
 # branch is a single stable motion, so the long runs lost nothing but time.
 
 # %% [markdown]
-# ## Step 4: the monodromy of a network
+# ## Step 4: following the branch in another parameter
+#
+# The same corrector follows the periodic motion in any parameter $\lambda$
+# at a fixed frequency: $G(u) = \Pi(x, v; \lambda) - (x, v)$ with
+# $u = (x, v, \lambda)$, $\partial G/\partial\lambda$ a central difference of
+# the exact map. `response_curve(..., vary=NAME, omega=W)` (and
+# `python -m lumped response ... --omega W --vary NAME=START:STOP`) takes the
+# force's `amplitude` or any numeric parameter of the system file. Here the
+# Coulomb oscillator at $r = 0.8$ under $P = 2.5$ N is followed in its
+# friction force $F$ from 0.2 N to 2.4 N: where the motion has no stops, eq. (4)
+# at each $F$ is the reference again, and the stops must begin where eq. (5)
+# puts the end of motion without stops, at $F/P \approx 0.817$ for $r = 0.8$.
+
+# %%
+coulomb = parse_system(Path("..", "examples", "figure3.toml").read_text().replace("gamma = 1.0 ", "gamma = inf "))
+curve_f = response_curve(coulomb, "m", 2.5, 0.2, 2.4, points=40, vary="dashpot.threshold", omega=0.8 * wn).columns
+f_vals, stops_f = curve_f["dashpot.threshold"], curve_f["stops_per_period"]
+worst_f = 0.0
+for f_j, x_j, s_j in zip(f_vals, curve_f["amplitude_m"], stops_f):
+    form = dh.closed_form(m, 0.0, k, f_j, 2.5, 0.8 * wn)
+    if s_j == 0 and form.nonstop:
+        worst_f = max(worst_f, abs(x_j - form.amplitude) / form.amplitude)
+(first_stop,) = f_vals[curve_f["kind"] == "stops-change"]
+print(f"from F = {f_vals[0]:g} to {f_vals[-1]:g} N the stops begin at F = {first_stop:.3f} N")
+print(f"F/P there {first_stop / 2.5:.4f}; eq. (5) at r = 0.8: F/P < {float(dh.coulomb_boundary(0.8)):.4f}")
+print(f"largest relative difference from eq. (4) where there are no stops: below 1e-9: {worst_f < 1e-9}")
+
+# %% [markdown]
+# ## Step 5: the monodromy of a network
 #
 # A network of linear springs, Bingham and Coulomb elements and linear dashpots
 # moves, between events, by a linear ODE fixed by its *mode*: which friction
@@ -271,7 +306,7 @@ for w in (3.0, 5.5, 8.0):
     print(f"omega {w:g} rad/s: {orbit.stops} stops, |M - differences| < 1e-6: {gap.max() < 1e-6}")
 
 # %% [markdown]
-# ## Step 5: a two-mass response curve
+# ## Step 6: a two-mass response curve
 #
 # `examples/two_mass_response.toml` is a chain: a spring of $k = 100$ N/m
 # from the wall to block m1, one from m1 to m2 ($m = 1$ kg each), and a
@@ -288,7 +323,7 @@ omega2 = np.array([o.omega for o in orbits2])
 amp2 = np.array([o.amplitudes for o in orbits2])
 kind2, stable2 = np.array([pt.kind for pt in branch.points]), np.array([o.stable for o in orbits2])
 natural = np.sort(np.sqrt(np.linalg.eigvals(system.stiffness / system.parts.m[:, None]).real))
-print(f"{omega2.size} points, all stable: {stable2.all()}; natural frequencies {natural[0]:.2f} and {natural[1]:.2f} rad/s")
+print(f"all points stable: {stable2.all()}; natural frequencies {natural[0]:.2f} and {natural[1]:.2f} rad/s")
 for lo, hi in ((2.0, 10.0), (10.0, 25.0)):
     j = np.flatnonzero((omega2 > lo) & (omega2 < hi))[np.argmax(amp2[(omega2 > lo) & (omega2 < hi), 0])]
     print(f"peak near {omega2[j]:.1f} rad/s: m1 {1e3 * amp2[j, 0]:.0f} mm, m2 {1e3 * amp2[j, 1]:.0f} mm")
@@ -314,7 +349,7 @@ parts = response_system(chain, "m1").parts
 damping, force = parts.b @ np.diag(parts.c) @ parts.b.T, np.array([p2, 0.0])
 closed2 = np.array([np.abs(np.linalg.solve(system.stiffness - w * w * np.diag(system.parts.m) + 1j * w * damping, force)) for w in linear["omega"]])
 rel = max(np.max(np.abs(linear[f"amplitude_{n}"] - closed2[:, i]) / closed2[:, i]) for i, n in enumerate(("m1", "m2")))
-print(f"{linear['omega'].size} points without friction: largest relative gap to the closed form below 1e-10: {rel < 1e-10}")
+print(f"without friction: largest relative gap to the closed form below 1e-10: {rel < 1e-10}")
 for lo, hi in ((2.0, 10.0), (10.0, 25.0)):
     j = np.flatnonzero((linear["omega"] > lo) & (linear["omega"] < hi))[np.argmax(linear["amplitude_m1"][(linear["omega"] > lo) & (linear["omega"] < hi)])]
     print(f"without friction, peak near {linear['omega'][j]:.1f} rad/s: m1 {1e3 * linear['amplitude_m1'][j]:.0f} mm")
@@ -332,7 +367,7 @@ fig = P.network_response(omega2, {"m1": amp2[:, 0], "m2": amp2[:, 1]}, stable2, 
 _ = P.save_figure(fig, "rc02_two_mass_response")
 
 # %% [markdown]
-# ## Step 6: why no branch here folds
+# ## Step 7: why no branch here folds
 #
 # None of the curves above has a fold or an unstable motion, and that is no
 # accident of the parameters. We looked for one where it would be most likely:

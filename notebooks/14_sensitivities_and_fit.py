@@ -21,8 +21,10 @@
 # gained or lost); and how they give the exact Jacobian of a least-squares
 # fit of the threshold $\tau$, the slope $\gamma$ and the stiffness $k$ to a
 # measured record (`lumped.drivers.fit`, `python -m lumped fit`), with what a
-# free decay can and cannot tell apart. The records here are synthetic: the
-# exact motion plus Gaussian noise of a fixed seed.
+# free decay can and cannot tell apart. Then the derivative of the steady
+# amplitude under a sine, and the derivatives on each side of a parameter
+# value where a forced run's events change. The records here are synthetic:
+# the exact motion plus Gaussian noise of a fixed seed.
 
 # %%
 import math
@@ -294,3 +296,130 @@ print(f"from tau = 1.5, gamma = 0.5: tau = {far.estimate[0]:.1f} N, residual std
 # page), and `tests/test_fit.py` asserts at least 90 of 100 for each
 # parameter. They say nothing of a wrong model or of a start that leads to
 # another minimum.
+
+# %% [markdown]
+# ## Step 6: the steady amplitude under a sine
+#
+# Under $P\sin\omega t$ that stays on, the mass settles on a periodic motion:
+# a fixed point $z^*$ of the period map, $\Pi(z^*; p) = z^*$ (notebook 13,
+# `find_orbit`). Differentiating that identity (the implicit function
+# theorem) gives its derivative,
+# $dz^*/dp = (I - M)^{-1}\,d\Pi/dp$, with the monodromy matrix $M$ and
+# $d\Pi/dp$ the derivative of the state at the end of the period from Step 1,
+# plus $f(T)\,dT/d\omega$ for $\omega$, since the period $T = 2\pi/\omega$
+# moves with it. The amplitude $A$ (half of $\max x - \min x$) is taken at
+# two turning points, where $v = 0$, so its derivative is that of $x$ there,
+# with the initial state moving by $dz^*/dp$. The paper's forced oscillator,
+# its sine kept on ($P = 10$ N, $\omega = 5\pi$ rad/s, $r = \omega/\omega_n
+# = 1.57$), against central differences of the amplitudes of periodic motions
+# found by Newton to a residual of $10^{-13}$ (step $10^{-5}p$):
+
+# %%
+from lumped.drivers.response import find_orbit
+from lumped.drivers.steady_sensitivity import steady_amplitude_sensitivities
+
+P, omega = cfg["force_amplitude_large"], cfg["force_omega_over_pi"] * math.pi
+names6 = ["dashpot.threshold", "dashpot.gamma", "spring.stiffness", "m.mass", "force.amplitude", "force.omega"]
+steady = steady_amplitude_sensitivities(system(), "m", P, omega, names6)
+print(steady.summary())
+paper6 = dict(zip(names6, [tau, gamma, k, m, P, omega]))
+
+
+def amplitude(p):
+    osc = Oscillator.bingham(p["m.mass"], p["spring.stiffness"], p["dashpot.threshold"], p["dashpot.gamma"])
+    return find_orbit(osc, p["force.amplitude"], p["force.omega"], steady.orbit.state, tol=1e-13).amplitude
+
+
+for name, d in steady.derivatives.items():
+    h = 1e-5 * paper6[name]
+    fd = (amplitude(paper6 | {name: paper6[name] + h}) - amplitude(paper6 | {name: paper6[name] - h})) / (2 * h)
+    print(f"dA/d({name}) = {1e3 * d:8.3g} mm per unit; central difference within 1e-6 of it: {abs(fd - d) < 1e-6 * abs(d)}")
+print(f"A/P = {1e3 * steady.amplitude / P:.3g} mm/N")
+
+# %% [markdown]
+# Above resonance the mass controls the motion: a heavier mass moves less.
+# $dA/dP$ is a little larger than $A/P$: the threshold takes a nearly fixed
+# bite out of the amplitude, so the amplitude grows faster than in
+# proportion to the force. `tests/test_steady_sensitivities.py` checks the
+# same computation against two closed forms to $10^{-9}$: the viscous
+# oscillator's $X = (P/k)/\sqrt{(1-r^2)^2 + (2\zeta r)^2}$ and Den Hartog's
+# amplitude of Coulomb motion without stops (notebook 11), both
+# differentiated by hand.
+#
+# **Where a stop appears.** At a lower frequency the mass stops twice per
+# period at small $P$ and slides through at large $P$. Between, a stop
+# appears where the net force at a turning point sits on the band's edge;
+# the amplitude there is given from both sides (`one_sided`, the periodic
+# motions at $p \mp 10^{-9}p$). Bisecting $P$ at $\omega = 5$ rad/s:
+
+# %%
+osc5, lo, hi = Oscillator.bingham(m, k, tau, gamma), 3.45, 3.5
+z5 = find_orbit(osc5, lo, 5.0).state
+while math.nextafter(lo, hi) < hi:
+    mid = 0.5 * (lo + hi)
+    orbit5 = find_orbit(osc5, mid, 5.0, z5)
+    lo, hi, z5 = (mid, hi, orbit5.state) if orbit5.stops == 2 else (lo, mid, z5)
+edge = steady_amplitude_sensitivities(osc5, None, lo, 5.0, ["force_amplitude"], z5)
+(side,) = edge.one_sided
+print(f"P = {lo:.4f} N: stops per period {side.stops_below} below, {side.stops_above} above")
+print(f"dA/dP below and above: {1e3 * side.below:.3g} and {1e3 * side.above:.3g} mm/N; apart by less than 1e-9 of them: {edge.kink < 1e-9}")
+
+# %% [markdown]
+# The stops per period jump, but the amplitude has no kink: the stick that
+# appears starts with the net force on the band's edge, so with zero
+# acceleration, and its start moves the motion after it at second order
+# only.
+#
+# ## Step 7: one-sided derivatives of a forced run
+#
+# The paper's forced run: $10\sin 5\pi t$ N for one second from rest at
+# $x = 0$, then the free decay to rest. As in Step 2, the number of
+# half-cycles after the force goes off changes with $\tau$; at the change the
+# rest position has a kink and the rest time jumps. `one_sided` solves the
+# problem at $\tau \mp \delta$ ($\delta = 10^{-9}\tau$), differentiates each
+# side, and reports both derivatives and the jumps. Bisecting the change
+# nearest the paper's $\tau$, and comparing each side with a one-sided
+# difference (step $10^{-6}$ N, taken on that side only):
+
+# %%
+from lumped.solvers.one_sided import one_sided
+
+
+def forced(tau_):
+    osc = Oscillator.bingham(m, k, tau_, gamma)
+    return solve_exact(osc, 20.0, force=SwitchedSine(P, omega, 0.0, cfg["force_until"]))
+
+
+def kinds(tau_):
+    return [e.kind for e in forced(tau_).events]
+
+
+lo, hi = 0.925, 0.95
+while math.nextafter(lo, hi) < hi:
+    mid = 0.5 * (lo + hi)
+    lo, hi = (mid, hi) if kinds(mid) == kinds(0.925) else (lo, mid)
+(cut,) = one_sided(forced(lo), ["threshold"])
+h = 1e-6
+for label, sign, d in (("below", -1, cut.below), ("above", 1, cut.above)):
+    near, far = (forced(lo + sign * n * h) for n in (1, 2))
+    fd = sign * (far.rest_position - near.rest_position) / h
+    print(f"{label}: d(rest)/d(tau) = {1e3 * d.rest_position[0]:+.1f} mm/N; one-sided difference within 1e-6 of it: {abs(fd - d.rest_position[0]) < 1e-6 * abs(fd)}")
+print(f"tau = {lo:.4f} N: rest position jump below 1e-12 m: {abs(cut.rest_position_jump) < 1e-12}")
+print(f"rest time jump {abs(cut.rest_time_jump):.4f} s against pi/q = {math.pi / q:.4f} s")
+
+# %% [markdown]
+# Below the change the mass makes one more half-cycle after the force goes
+# off and rests on the other side of zero, so the slope of the rest position
+# changes sign, as for the free decay of Step 2, and the rest time jumps by
+# that half-cycle, half a damped period $\pi/q$; the position itself does
+# not jump. Where the change falls while the force is on, the
+# event sequence changes too (a reversal becomes a stop with a breakaway at
+# once, as for the steady amplitude above), but the motion keeps its
+# derivative: only the events' times have kinks. Where the force only
+# touches the band's edge, a breakaway and a stop appear on one side, their
+# times with slopes that grow as $\delta^{-1/2}$, while the motion moves by
+# $\delta^2$ only. And a force that goes off just as the mass would break
+# away cuts a stick short: there the rest time jumps by the rest of the
+# stick (`tests/test_one_sided.py` checks these cases against one-sided
+# differences on each side, and the breakaway's slope against its closed
+# form).

@@ -12,7 +12,7 @@ import pytest
 from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator
 from lumped.solvers.exact import solve_exact
-from lumped.solvers.monodromy import monodromy
+from lumped.solvers.monodromy import derivatives
 from lumped.solvers.sensitivities import PARAMETER_NAMES, sensitivities
 
 EPS = float(np.finfo(float).eps)
@@ -160,9 +160,17 @@ def test_the_x0_v0_columns_at_a_period_are_the_monodromy_matrix(gamma, ratio):
     osc, p, w = Oscillator.bingham(1.0, 100.0, 1.0, gamma), 1.0 / ratio, 7.0
     sol = solve_exact(osc, 2 * math.pi / w, x0=0.003, v0=-0.01, force=SwitchedSine(p, w))
     assert "stop" in {e.kind for e in sol.events} and "breakaway" in {e.kind for e in sol.events}
-    sens = sensitivities(sol, [sol.t_end], ["x0", "v0"])
-    M = monodromy(sol)
-    assert np.abs(np.vstack([sens.x, sens.v]) - M).max() <= 1e-12 * np.abs(M).max()
+    sens = sensitivities(sol, [sol.t_end], ["x0", "v0", "force_omega"])
+    M, d_omega = derivatives(sol)
+    assert np.abs(np.vstack([sens.x, sens.v])[:, :2] - M).max() <= 1e-12 * np.abs(M).max()
+    # and the omega column: the chain's d(x, v)(t)/domega at the fixed t = T, plus the field there times
+    # dT/domega = -T/omega, is the closed-form dPi/domega the continuation uses (the particular solution's
+    # derivative in omega, lumped.solvers.monodromy.derivatives); they differ by roundings, 1e-10 of its size
+    # (the closed form subtracts particular solutions of size P/|k - m w^2|, a few times the motion here).
+    end = sol.evaluate(np.array([sol.t_end]))
+    field = np.array([end["v"][0], (p * math.sin(w * sol.t_end) - end["F_d"][0] - 100.0 * end["x"][0])])
+    chain = np.array([sens.x[0, 2], sens.v[0, 2]]) - field * sol.t_end / w
+    assert np.abs(chain - d_omega).max() <= 1e-10 * np.abs(d_omega).max()
 
 
 def test_a_stuck_start_has_zero_v0_derivative_and_a_sliding_one_the_derivative_of_its_side():

@@ -23,6 +23,7 @@ from lumped.drivers.response import continue_orbits, find_orbit
 from lumped.drivers.response.curve import response_curve
 from lumped.drivers.sensitivity import system_sensitivities
 from lumped.drivers.simulation import simulate, solve
+from lumped.drivers.steady_sensitivity import steady_amplitude_sensitivities
 from lumped.laws import (
     Bingham,
     BinghamDashpot,
@@ -55,6 +56,7 @@ from lumped.solvers.event_driven import IntegratedSolution, solve_event_driven
 from lumped.solvers.events import Event, Phase
 from lumped.solvers.exact import ExactSolution, solve_exact
 from lumped.solvers.network_sensitivities import NetworkSensitivities
+from lumped.solvers.one_sided import one_sided
 from lumped.solvers.sensitivities import Sensitivities, sensitivities
 from lumped.solvers.theta import theta_method
 
@@ -104,6 +106,7 @@ __all__ = [
     "find_orbit",
     "fit",
     "load_system",
+    "one_sided",
     "parse_system",
     "read_record",
     "read_table",
@@ -114,6 +117,7 @@ __all__ = [
     "solve_event_driven",
     "solve",
     "solve_exact",
+    "steady_amplitude_sensitivities",
     "system_sensitivities",
     "theta_method",
 ]

@@ -24,7 +24,11 @@ network of linear springs, Bingham and Coulomb elements and linear dashpots
 whose springs hold every mass to the ground; no loads of its own (its x0 and
 v0 are not used).  An element that sticks through a whole period may hold any
 elongation in its band: it keeps the one it has along the branch, and its
-neutral multiplier (exactly 1) is left out of stable and max_multiplier."""
+neutral multiplier (exactly 1) is left out of stable and max_multiplier.
+With --vary NAME=START:STOP the branch is followed in NAME instead, at the
+fixed frequency --omega W: NAME is amplitude (the force's, N) or a numeric
+parameter of the file written element.key or mass.key (dashpot.threshold,
+spring.stiffness, m.mass); its column comes first."""
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -40,7 +44,15 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     rp.add_argument("--force-on", required=True, metavar="MASS", help="the name of the mass the sine acts on")
     rp.add_argument("--amplitude", required=True, metavar="P", help="the force amplitude P > 0 (N)")
     rp.add_argument(
-        "--omega", required=True, metavar="START:STOP", help="the interval of omega, 0 < START < STOP (rad/s)"
+        "--omega",
+        required=True,
+        metavar="START:STOP",
+        help="the interval of omega, 0 < START < STOP (rad/s); with --vary, the fixed omega W > 0",
+    )
+    rp.add_argument(
+        "--vary",
+        metavar="NAME=START:STOP",
+        help="follow NAME (amplitude, or element.key / mass.key of the file) from START to STOP at the fixed --omega",
     )
     rp.add_argument(
         "--points", default="200", metavar="N", help="about the rows of a branch monotone in omega [default: 200]"
@@ -49,18 +61,36 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 #: The API's argument names that this command's messages may begin with -> its options.
-_API_NAMES = {"force_omega": "--omega", "force_amplitude": "--amplitude", "t_end": "--omega"}
+_API_NAMES = {"force_omega": "--omega", "force_amplitude": "--amplitude", "t_end": "--omega", "vary": "--vary"}
 
 
-def _interval(text: str) -> tuple[float, float]:
+def _interval(text: str, option: str = "--omega") -> tuple[float, float]:
     """``START:STOP`` as two floats."""
     parts = text.split(":")
     if len(parts) != 2:
-        raise ValueError(f"--omega expects START:STOP, got {text!r}")
-    start, stop = (validate.parse_float("--omega", part) for part in parts)
-    if not 0 < start < stop:
+        raise ValueError(f"{option} expects START:STOP, got {text!r}")
+    start, stop = (validate.parse_float(option, part) for part in parts)
+    if option == "--omega" and not 0 < start < stop:
         raise ValueError(f"--omega: START:STOP must satisfy 0 < START < STOP, got {text!r}")
+    if not start < stop:
+        raise ValueError(f"{option}: START:STOP must satisfy START < STOP, got {text!r}")
     return start, stop
+
+
+def _as_options(message: str) -> str:
+    """A message of the API with the names it begins with as this command's options."""
+    for name, option in _API_NAMES.items():
+        if message.startswith(name + ":"):
+            return option + message[len(name) :]
+    return message
+
+
+def _vary(text: str) -> tuple[str, float, float]:
+    """``NAME=START:STOP``."""
+    name, sep, interval = text.partition("=")
+    if not sep or not name.strip():
+        raise ValueError(f"--vary expects NAME=START:STOP, got {text!r}")
+    return (name.strip(), *_interval(interval, "--vary"))
 
 
 def run(args: argparse.Namespace, output: Output) -> str:
@@ -73,7 +103,14 @@ def run(args: argparse.Namespace, output: Output) -> str:
     amplitude = validate.parse_float("--amplitude", args.amplitude)
     if not amplitude > 0 or amplitude == float("inf"):
         raise ValueError(f"--amplitude must be finite and > 0, got {args.amplitude!r}")
-    start, stop = _interval(args.omega)
+    vary, omega = None, None
+    if args.vary is None:
+        start, stop = _interval(args.omega)
+    else:
+        vary, start, stop = _vary(args.vary)
+        omega = validate.parse_float("--omega", args.omega)
+        if not omega > 0 or omega == float("inf"):
+            raise ValueError(f"--omega: with --vary, the fixed omega must be finite and > 0, got {args.omega!r}")
     points = validate.parse_int("--points", args.points)
     if points < 2:
         raise ValueError(f"--points must be at least 2, got {args.points!r}")
@@ -83,15 +120,15 @@ def run(args: argparse.Namespace, output: Output) -> str:
         response_system(network, args.force_on)
     except ValueError as err:
         raise ValueError(f"{args.system}: {str(err).split(': ', 1)[1]}") from None
-    output.create()
     bar = Progress(sys.stderr, True, label="response", unit="")
     try:
-        curve = response_curve(network, args.force_on, amplitude, start, stop, points, progress=bar)
+        if vary is not None:  # the parameter's name and its two ends, before the output is reserved
+            from lumped.drivers.response.systems import parameter_family
+
+            parameter_family(network, args.force_on, amplitude, omega, vary, start, stop)
+        output.create()
+        curve = response_curve(network, args.force_on, amplitude, start, stop, points, bar, vary, omega)
     except ValueError as err:  # the API's names as this command's options
-        message = str(err)
-        for name, option in _API_NAMES.items():
-            if message.startswith(name + ":"):
-                message = option + message[len(name) :]
-        raise ValueError(message) from None
+        raise ValueError(_as_options(str(err))) from None
     output.commit(curve.columns)
     return curve.summary

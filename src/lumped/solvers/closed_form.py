@@ -138,6 +138,32 @@ class SlipMotion:
         sin, cos = np.sin(theta), np.cos(theta)
         return xc + A * sin + B * cos, w * (A * cos - B * sin)
 
+    def particular_omega_derivative(self, t: float) -> tuple[float, float] | None:
+        """``d(x_p, v_p)/dw`` at a fixed ``t``: the particular solution's derivative in the forcing frequency,
+        ``None`` at an undamped resonance (``k = m w^2``, ``c = 0``: secular growth, no such form).
+
+        With ``x_p = x_c + A sin(theta) + B cos(theta)``, ``theta = w t + ph``, ``A = P s/n``, ``B = -P d/n``,
+        ``s = k - m w^2``, ``d = c w``, ``n = s^2 + d^2``: ``dA/dw = P (s' n - s n')/n^2``, ``dB/dw = -P (d' n -
+        d n')/n^2`` with ``s' = -2 m w``, ``d' = c``, ``n' = 2 (s s' + d d')``, and ``theta`` moves by ``t``.
+        """
+        m, c, k, P, w = self.m, self.c, self.k, self.P, self.w
+        if P == 0:
+            return 0.0, 0.0
+        stiff, drag = k - m * w * w, c * w
+        if stiff == 0 and drag == 0:
+            return None
+        norm = math.hypot(stiff, drag)
+        A, B = P * (stiff / norm) / norm, -P * (drag / norm) / norm
+        d_stiff, d_drag = -2 * m * w, c
+        d_norm2 = 2 * (stiff * d_stiff + drag * d_drag) / norm**2  # n'/n
+        dA = P * (d_stiff - stiff * d_norm2) / norm**2
+        dB = -P * (d_drag - drag * d_norm2) / norm**2
+        theta = w * t + self.ph
+        sin, cos = math.sin(theta), math.cos(theta)
+        dx = dA * sin + dB * cos + t * (A * cos - B * sin)
+        dv = (A * cos - B * sin) + w * (dA * cos - dB * sin) - w * t * (A * sin + B * cos)
+        return dx, dv
+
     def _free(self, tau: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``exp(sigma tau) C(tau)`` and ``exp(sigma tau) S(tau)`` of the free oscillator.
 
@@ -165,15 +191,17 @@ class SlipMotion:
         diff = np.where(close, e_fast * np.expm1(np.minimum(gap * tau, 1.0)), e_slow - e_fast)
         return 0.5 * (e_slow + e_fast), diff / gap
 
+    @cached_property
     def _offsets(self) -> tuple[float, float]:
-        """Initial displacement and velocity relative to the particular solution."""
+        """Initial displacement and velocity relative to the particular solution (computed once per phase:
+        :meth:`state` is called at every sample of a scan)."""
         xp0, vp0 = self._particular(np.asarray(self.t0))
         return float(self.x0 - xp0), float(self.v0 - vp0)
 
     def state(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
         """Displacement and velocity at times ``t >= t0``."""
         t = np.asarray(t, dtype=float)
-        y0, dy0 = self._offsets()
+        y0, dy0 = self._offsets
         ec, es = self._free(t - self.t0)
         h, omega2 = self.modes.h, self.modes.omega2
         y = ec * y0 + es * (h * y0 + dy0)
@@ -240,7 +268,7 @@ class SlipMotion:
         ``tau = log(-l_f B / (l_s A)) / (l_s - l_f)``, taken through logarithms
         so that no ratio overflows.
         """
-        y0, dy0 = self._offsets()
+        y0, dy0 = self._offsets
         if y0 == 0 and dy0 == 0:
             return 0.0  # at rest on the centre: it stops at once
         md = self.modes

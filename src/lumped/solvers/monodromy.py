@@ -29,6 +29,16 @@ phase (notebook 13 derives each rule):
   reaches ``+-tau`` moves by ``dt_c = k dx_b / F'(t_c)``.  A stick at ``t = 0``
   has the same rule: ``v0`` does not enter.
 * the end ``t = T`` is fixed: ``M`` is the ``(x, v)`` rows of ``D`` there.
+
+The derivative in the forcing frequency, ``dPi/domega`` (what continuation
+in omega needs, :func:`omega_derivative`), follows the same rules for the
+column ``d(t, x, v)/domega``, which starts at 0, with two sources: a slip
+phase's closed form ``z(t) = p(t) + Phi (z_a - p(t_a))`` moves with omega
+through its particular solution ``p`` (by ``dp/domega (t_b) - Phi
+dp/domega (t_a)``, :meth:`~lumped.solvers.closed_form.SlipMotion.particular_omega_derivative`),
+and a breakaway's ``P sin(omega t_c) - k x_b = +-tau`` moves by
+``-P t_c cos(omega t_c)/F'(t_c)``.  The period's end moves too:
+``dPi/domega = dz(T)/domega + f(T) dT/domega`` with ``dT/domega = -T/omega``.
 """
 
 from __future__ import annotations
@@ -40,22 +50,23 @@ import numpy as np
 
 from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator
-from lumped.solvers.events import Phase
 from lumped.solvers.exact import ExactSolution, solve_exact
 
-__all__ = ["PeriodMap", "monodromy", "period_map"]
+__all__ = ["PeriodMap", "derivatives", "monodromy", "omega_derivative", "period_map"]
 
 
 class PeriodMap(NamedTuple):
     """One forcing period of exact motion from ``(x0, v0)`` at ``t = 0``.
 
     ``end`` is ``(x, v)`` at ``t = T`` (m, m/s); ``monodromy`` its derivative
-    with respect to ``(x0, v0)`` (2 x 2); ``solution`` the exact solution over
+    with respect to ``(x0, v0)`` (2 x 2); ``omega_derivative`` its derivative in omega, the period moving
+    with it (2,; ``None`` at an undamped resonance: :func:`derivatives`); ``solution`` the exact solution over
     ``[0, T]`` (its phases and events).
     """
 
     end: np.ndarray
     monodromy: np.ndarray
+    omega_derivative: np.ndarray | None
     solution: ExactSolution
 
     @property
@@ -76,19 +87,27 @@ class PeriodMap(NamedTuple):
         return np.array([self.amplitude])
 
     @property
+    def held(self) -> bool:
+        """True when the mass sticks through the whole period: any position in the band is then periodic, a
+        neutral direction with the multiplier 1 (as a network's held elements)."""
+        return all(p.motion is None for p in self.solution.phases)
+
+    @property
     def multipliers(self) -> np.ndarray:
-        """The Floquet multipliers: eigenvalues of the monodromy matrix (complex, shape (2,))."""
-        return np.linalg.eigvals(self.monodromy)
+        """The Floquet multipliers (complex): eigenvalues of the monodromy matrix, but the neutral one of a
+        mass held through the period (eigenvalues of ``W^T M W``, :attr:`free_basis`)."""
+        w = self.free_basis
+        return np.linalg.eigvals(w.T @ self.monodromy @ w)
 
     @property
     def neutral(self) -> np.ndarray:
-        """No neutral direction is set apart for one mass (shape (0, 2); see the network's period map)."""
-        return np.zeros((0, 2))
+        """The held position ``[[1, 0]]`` when :attr:`held`, else no row (shape (0, 2))."""
+        return np.array([[1.0, 0.0]]) if self.held else np.zeros((0, 2))
 
     @property
     def free_basis(self) -> np.ndarray:
-        """The whole state space (the identity)."""
-        return np.eye(2)
+        """The states that keep a held position (the velocity, ``[[0], [1]]``), else the identity."""
+        return np.array([[0.0], [1.0]]) if self.held else np.eye(2)
 
 
 def period_map(osc: Oscillator, amplitude: float, omega: float, x0: float, v0: float) -> PeriodMap:
@@ -111,7 +130,7 @@ def period_map(osc: Oscillator, amplitude: float, omega: float, x0: float, v0: f
         raise ValueError(f"force_omega must be finite and > 0, got {omega!r}")
     force = SwitchedSine(amplitude, omega)
     solution = solve_exact(osc, 2 * math.pi / omega, x0=x0, v0=v0, force=force)
-    return PeriodMap(_end_state(solution), monodromy(solution), solution)
+    return PeriodMap(_end_state(solution), *derivatives(solution), solution)
 
 
 def _end_state(solution: ExactSolution) -> np.ndarray:
@@ -124,28 +143,49 @@ def _end_state(solution: ExactSolution) -> np.ndarray:
 
 def monodromy(solution: ExactSolution) -> np.ndarray:
     """``d(x, v)(t_end) / d(x0, v0)`` of an exact solution under a sine that never stops (module Notes)."""
+    return derivatives(solution)[0]
+
+
+def omega_derivative(solution: ExactSolution) -> np.ndarray | None:
+    """``d(x, v)(T)/domega`` of one forcing period ``T = 2 pi/omega`` of an exact solution under a sine that never
+    stops, the period moving with omega (module Notes); ``None`` when a slip phase is at an undamped resonance
+    (``c = 0``, ``omega^2 = k/m``), whose particular solution has no derivative of this form."""
+    return derivatives(solution)[1]
+
+
+def derivatives(solution: ExactSolution) -> tuple[np.ndarray, np.ndarray | None]:
+    """The monodromy matrix and ``dPi/domega`` of one forcing period (``None`` at an undamped resonance), in one
+    pass over the phases: the rows ``dt, dx, dv`` of ``D = d(t, x, v)/d(x0, v0, omega)`` carried by the rules of
+    the module Notes (in floats: a continuation evaluates this at every corrector iterate)."""
     P, w, ph = solution.force.canonical()
-    slope = lambda t: P * w * math.cos(w * t + ph)
-    k, t_end = solution.oscillator.stiffness, solution.t_end
-    D = np.array([[0.0, 0.0], [1.0, 0.0], [0.0, 1.0]])
-    for phase in solution.phases:
-        D = _stick(phase, D, k, slope, t_end) if phase.motion is None else _slip(phase, D, t_end)
-    return D[1:]
-
-
-def _slip(phase: Phase, D: np.ndarray, t_end: float) -> np.ndarray:
-    """``D`` at the end of a slip phase from ``D`` at its start (module Notes)."""
-    m = phase.motion
-    field = np.array([m.v0, m.acceleration(m.t0, m.x0, m.v0)])
-    dz = m.flow_matrix(phase.end - phase.start) @ (D[1:] - np.outer(field, D[0]))
-    if phase.end >= t_end:  # the fixed end of the period
-        return np.vstack([np.zeros(2), dz])
-    x_end = float(m.state(phase.end)[0])
-    dt = -dz[1] / m.acceleration(phase.end, x_end, 0.0)  # v(t_b) = 0 moves t_b
-    return np.vstack([dt, dz[0], np.zeros(2)])
-
-
-def _stick(phase: Phase, D: np.ndarray, k: float, slope, t_end: float) -> np.ndarray:
-    """``D`` at the end of a stick phase: ``x`` held, ``v = 0``, the breakaway moved by ``x`` (module Notes)."""
-    dt = np.zeros(2) if phase.end >= t_end else k * D[1] / slope(phase.end)
-    return np.vstack([dt, D[1], np.zeros(2)])
+    k, t_end, phases = solution.oscillator.stiffness, solution.t_end, solution.phases
+    dt, dx, dv, resonant = [0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], False
+    for i, phase in enumerate(phases):
+        if phase.motion is None:  # v = 0 whatever the start; a breakaway moves with x_b and with omega
+            dt, dv = [0.0, 0.0, 0.0], [0.0, 0.0, 0.0]
+            if phase.end < t_end:
+                cos = math.cos(w * phase.end + ph)
+                slope = P * w * cos
+                dt = [k * dx[0] / slope, k * dx[1] / slope, (k * dx[2] - P * phase.end * cos) / slope]
+            continue
+        m = phase.motion
+        shift_a, shift_b = m.particular_omega_derivative(phase.start), m.particular_omega_derivative(phase.end)
+        resonant = resonant or shift_a is None or shift_b is None
+        v_a, a_a = m.v0, m.acceleration(m.t0, m.x0, m.v0)  # the phase's own field: the saltation of its start
+        rx, rv = [dx[j] - v_a * dt[j] for j in range(3)], [dv[j] - a_a * dt[j] for j in range(3)]
+        if not resonant:  # z(t) = p(t) + Phi (z_a - p(t_a)) moves with omega through p
+            rx[2], rv[2] = rx[2] - shift_a[0], rv[2] - shift_a[1]
+        (f00, f01), (f10, f11) = m.flow_matrix(phase.end - phase.start).tolist()
+        dx, dv = [f00 * rx[j] + f01 * rv[j] for j in range(3)], [f10 * rx[j] + f11 * rv[j] for j in range(3)]
+        if not resonant:
+            dx[2], dv[2] = dx[2] + shift_b[0], dv[2] + shift_b[1]
+        if phase.end >= t_end:  # the fixed end of the period
+            break
+        accel = m.acceleration(phase.end, phases[i + 1].x_start, 0.0)
+        dt, dv = [-dv[j] / accel for j in range(3)], [0.0, 0.0, 0.0]  # v(t_b) = 0 moves t_b
+    monodromy = np.array([dx[:2], dv[:2]])
+    if resonant:
+        return monodromy, None
+    last, end = phases[-1], _end_state(solution)
+    field = (0.0, 0.0) if last.motion is None else (end[1], last.motion.acceleration(t_end, *end))
+    return monodromy, np.array([dx[2] - field[0] * t_end / w, dv[2] - field[1] * t_end / w])  # dT/domega = -T/omega

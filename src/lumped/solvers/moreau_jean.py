@@ -22,17 +22,16 @@ example beside it.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 
 import numpy as np
 
 from lumped.laws.bingham import bingham_corrector
-from lumped.model.forcing import SwitchedSine, evaluate, validate_force
-from lumped.model.oscillator import Oscillator, check_magnitudes, initial_dashpot_force
-from lumped.model.trajectory import COLUMNS, Trajectory
+from lumped.model.forcing import SwitchedSine, validate_force
+from lumped.model.oscillator import Oscillator
+from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
-from lumped.solvers.grid import start_run
+from lumped.solvers.grid import march, start_run
 
 __all__ = ["BINGHAM_REASON", "DEFAULT_THETA", "moreau_jean", "moreau_jean_step", "validate_theta"]
 
@@ -89,28 +88,6 @@ def moreau_jean_step(
     return f_s + dt * k * (theta * v_next + rest * v), v_next, f_d + rest * c * v_next
 
 
-def _rows(
-    osc: Oscillator, dt: float, theta: float, n_steps: int, save_every: int, force: object, out: np.ndarray
-) -> float:
-    """March the scheme, filling ``out`` from its row 0; return the rest's start (s)."""
-    m, k = osc.mass, osc.spring.stiffness
-    tau, c = osc.dashpot.bingham_form()  # type: ignore[misc]
-    f_s, v, f_now = out[0, 3], out[0, 2], out[0, 5]
-    row, rest_start = 1, 0 if v == 0 else 1
-    for first in range(1, n_steps + 1, 1 << 16):
-        table = evaluate(force, np.arange(first, min(first + (1 << 16), n_steps + 1)) * dt)  # type: ignore[arg-type]
-        for n, f_next in enumerate(table.tolist(), start=first):
-            f_s, v, f_d = moreau_jean_step(m, k, dt, theta, tau, c, (f_s, v, f_now, f_next))
-            f_now = f_next
-            if not (math.isfinite(f_s) and math.isfinite(v) and math.isfinite(f_d)):
-                raise ValueError(f"the moreau-jean scheme overflowed at t = {n * dt:.6g} s (step {n})")
-            rest_start = n + 1 if v != 0.0 else rest_start
-            if n % save_every == 0 or n == n_steps:
-                out[row] = (n * dt, f_s / k, v, f_s, f_d, f_next)
-                row += 1
-    return rest_start * dt
-
-
 def moreau_jean(
     oscillator: Oscillator,
     t_end: float,
@@ -147,11 +124,8 @@ def moreau_jean(
         law = type(oscillator.dashpot).__name__
         raise ValueError(f"method: 'moreau-jean' cannot run a {law}: {BINGHAM_REASON}")
     force = validate_force(force)
-    check_magnitudes(oscillator, t_end, dt, x0, v0, force.amplitude if isinstance(force, SwitchedSine) else 0.0)
-    out = np.empty((validate.output_rows(n_steps, min(save_every, n_steps + 1)), len(COLUMNS)))
-    f0 = float(evaluate(force, np.zeros(1))[0])  # type: ignore[arg-type]
-    k = oscillator.spring.stiffness
-    out[0] = (0.0, x0, v0, k * x0, initial_dashpot_force(oscillator, f0, x0, v0), f0)
-    rest = _rows(oscillator, dt, theta, n_steps, min(save_every, n_steps + 1), force, out)
-    final = (rest, float(out[-1, 1])) if out[-1, 2] == 0 else (math.nan, math.nan)
-    return Trajectory.from_array(out, oscillator, method="moreau-jean", dt=dt, save_every=save_every, final_rest=final)
+    m, k = oscillator.mass, oscillator.spring.stiffness
+    tau, c = oscillator.dashpot.bingham_form()  # type: ignore[misc]
+    step = lambda f_s, v, f_d, f_now, f_next: moreau_jean_step(m, k, dt, theta, tau, c, (f_s, v, f_now, f_next))
+    run = (t_end, dt, x0, v0, save_every, n_steps)
+    return march(oscillator, step, run, force, "moreau-jean", "the moreau-jean scheme")

@@ -42,9 +42,10 @@ Where the sequence of events changes with a parameter (a stop with the net
 force on the edge of the static band, where it turns into a reversal; a
 v = 0 reached with zero acceleration; a breakaway where the force only
 touches the band) the solution is not differentiable; each event carries its
-distance from such a change (:attr:`EventSensitivity.margin`) and
-:mod:`lumped.solvers.rest_switches` gives the one-sided derivatives of the
-rest.
+distance from such a change (:attr:`EventSensitivity.margin`);
+:class:`RestSwitch` gives the free decay's rest across one in closed form, and
+:func:`lumped.solvers.one_sided.one_sided` the one-sided derivatives and the
+jumps of any run.
 """
 
 from __future__ import annotations

@@ -144,13 +144,17 @@ class Chain:
         field = M[:2] @ np.array([x_b, v_b, *self.load.generators(phase.end, on), 1.0])
         dz = np.zeros((2, N))
         dz[:, self.wanted] = Y_b[5:].reshape(n, 5)[:, :2].T
-        return self._slip_end(phase.end, x_b, s, dz, field)
+        return self._slip_end(phase.end, x_b, on, dz, field)
 
-    def _slip_end(self, t_b: float, x_b: float, s: int, dz: np.ndarray, field: np.ndarray) -> np.ndarray:
-        """``D`` just after a slip phase in direction ``s`` ends at ``(t_b, x_b)``, with ``dz`` (2 x 10) at
-        that fixed time and the field ``(v, a)`` there: at a zero of ``v``, or at the force going off."""
+    def _slip_end(self, t_b: float, x_b: float, on: bool, dz: np.ndarray, field: np.ndarray) -> np.ndarray:
+        """``D`` just after a slip phase (with the force ``on`` at its start) ends at ``(t_b, x_b)``, with ``dz``
+        (2 x 10) at that fixed time and the field ``(v, a)`` there: at a zero of ``v``, or at the force going off.
+
+        The phase's own force tells the two apart, not the events at ``t_b``: a stop a few ulps of ``t`` after
+        the force goes off (a slip just begun, stopped at once) shares ``t_b`` with the forcing-off event.
+        """
         kinds = self.ends.get(t_b, set())
-        if kinds & set(_V_ZERO):
+        if not (on and not self.load.on(t_b)):
             dt = -dz[1] / field[1]  # v(t_b) = 0 moves t_b; x gains v_b dt = 0
             out = np.vstack([dt, dz[0], np.zeros(N)])
             kind = next(k for k in _V_ZERO if k in kinds)

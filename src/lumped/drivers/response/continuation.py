@@ -1,15 +1,19 @@
-"""Pseudo-arclength continuation of a periodic motion in the forcing frequency.
+"""Pseudo-arclength continuation of a periodic motion in the forcing frequency, or in another parameter.
 
-The unknowns are ``u = (y, omega)``, ``y`` the state (``(x, v)`` of one
+The unknowns are ``u = (y, lambda)``, ``lambda`` the parameter followed (the
+forcing frequency ``omega`` by default, or a :class:`~lumped.drivers.response.systems.Family`'s: the
+force's amplitude, a parameter of the system file), ``y`` the state (``(x, v)`` of one
 mass, or the positions then the velocities of a network's masses), in the
-units of :class:`~lumped.drivers.response.systems.Scales`, and the branch is
-the curve ``G(u) = Pi(y; omega) - y = 0``.  From a point with unit tangent
+units of :class:`~lumped.drivers.response.systems.Scales` (``lambda`` in its
+family's unit), and the branch is the curve ``G(u) = Pi(y; lambda) - y = 0``.  From a point with unit tangent
 ``t`` (the null vector of ``dG/du``: for one mass, 2 x 3, the cross product
 of its rows) the predictor steps ``ds`` along ``t``; the corrector is Newton
 on ``G = 0`` and ``t . (u - u_pred) = 0``, so a fold (where ``omega`` turns
 back) is passed like any other point.  ``dG/dy = M - I`` is the analytic
-monodromy; ``dG/domega`` is a central difference of the exact period map
-(step :data:`OMEGA_STEP`).
+monodromy and ``dG/domega`` the derivative of the period map in omega
+(:func:`~lumped.drivers.response.systems.omega_derivative`: exact for one
+mass, so that a corrector iterate costs one period map); in another
+parameter ``dG/dlambda`` is a central difference (:data:`PARAMETER_STEP`).
 
 Between two accepted points the branch is tested for
 ``stops-change`` (the stops per period differ), ``fold`` (``det(M - I)``
@@ -39,13 +43,13 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, find_orbit
-from lumped.drivers.response.systems import LoadedNetwork, Scales, period_map
+from lumped.drivers.response.systems import Family, LoadedNetwork, omega_derivative, omega_family, period_map
 from lumped.model.oscillator import Oscillator
 
 __all__ = [
     "BISECTIONS",
     "MAX_AMPLITUDE",
-    "OMEGA_STEP",
+    "PARAMETER_STEP",
     "Branch",
     "ResponsePoint",
     "change",
@@ -53,12 +57,12 @@ __all__ = [
     "signature",
 ]
 
-#: Step of the central difference ``dPi/domega`` in units of omega_n: its truncation (step^2, 1e-12)
-#: and round-off (the map's ~1e-14 over the step, 1e-8) leave the tangent good to 1e-8, which only
-#: slows the corrector's last digit, never moves the point (the corrector's ``G = 0`` is exact).
-OMEGA_STEP = 1e-6
 #: Halvings of the secant that locate a change (to 2^-12 of a step).
 BISECTIONS = 12
+#: The residual to which the points tried by the bisection are corrected: they are only asked which side of
+#: the change they lie on, and a residual of 1e-8 (in the units of ``Scales``) moves a point far less than
+#: 2^-12 of a step; the located point itself is then corrected to :data:`NEWTON_TOL`.
+BISECTION_TOL = 1e-8
 #: Corrector iterations before a step is halved.
 MAX_CORRECTOR = 8
 #: Largest relative change of the state ``(x, v)`` in one step (see :func:`_largest_step`).
@@ -68,14 +72,19 @@ STATE_STEP = 0.1
 MAX_AMPLITUDE = 50.0
 #: Smallest step as a fraction of the largest before the continuation gives up.
 MIN_STEP = 1e-7
+#: Step of the central difference ``dPi/dlambda`` in a parameter other than omega, in the family's unit
+#: (``max(|start|, |stop|)``): truncation ``step^2`` (1e-12) and round-off (the map's ~1e-14 over the step,
+#: 1e-8) leave the derivative good to 1e-8, which only slows the corrector's last digit, never moves the point.
+PARAMETER_STEP = 1e-6
 
 
 class ResponsePoint(NamedTuple):
-    """A point of the branch: an :class:`Orbit` and its ``kind`` (``regular``, ``fold``, ``period-doubling``,
-    ``stops-change``)."""
+    """A point of the branch: an :class:`Orbit`, its ``kind`` (``regular``, ``fold``, ``period-doubling``,
+    ``stops-change``) and the ``value`` of the parameter followed (omega itself by default)."""
 
     orbit: Orbit
     kind: str
+    value: float
 
 
 class Branch(NamedTuple):
@@ -88,9 +97,10 @@ class Branch(NamedTuple):
 
 
 class _Point(NamedTuple):
-    u: np.ndarray  # (state, omega) scaled
+    u: np.ndarray  # (state, lambda) scaled
     orbit: Orbit
     jacobian: np.ndarray  # dG/du, d x (d + 1)
+    value: float  # lambda
 
     def system(self, g: np.ndarray, u: np.ndarray, pin: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The equations of the corrector at this point, their matrix and residual: ``G`` itself, or with
@@ -106,53 +116,64 @@ class _Point(NamedTuple):
 class _Branch:
     """The problem in scaled unknowns: residual, Jacobian and the corrector."""
 
-    def __init__(self, system: Oscillator | LoadedNetwork, amplitude: float) -> None:
-        self.system, self.amplitude, self.s = system, amplitude, Scales.of(system, amplitude)
+    def __init__(self, family: Family) -> None:
+        self.family, self.s = family, family.scales
+
+    def value(self, u: np.ndarray) -> float:
+        """The parameter's value at ``u``."""
+        return float(u[-1] * self.family.unit)
 
     def orbit_at(self, u: np.ndarray) -> Orbit:
-        z, omega = u[:-1] * np.repeat([self.s.x, self.s.v], u.size // 2), u[-1] * self.s.omega
-        return Orbit(omega, z, period_map(self.system, self.amplitude, omega, z))
+        """The period map from ``u``'s state, of the member at ``u``'s parameter (``ValueError`` for a value the
+        system refuses)."""
+        z = u[:-1] * np.repeat([self.s.x, self.s.v], u.size // 2)
+        system, amplitude, omega = self.family.member(self.value(u))
+        return Orbit(omega, z, period_map(system, amplitude, omega, z))
 
-    def point(self, orbit: Orbit) -> _Point:
-        """The point of ``orbit`` with its Jacobian ``[S^-1 (M - I) S | dPi/domega]``."""
-        u = np.append(self.s.state(orbit.state), orbit.omega / self.s.omega)
+    def point(self, orbit: Orbit, value: float) -> _Point:
+        """The point of ``orbit`` (of the member at ``value``) with its Jacobian ``[S^-1 (M - I) S | dPi/dlambda]``."""
+        unit = self.family.unit
+        u = np.append(self.s.state(orbit.state), value / unit)
         scale = np.repeat([self.s.x, self.s.v], u.size // 2)
         jz = (orbit.period.monodromy - np.eye(scale.size)) * scale[None, :] / scale[:, None]
-        step = np.eye(u.size)[-1]
-        ends = [self.orbit_at(u + d * step).period.end for d in (OMEGA_STEP, -OMEGA_STEP)]
-        jw = self.s.state(ends[0] - ends[1]) / (2 * OMEGA_STEP)
-        return _Point(u, orbit, np.column_stack([jz, jw]))
+        if self.family.name == "omega":
+            system, amplitude, _ = self.family.member(value)
+            jw = self.s.state(omega_derivative(system, amplitude, orbit)) * unit
+        else:
+            ends = [self.orbit_at(np.append(u[:-1], u[-1] + d)).period.end for d in (PARAMETER_STEP, -PARAMETER_STEP)]
+            jw = self.s.state(ends[0] - ends[1]) / (2 * PARAMETER_STEP)
+        return _Point(u, orbit, np.column_stack([jz, jw]), value)
+
+    def found(self, u: np.ndarray) -> _Point:
+        """The point at ``u``."""
+        return self.point(self.orbit_at(u), self.value(u))
 
     def residual(self, orbit: Orbit) -> np.ndarray:
         return self.s.state(orbit.period.end - orbit.state)
 
-    def correct(self, guess: np.ndarray, normal: np.ndarray, start: _Point) -> _Point | None:
-        """Newton on ``G(u) = 0``, ``normal . (u - guess) = 0`` from the Jacobian of ``start`` (whose held
-        elongations stay pinned); ``None`` if it does not converge."""
-        u, at = guess.copy(), start
-        if not u[-1] > 0:
-            return None
-        orbit = self.orbit_at(u)
-        for _ in range(MAX_CORRECTOR):
-            g = self.residual(orbit)
-            if np.max(np.abs(g)) <= NEWTON_TOL:
-                return at if at.orbit is orbit else self.point(orbit)
-            matrix, rhs = at.system(g, u, start.u)
-            try:
+    def correct(self, guess: np.ndarray, normal: np.ndarray, start: _Point, tol: float = NEWTON_TOL) -> _Point | None:
+        """Newton on ``G(u) = 0``, ``normal . (u - guess) = 0`` to ``|G| <= tol``, each iterate with its own
+        Jacobian (the held elongations of elements that stick through the period pinned to ``start``'s);
+        ``None`` if it does not converge or leaves the values the system takes."""
+        u = guess.copy()
+        try:
+            at = self.found(u)
+            for _ in range(MAX_CORRECTOR):
+                g = self.residual(at.orbit)
+                if np.max(np.abs(g)) <= tol:
+                    return at
+                matrix, rhs = at.system(g, u, start.u)
                 u = u - np.linalg.solve(np.vstack([matrix, normal]), np.append(rhs, normal @ (u - guess)))
-            except np.linalg.LinAlgError:
-                return None
-            if not u[-1] > 0:
-                return None
-            at = self.point(self.orbit_at(u))
-            orbit = at.orbit
+                at = self.found(u)
+        except (ValueError, np.linalg.LinAlgError):
+            return None
         return None
 
 
 def _tangent(p: _Point, previous: np.ndarray | None) -> np.ndarray:
     """The unit null vector of the equations' matrix at ``p`` (the cross product of the rows of the 2 x 3
     Jacobian of one mass, else the last right singular vector), oriented along ``previous`` (or towards
-    larger omega)."""
+    larger values of the parameter)."""
     matrix, _ = p.system(np.zeros(p.u.size - 1), p.u, p.u)
     if matrix.shape == (2, 3):
         t = np.cross(matrix[0], matrix[1])
@@ -163,10 +184,28 @@ def _tangent(p: _Point, previous: np.ndarray | None) -> np.ndarray:
     return -t if ref < 0 else t
 
 
-def _largest_step(u: np.ndarray, tangent: np.ndarray, d_omega: float) -> float:
-    """The largest step along ``tangent`` from ``u``: omega moves by ``d_omega`` at most, the state by
+def _predict(p: _Point, tangent: np.ndarray, ds: float, back: tuple[np.ndarray, np.ndarray] | None) -> np.ndarray:
+    """The predictor ``ds`` along ``tangent`` from ``p``: where the branch, parametrised by ``sigma = tangent .
+    (u - p.u)``, crosses ``sigma = ds``, by the cubic that matches the previous point ``back = (u, tangent)`` and
+    ``p`` and their slopes ``du/dsigma = t/(tangent . t)`` (Hermite), extrapolated.  Its error is ``O(ds^4)``
+    where the branch is smooth (the tangent line's is ``O(ds^2)``), so that one corrector iterate mostly
+    suffices; the tangent line where there is no previous point (the first, and after a change of the stops,
+    where the branch has a kink)."""
+    if back is None:
+        return p.u + ds * tangent
+    h = float(tangent @ (p.u - back[0]))  # the previous point at sigma = -h
+    if not h > 0:
+        return p.u + ds * tangent
+    d_back = back[1] / float(tangent @ back[1])
+    s = 1.0 + ds / h  # sigma + h in units of h
+    h00, h10, h01, h11 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, 3 * s**2 - 2 * s**3, s**3 - s**2
+    return h00 * back[0] + h10 * h * d_back + h01 * p.u + h11 * h * tangent
+
+
+def _largest_step(u: np.ndarray, tangent: np.ndarray, d_value: float) -> float:
+    """The largest step along ``tangent`` from ``u``: the parameter moves by ``d_value`` at most, the state by
     :data:`STATE_STEP` of ``1 + |(x, v)|`` at most (a large resonant motion is crossed in relative steps)."""
-    along_omega = d_omega / max(abs(tangent[-1]), 1e-12)
+    along_omega = d_value / max(abs(tangent[-1]), 1e-12)
     along_state = STATE_STEP * (1 + np.linalg.norm(u[:-1])) / max(np.linalg.norm(tangent[:-1]), 1e-12)
     return min(along_omega, along_state)
 
@@ -198,21 +237,30 @@ def _signature(p: _Point) -> tuple[int, float, float]:
 
 
 def _locate(branch: _Branch, a: _Point, b: _Point, kind: str) -> _Point:
-    """Bisect the secant ``a -> b`` for the change ``kind``; the corrected point on ``b``'s side of it."""
+    """Bisect the secant ``a -> b`` for the change ``kind``; the corrected point on ``b``'s side of it.
+
+    The point at a fraction ``mid`` of the secant is the branch's crossing of the hyperplane through
+    ``a + mid (b - a)`` normal to the secant; the corrector starts from where the tangent line of the last point
+    found on ``a``'s side crosses that hyperplane, which comes closer at each halving (fewer iterates)."""
     index = {"stops-change": 0, "fold": 1, "period-doubling": 2}[kind]
     secant = b.u - a.u
     normal = secant / np.linalg.norm(secant)
-    lo, hi, best = 0.0, 1.0, b
+    lo, hi, best, near, tangent = 0.0, 1.0, b, a, _tangent(a, secant)
     for _ in range(BISECTIONS):
         mid = 0.5 * (lo + hi)
-        p = branch.correct(a.u + mid * secant, normal, a)
+        on_plane = a.u + mid * secant
+        guess = near.u + tangent * (normal @ (on_plane - near.u)) / (normal @ tangent)
+        p = branch.correct(guess, normal, a, BISECTION_TOL)
         if p is None:
             break
         if _signature(p)[index] == _signature(a)[index]:
-            lo = mid
+            lo, near = mid, p
+            tangent = _tangent(p, tangent)
         else:
             hi, best = mid, p
-    return best
+    if best is b:
+        return b
+    return branch.correct(best.u, normal, a) or b
 
 
 def continue_orbits(
@@ -224,6 +272,7 @@ def continue_orbits(
     progress: Callable[[int, int], None] | None = None,
     max_amplitude: float = MAX_AMPLITUDE,
     start_orbit: Orbit | None = None,
+    family: Family | None = None,
 ) -> Branch:
     """The branch of periodic motions from ``omega = start`` to ``stop`` (rad/s), in order along it.
 
@@ -237,15 +286,19 @@ def continue_orbits(
     early (``Branch.end`` says why) where its amplitude passes ``max_amplitude``
     (in units of ``P/k``: an undamped resonance), where it turns back below
     ``start``, or where the step falls below :data:`MIN_STEP` of the largest.
+    With ``family`` (:func:`~lumped.drivers.response.systems.parameter_family`),
+    the parameter followed from ``start`` to ``stop`` is that family's, the same
+    way (``system`` and ``amplitude`` are then not used).
     """
-    branch = _Branch(system, amplitude)
-    w0, w1 = start / branch.s.omega, stop / branch.s.omega
-    first = branch.point(start_orbit or find_orbit(system, amplitude, start))
-    out, ds_max = [ResponsePoint(first.orbit, "regular")], (w1 - w0) / (points - 1)
-    p, tangent, end = first, _tangent(first, None), "steps"
+    family = family or omega_family(system, amplitude)
+    branch = _Branch(family)
+    w0, w1 = start / family.unit, stop / family.unit
+    first = branch.point(start_orbit or find_orbit(*family.member(start)), start)
+    out, ds_max = [ResponsePoint(first.orbit, "regular", start)], (w1 - w0) / (points - 1)
+    p, tangent, end, back = first, _tangent(first, None), "steps", None
     ds = _largest_step(p.u, tangent, ds_max)
     for _ in range(50 * points):
-        q = branch.correct(p.u + ds * tangent, tangent, p)
+        q = branch.correct(_predict(p, tangent, ds, back), tangent, p)
         if q is None or q.u[-1] > w1 + ds_max or abs(q.u[-1] - p.u[-1]) > 1.5 * ds_max:
             ds *= 0.5
             if ds < MIN_STEP * ds_max:
@@ -255,11 +308,12 @@ def continue_orbits(
         if q.u[-1] >= w1:  # passed stop: the motion at stop itself, from the secant's guess
             guess = p.u + (q.u - p.u) * (w1 - p.u[-1]) / (q.u[-1] - p.u[-1])
             scale = np.repeat([branch.s.x, branch.s.v], guess.size // 2)
-            last = find_orbit(system, amplitude, stop, guess[:-1] * scale)
-            _append(branch, out, p, branch.point(last))
+            last = find_orbit(*family.member(stop), guess[:-1] * scale)
+            _append(branch, out, p, branch.point(last, stop))
             end = "stop"
             break
         _append(branch, out, p, q)
+        back = (p.u, tangent) if p.orbit.stops == q.orbit.stops else None
         p, tangent = q, _tangent(q, tangent)
         ds = min(1.5 * ds, _largest_step(p.u, tangent, ds_max))
         if progress is not None:
@@ -279,8 +333,8 @@ def _append(branch: _Branch, out: list[ResponsePoint], a: _Point, b: _Point) -> 
     if kind is not None:
         at = _locate(branch, a, b, kind)
         if at is not b:
-            out.append(ResponsePoint(at.orbit, kind))
+            out.append(ResponsePoint(at.orbit, kind, at.value))
         else:
-            out.append(ResponsePoint(b.orbit, kind))
+            out.append(ResponsePoint(b.orbit, kind, b.value))
             return
-    out.append(ResponsePoint(b.orbit, "regular"))
+    out.append(ResponsePoint(b.orbit, "regular", b.value))

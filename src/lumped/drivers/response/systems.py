@@ -13,12 +13,16 @@ A response curve is taken of one of two kinds of system under
   ``(x_1 .. x_n, v_1 .. v_n)``).
 
 :func:`response_system` reads either from a system file's network, and
-refuses in one line what neither supports.
+refuses in one line what neither supports.  A continuation follows a
+:class:`Family` of such systems: in the forcing frequency
+(:func:`omega_family`), or in the force's amplitude or any numeric parameter
+of the system file at a fixed frequency (:func:`parameter_family`).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import NamedTuple
 
 import numpy as np
@@ -26,12 +30,23 @@ import numpy as np
 from lumped.model.network import Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import one_mass_form
+from lumped.model.system_parameters import system_parameters, with_values
 from lumped.solvers.monodromy import PeriodMap
 from lumped.solvers.monodromy import period_map as one_mass_map
 from lumped.solvers.network_monodromy import NetworkPeriodMap, network_period_map
 from lumped.solvers.network_phase import Parts, parts, refusal
 
-__all__ = ["LoadedNetwork", "Scales", "period_map", "response_system"]
+__all__ = [
+    "OMEGA_STEP",
+    "Family",
+    "LoadedNetwork",
+    "Scales",
+    "omega_derivative",
+    "omega_family",
+    "parameter_family",
+    "period_map",
+    "response_system",
+]
 
 
 class LoadedNetwork(NamedTuple):
@@ -83,6 +98,24 @@ def period_map(
     return network_period_map(system.parts, system.mass, amplitude, omega, z, list(system.elements))
 
 
+#: Relative step of the central difference ``dPi/domega`` where no exact one is at hand: its truncation
+#: (step^2, 1e-12) and round-off (the map's ~1e-14 over the step, 1e-8) leave a derivative good to 1e-8, which
+#: only slows a Newton iteration's last digit, never moves the fixed point it converges to.
+OMEGA_STEP = 1e-6
+
+
+def omega_derivative(system: Oscillator | LoadedNetwork, amplitude: float, orbit) -> np.ndarray:
+    """``dPi/domega`` (m s/rad, then m/rad) at ``orbit`` (an :class:`~lumped.drivers.response.shooting.Orbit`:
+    its ``omega``, its state at ``t = 0`` and its period map): exact for one mass
+    (:func:`lumped.solvers.monodromy.omega_derivative`), else (a network, or an undamped resonance) a central
+    difference of relative step :data:`OMEGA_STEP`."""
+    if isinstance(orbit.period, PeriodMap) and (exact := orbit.period.omega_derivative) is not None:
+        return exact
+    z, h = orbit.state, OMEGA_STEP * orbit.omega
+    ends = [period_map(system, amplitude, orbit.omega + d, z).end for d in (h, -h)]
+    return (ends[0] - ends[1]) / (2 * h)
+
+
 def response_system(network: Network, mass: str) -> Oscillator | LoadedNetwork:
     """The system of ``network`` with the sine on ``mass``: its oscillator if it is one mass on springs and a
     Bingham or Coulomb dashpot, else the network; ``ValueError`` naming what is not supported."""
@@ -106,3 +139,61 @@ def response_system(network: Network, mass: str) -> Oscillator | LoadedNetwork:
             "so its periodic motions are not isolated"
         )
     return system
+
+
+class Family(NamedTuple):
+    """A one-parameter family of forced systems, what a continuation follows: the parameter's ``name``
+    (``omega``, ``amplitude``, or a system file's ``element.key``), its ``unit`` (the continuation's scale for
+    it), ``member(value)`` giving ``(system, P, omega)`` (``ValueError`` for a value the system refuses) and the
+    ``scales`` of the state (those of the member at the start)."""
+
+    name: str
+    unit: float
+    member: Callable[[float], tuple[Oscillator | LoadedNetwork, float, float]]
+    scales: Scales
+
+
+def omega_family(system: Oscillator | LoadedNetwork, amplitude: float) -> Family:
+    """The family in the forcing frequency (rad/s, in units of omega_n) of ``system`` under ``amplitude``."""
+
+    def member(omega: float) -> tuple[Oscillator | LoadedNetwork, float, float]:
+        if not (omega > 0 and math.isfinite(omega)):
+            raise ValueError(f"force_omega must be finite and > 0, got {omega!r}")
+        return system, amplitude, omega
+
+    scales = Scales.of(system, amplitude)
+    return Family("omega", scales.omega, member, scales)
+
+
+def parameter_family(
+    network: Network, mass: str, amplitude: float, omega: float, name: str, start: float, stop: float
+) -> Family:
+    """The family in ``name`` from ``start`` to ``stop`` of ``network`` under ``amplitude sin(omega t)`` on
+    ``mass``: ``amplitude`` (the force's, N) or a numeric parameter of the file (``dashpot.threshold``,
+    ``m.mass``: :func:`~lumped.model.system_parameters.system_parameters`), not an initial state (unused) nor
+    a load (refused).  Its unit is ``max(|start|, |stop|)``.  ``ValueError`` (one line beginning ``vary``)
+    for another name, or for a system refused at ``start`` or ``stop``."""
+    unit = max(abs(start), abs(stop))
+    if name == "amplitude":
+        system = response_system(network, mass)
+
+        def member(value: float) -> tuple[Oscillator | LoadedNetwork, float, float]:
+            if not (value > 0 and math.isfinite(value)):
+                raise ValueError(f"force_amplitude must be finite and > 0, got {value!r}")
+            return system, value, omega
+
+    else:
+        (param,) = system_parameters(network, [name], "vary")
+        if param.key in ("x0", "v0"):
+            raise ValueError(f"vary: {name!r} is an initial state, which a periodic motion does not use")
+
+        def member(value: float) -> tuple[Oscillator | LoadedNetwork, float, float]:
+            return response_system(with_values(network, [param], [value]), mass), amplitude, omega
+
+    for value in (start, stop):
+        try:
+            member(value)
+        except ValueError as err:
+            raise ValueError(f"vary: {name} = {value:g} gives no system the response takes ({err})") from None
+    system, p, _ = member(start)
+    return Family(name, unit, member, Scales.of(system, p))
