@@ -266,3 +266,24 @@ def test_the_initial_state_columns_are_the_monodromy_matrix():
     ours = network_sensitivities(forced, [0.6, -0.2], [0.3, -0.4], [2 * math.pi / omega], cols, net.element_names)
     matrix = np.vstack([ours.x[-1], ours.v[-1]])
     assert np.allclose(matrix, period.monodromy, rtol=0, atol=1e-10 * np.abs(period.monodromy).max())
+
+
+def test_a_mass_on_a_linear_dashpot_goes_by_the_network_solver_and_matches_its_closed_form():
+    # One mass on a spring (k = 100) and a linear dashpot (c): the one-mass solver refuses it, the network's
+    # takes it.  x(t) = x0 e^(-h t) (cos(w_d t) + h/w_d sin(w_d t)), h = c/2, w_d = sqrt(k - h^2): dx/dx0 is
+    # x/x0, and dx/dc is checked against a central difference of the closed form (step 1e-6: truncation
+    # about 1e-12 |x'''|, round-off about eps |x|/1e-6 = 1e-10), both to 1e-9.
+    text = FIGURE3.split("[[element]]")[0] + (
+        '[[element]]\nname = "s"\nkind = "spring"\nbetween = ["ground", "m"]\nstiffness = 100.0\n'
+        '[[element]]\nname = "d"\nkind = "dashpot"\nbetween = ["ground", "m"]\ndamping = 2.0\n'
+    )
+    t = np.linspace(0.0, 1.0, 41)
+    _, sens = system_sensitivities(parse_system(text), t, ["m.x0", "d.damping"])
+
+    def closed(c: float) -> np.ndarray:
+        h = c / 2
+        wd = math.sqrt(100.0 - h * h)
+        return 0.5 * np.exp(-h * t) * (np.cos(wd * t) + h / wd * np.sin(wd * t))
+
+    assert np.allclose(sens.x[:, 0, 0], closed(2.0) / 0.5, rtol=0, atol=1e-9)
+    assert np.allclose(sens.x[:, 0, 1], (closed(2.0 + 1e-6) - closed(2.0 - 1e-6)) / 2e-6, rtol=0, atol=1e-9)

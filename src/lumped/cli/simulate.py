@@ -11,7 +11,7 @@ from lumped.cli.options import HelpFormatter, add_method_options, check_method, 
 from lumped.cli.output import Output, check_output
 from lumped.cli.sensitivity import check_sensitivities, sensitivity_columns
 from lumped.drivers.methods import METHODS, OPTIONS
-from lumped.drivers.sensitivity import prepare
+from lumped.drivers.sensitivity import plan
 from lumped.model.parameters import PARAMETERS
 from lumped.numerics import validate
 
@@ -62,7 +62,7 @@ def run(args: argparse.Namespace, output: Output) -> str:
     values = _clean(args)
     network = _network(values) if args.sensitivities is not None else None
     if network is not None:
-        prepare(network, args.sensitivities, "--sensitivities")  # before the output is created
+        plan(network, args.sensitivities, "--sensitivities")  # before the output is created
     output.create()
     traj = _compute(values, args.method)
     columns = traj.columns()

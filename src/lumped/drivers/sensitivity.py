@@ -42,7 +42,7 @@ from lumped.solvers.network_sensitivities import (
 )
 from lumped.solvers.sensitivities import Sensitivities, sensitivities
 
-__all__ = ["NetworkPlan", "prepare", "system_sensitivities"]
+__all__ = ["NetworkPlan", "plan", "prepare", "system_sensitivities"]
 
 #: ``(table, key)`` of a system's parameter -> the one-mass API's name (an element's keys: its springs'
 #: and its dashpot's, checked by :func:`_api_name`).
@@ -85,12 +85,23 @@ class NetworkPlan:
 
 def prepare(
     network: Network, parameters: str | Sequence[str], what: str = "parameters"
+) -> tuple[tuple[SystemParameter, ...], list[str], SwitchedSine | None]:
+    """The parameters called ``parameters``, their one-mass API names and the load as a sine, or a
+    ``ValueError`` (one line beginning with ``what``) for a system or a parameter the one-mass sensitivities
+    lack (a network among them: :func:`plan` takes it)."""
+    params = system_parameters(network, parameters, what)
+    return (params, *_one_mass(network, params, what))
+
+
+def plan(
+    network: Network, parameters: str | Sequence[str], what: str = "parameters"
 ) -> tuple[tuple[SystemParameter, ...], list[str] | NetworkPlan, SwitchedSine | None]:
     """The parameters called ``parameters`` and how to differentiate them, or a ``ValueError`` (one line
     beginning with ``what``) for a system or a parameter the sensitivities lack.
 
-    For a system of the one-mass solver: the parameters, their one-mass API names and the load as a sine;
-    else (a network): the parameters, a :class:`NetworkPlan` and ``None``.
+    For a system of the one-mass solver, :func:`prepare`'s answer; else (a network, or one mass that only
+    the network solver runs, such as one on a linear dashpot): the parameters, a :class:`NetworkPlan` and
+    ``None``.
     """
     params = system_parameters(network, parameters, what)
     try:
@@ -185,7 +196,7 @@ def system_sensitivities(
     ValueError
         One line: an unknown parameter, a system the exact one-mass solver does not run, bad times.
     """
-    params, names, force = prepare(network, parameters, what)
+    params, names, force = plan(network, parameters, what)
     t = np.asarray(t, dtype=float).ravel()
     if t.size == 0 or not np.all(np.isfinite(t)) or t[0] < 0 or not t[-1] > 0 or np.any(np.diff(t) < 0):
         raise ValueError("t: the times must be finite, from 0 or later, increasing, and end after 0")
