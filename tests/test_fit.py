@@ -253,32 +253,6 @@ def test_bad_sensitivities_are_refused_in_one_line(tmp_path, args, message):
     assert run.stderr.count("\n") == 1 and not (tmp_path / "s.csv").exists()
 
 
-def test_sensitivities_of_a_network_are_refused_in_one_line(tmp_path):
-    two = tmp_path / "two.toml"
-    two.write_text(
-        '[[mass]]\nname = "a"\nmass = 1.0\nx0 = 0.5\n[[mass]]\nname = "b"\nmass = 1.0\n'
-        '[[element]]\nname = "s"\nkind = "spring"\nbetween = ["ground", "a"]\nstiffness = 100.0\n'
-        '[[element]]\nname = "c"\nkind = "spring"\nbetween = ["a", "b"]\nstiffness = 100.0\n'
-        '[[element]]\nname = "d"\nkind = "bingham"\nbetween = ["ground", "b"]\nthreshold = 1.0\ngamma = 1.0\n'
-    )
-    args = [
-        "simulate",
-        "--t-end",
-        "1",
-        "--dt",
-        "0.1",
-        "--method",
-        "exact",
-        "--sensitivities",
-        "a.x0",
-        "--output",
-        "s.csv",
-    ]
-    run = _lumped(*args, "--system", str(two), cwd=tmp_path)
-    assert run.returncode == 2 and "need a one-mass system; the network has 2 masses" in run.stderr
-    assert run.stderr.count("\n") == 1 and not (tmp_path / "s.csv").exists()
-
-
 def test_a_ground_motion_refuses_the_mass_and_no_output_prints_the_summary_alone(tmp_path):
     # The ground's load -m a_g is written into the system when the file is read: a changed mass would keep
     # the old load, so the mass is refused as a parameter with a [ground] table.

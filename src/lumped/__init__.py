@@ -55,6 +55,7 @@ from lumped.solvers.event_capturing import CapturedRun, event_capturing
 from lumped.solvers.event_driven import IntegratedSolution, solve_event_driven
 from lumped.solvers.events import Event, Phase
 from lumped.solvers.exact import ExactSolution, solve_exact
+from lumped.solvers.network_sensitivities import NetworkSensitivities
 from lumped.solvers.one_sided import one_sided
 from lumped.solvers.sensitivities import Sensitivities, sensitivities
 from lumped.solvers.theta import theta_method
@@ -85,6 +86,7 @@ __all__ = [
     "Monotone",
     "MonotoneDashpot",
     "Network",
+    "NetworkSensitivities",
     "Oscillator",
     "PapanastasiouDashpot",
     "Phase",

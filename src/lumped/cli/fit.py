@@ -17,8 +17,9 @@ with the columns t (s, from 0, increasing) and x_<mass> (m) for the measured
 masses; other columns are not read.  --free names the parameters to estimate,
 element.key or mass.key as in the file: an element's threshold, gamma,
 stiffness, a mass's mass, x0, v0 (and force.amplitude, force.omega,
-force.phase of a single sine load).  The system: one mass on springs and a
-Bingham or Coulomb dashpot, all to the ground, under a sine or a constant load.
+force.phase of a single sine load).  The system: what the exact solver runs
+(one mass, or a network of springs, Bingham, Coulomb and linear dashpots under
+sine and constant loads); the record may measure any subset of its masses.
 The summary gives each estimate with its standard error; --output writes them
 to a JSON file with the residual standard deviation, the correlation matrix
 and the combinations of the parameters that the data identify or do not."""

@@ -1,4 +1,5 @@
-"""``simulate --sensitivities``: the derivatives of the exact motion as extra columns ``dx_<mass>/d<name>``."""
+"""``simulate --sensitivities``: the derivatives of the exact motion as extra columns ``dx_<mass>/d<name>``
+(every mass's, mass by mass)."""
 
 from __future__ import annotations
 
@@ -20,8 +21,12 @@ def sensitivity_columns(network: object, t: object, names: str) -> dict[str, obj
     from lumped.drivers.sensitivity import system_sensitivities
 
     _, sens = system_sensitivities(network, t, names, "--sensitivities")  # type: ignore[arg-type]
-    mass = network.masses[0].name  # type: ignore[attr-defined]
-    return {f"dx_{mass}/d{name}": sens.x[:, j] for j, name in enumerate(sens.parameters)}
+    masses = network.mass_names  # type: ignore[attr-defined]
+    if sens.x.ndim == 2:  # one mass
+        return {f"dx_{masses[0]}/d{name}": sens.x[:, j] for j, name in enumerate(sens.parameters)}
+    return {
+        f"dx_{mass}/d{name}": sens.x[:, i, j] for i, mass in enumerate(masses) for j, name in enumerate(sens.parameters)
+    }
 
 
 def refuse_ground_mass(path: str, parameters: tuple, what: str) -> None:

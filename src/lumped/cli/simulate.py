@@ -11,7 +11,7 @@ from lumped.cli.options import HelpFormatter, add_method_options, check_method, 
 from lumped.cli.output import Output, check_output
 from lumped.cli.sensitivity import check_sensitivities, sensitivity_columns
 from lumped.drivers.methods import METHODS, OPTIONS
-from lumped.drivers.sensitivity import prepare
+from lumped.drivers.sensitivity import plan
 from lumped.model.parameters import PARAMETERS
 from lumped.numerics import validate
 
@@ -48,7 +48,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="with --method exact: add the columns dx_<mass>/d<NAME>, the derivative of each mass's x at each "
         "time with respect to the parameters NAME, written element.key, mass.key or force.key as in the system "
         "file (without --system the mass is m, its elements spring and dashpot: m.x0, dashpot.threshold, "
-        "dashpot.gamma, spring.stiffness, force.amplitude, ...); one mass only",
+        "dashpot.gamma, spring.stiffness, force.amplitude, ...); a network's for every mass",
     )
     required = sim.add_argument_group("required arguments")
     required.add_argument("--output", required=True, help="output file, .csv or .npz")
@@ -62,7 +62,7 @@ def run(args: argparse.Namespace, output: Output) -> str:
     values = _clean(args)
     network = _network(values) if args.sensitivities is not None else None
     if network is not None:
-        prepare(network, args.sensitivities, "--sensitivities")  # before the output is created
+        plan(network, args.sensitivities, "--sensitivities")  # before the output is created
     output.create()
     traj = _compute(values, args.method)
     columns = traj.columns()

@@ -14,7 +14,7 @@ from lumped.cli.options import check_method, method_options
 from lumped.cli.output import Output, check_output
 from lumped.cli.sensitivity import refuse_ground_mass, sensitivity_columns
 from lumped.drivers.methods import METHODS
-from lumped.drivers.sensitivity import prepare
+from lumped.drivers.sensitivity import plan
 from lumped.model.parameters import PARAMETERS
 from lumped.numerics import validate
 
@@ -33,7 +33,7 @@ def run(args: argparse.Namespace, output: Output) -> str:
     if not METHODS[args.method].runs_networks and not _piecewise(network, args.method, args.system):
         _one_mass(network, args)
     if args.sensitivities is not None:
-        params = prepare(network, args.sensitivities, "--sensitivities")[0]  # before the output is created
+        params = plan(network, args.sensitivities, "--sensitivities")[0]  # before the output is created
         refuse_ground_mass(args.system, params, "--sensitivities")
     output.create()
     try:

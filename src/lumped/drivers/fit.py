@@ -2,9 +2,10 @@
 
 :func:`fit` estimates the parameters named ``free`` (``dashpot.threshold``,
 ``spring.stiffness``, ``m.x0``: :mod:`lumped.model.system_parameters`) from
-a record of displacements (:class:`~lumped.model.records.Record`) by SciPy's
-``least_squares`` from the values in the system, with the Jacobian of the
-residuals given exactly by the sensitivities of the exact solution
+a record of displacements (:class:`~lumped.model.records.Record`: any
+subset of the masses) by SciPy's ``least_squares`` from the values in the
+system, with the Jacobian of the residuals given exactly by the
+sensitivities of the exact solution, of one mass or of a network
 (:func:`lumped.drivers.sensitivity.system_sensitivities`).
 
 Notes
@@ -37,6 +38,7 @@ from lumped.drivers.sensitivity import system_sensitivities
 from lumped.model.network import Network
 from lumped.model.records import Record
 from lumped.model.system_parameters import SystemParameter, system_parameters, with_values
+from lumped.solvers.network_sensitivities import NetworkSensitivities
 
 __all__ = ["Combination", "FitResult", "fit"]
 
@@ -140,10 +142,14 @@ class _Model:
         except ValueError as err:
             shown = ", ".join(f"{n} = {v:.6g}" for n, v in zip(self.names, theta))
             raise ValueError(f"free: the model cannot be run at {shown}: {err}") from None
-        mass = net.masses[0].name
-        model = {mass: solution.evaluate(self.record.t)["x"]}
+        if isinstance(sens, NetworkSensitivities):  # x (T, n) and its derivatives (T, n, p), masses in order
+            index = {name: i for i, name in enumerate(net.mass_names)}
+            model = {name: sens.positions[:, index[name]] for name in self.record.x}
+            J = np.vstack([sens.x[:, index[name], :] for name in self.record.x])
+        else:
+            model = {net.masses[0].name: solution.evaluate(self.record.t)["x"]}  # type: ignore[union-attr]
+            J = np.vstack([sens.x for _ in self.record.x])
         r = np.concatenate([model[name] - self.record.x[name] for name in self.record.x])
-        J = np.vstack([sens.x for _ in self.record.x])
         self.last = (theta.copy(), r, J, model)
         return r, J, model
 
@@ -156,9 +162,10 @@ def fit(
     Parameters
     ----------
     network : Network
-        The system, with the start values; one mass on springs and a Bingham
-        or Coulomb dashpot under a sine or constant load (what the exact
-        sensitivities take).
+        The system, with the start values: one that the exact sensitivities
+        take (one mass on springs and a Bingham or Coulomb dashpot under a
+        sine or constant load, or a network of springs, Bingham, Coulomb and
+        linear dashpots under sine and constant loads).
     record : Record
         Times and measured displacements (:func:`~lumped.model.records.read_record`).
     free : str or sequence of str

@@ -1,14 +1,24 @@
 """Sensitivities of a system's exact motion to its parameters, named as in its file (``dashpot.threshold``).
 
-:func:`system_sensitivities` runs a one-mass system (one mass on springs and
-a Bingham or Coulomb dashpot, all to the ground, under a sine or a constant
-load from ``t = 0``: what :func:`~lumped.solvers.exact.solve_exact` takes)
-by the exact solver and differentiates it
-(:func:`lumped.solvers.sensitivities.sensitivities`) with respect to
-parameters named as :mod:`lumped.model.system_parameters` names them.  A
-spring's ``stiffness`` moves the total stiffness ``k`` by as much, so every
-spring of the mass has the same derivative; ``force.value`` of a constant
-load is the amplitude of the sine it equals.
+:func:`system_sensitivities` runs a system by an exact solver and
+differentiates it with respect to parameters named as
+:mod:`lumped.model.system_parameters` names them:
+
+* a one-mass system (one mass on springs and a Bingham or Coulomb dashpot,
+  all to the ground, under a sine or a constant load from ``t = 0``: what
+  :func:`~lumped.solvers.exact.solve_exact` takes) by the one-mass solver
+  (:func:`lumped.solvers.sensitivities.sensitivities`).  A spring's
+  ``stiffness`` moves the total stiffness ``k`` by as much, so every spring
+  of the mass has the same derivative; ``force.value`` of a constant load is
+  the amplitude of the sine it equals;
+* any other network that the exact network solver runs (linear springs,
+  Bingham, Coulomb and linear dashpots under sine and constant loads, the
+  sticking elements a forest) by it
+  (:func:`lumped.solvers.network_sensitivities.network_sensitivities`), with
+  respect to every mass's ``mass``, ``x0``, ``v0``, every spring's
+  ``stiffness``, every dashpot's ``threshold``, ``gamma`` and ``damping``,
+  and a single load's ``amplitude``, ``value``, ``omega``, ``phase`` and
+  ``until``.
 """
 
 from __future__ import annotations
@@ -23,9 +33,16 @@ from lumped.model.network import Network
 from lumped.model.problem import one_mass_form
 from lumped.model.system_parameters import SystemParameter, system_parameters
 from lumped.solvers.exact import ExactSolution, solve_exact
+from lumped.solvers.network_phase import linear_parts, parts, refusal
+from lumped.solvers.network_sensitivities import (
+    NetworkMotion,
+    NetworkSensitivities,
+    Parameter,
+    network_sensitivities,
+)
 from lumped.solvers.sensitivities import Sensitivities, sensitivities
 
-__all__ = ["prepare", "system_sensitivities"]
+__all__ = ["NetworkPlan", "plan", "prepare", "system_sensitivities"]
 
 #: ``(table, key)`` of a system's parameter -> the one-mass API's name (an element's keys: its springs'
 #: and its dashpot's, checked by :func:`_api_name`).
@@ -57,35 +74,110 @@ def _api_name(network: Network, p: SystemParameter, what: str) -> str:
     return name
 
 
+@dataclasses.dataclass(frozen=True)
+class NetworkPlan:
+    """The network solver's ``parameters`` for a system's, and the ``factors`` (p,) of the chain rule
+    (``-c^2`` for a ``gamma``, ``c = 1/gamma``: 0 for a Coulomb element; 1 for the others)."""
+
+    parameters: tuple[Parameter, ...]
+    factors: np.ndarray
+
+
 def prepare(
     network: Network, parameters: str | Sequence[str], what: str = "parameters"
 ) -> tuple[tuple[SystemParameter, ...], list[str], SwitchedSine | None]:
     """The parameters called ``parameters``, their one-mass API names and the load as a sine, or a
-    ``ValueError`` (one line beginning with ``what``) for a system or a parameter the sensitivities lack."""
+    ``ValueError`` (one line beginning with ``what``) for a system or a parameter the one-mass sensitivities
+    lack (a network among them: :func:`plan` takes it)."""
     params = system_parameters(network, parameters, what)
+    return (params, *_one_mass(network, params, what))
+
+
+def plan(
+    network: Network, parameters: str | Sequence[str], what: str = "parameters"
+) -> tuple[tuple[SystemParameter, ...], list[str] | NetworkPlan, SwitchedSine | None]:
+    """The parameters called ``parameters`` and how to differentiate them, or a ``ValueError`` (one line
+    beginning with ``what``) for a system or a parameter the sensitivities lack.
+
+    For a system of the one-mass solver, :func:`prepare`'s answer; else (a network, or one mass that only
+    the network solver runs, such as one on a linear dashpot): the parameters, a :class:`NetworkPlan` and
+    ``None``.
+    """
+    params = system_parameters(network, parameters, what)
+    try:
+        return (params, *_one_mass(network, params, what))
+    except ValueError as err:
+        one_mass = err
+    reason = refusal(network, "exact")
+    if reason is not None:
+        if len(network.masses) == 1:
+            raise one_mass
+        raise ValueError(f"{what}: the exact sensitivities cannot run this network: {reason}")
+    plan = [_network_parameter(network, p, what) for p in params]
+    return params, NetworkPlan(tuple(a for a, _ in plan), np.array([f for _, f in plan])), None
+
+
+#: ``(table, key)`` of a system's parameter -> the network solver's kind (an element's are checked by
+#: :func:`_network_parameter`).
+_NETWORK = {
+    ("mass", "mass"): "mass",
+    ("mass", "x0"): "x0",
+    ("mass", "v0"): "v0",
+    ("force", "amplitude"): "amplitude",
+    ("force", "value"): "amplitude",
+    ("force", "omega"): "omega",
+    ("force", "phase"): "phase",
+    ("force", "until"): "until",
+}
+
+
+def _network_parameter(network: Network, p: SystemParameter, what: str) -> tuple[Parameter, float]:
+    """The network solver's parameter of ``p`` and its chain-rule factor, or a one-line ``ValueError``."""
+    if p.table != "element":
+        kind = _NETWORK[(p.table, p.key)]
+        if kind == "omega" and network.loads[0].force.omega == 0:  # type: ignore[union-attr]
+            raise ValueError(f"{what}: {p.name!r} has no sensitivity at 0 (the load is then the constant A sin(phase))")
+        return Parameter(kind, p.index), 1.0
+    el = network.elements[p.index]
+    _, c, tau = linear_parts(el)  # type: ignore[misc]
+    if p.key == "stiffness" and el.linear_stiffness is not None:
+        return Parameter("stiffness", p.index), 1.0
+    if p.key == "threshold" and tau > 0:
+        return Parameter("threshold", p.index), 1.0
+    if p.key == "threshold":
+        raise ValueError(f"{what}: {p.name!r} is 0, where the force's derivative by it (the rate's sign) is one-sided")
+    if p.key == "gamma":
+        return Parameter("viscosity", p.index), -c * c  # dc/dgamma = -1/gamma^2: 0 for Coulomb
+    if p.key in ("damping", "consistency"):
+        return Parameter("viscosity", p.index), 1.0
+    raise ValueError(f"{what}: {p.name!r} has no sensitivity: the exact network solver does not take it")
+
+
+def _one_mass(network: Network, params: tuple[SystemParameter, ...], what: str) -> tuple[list[str], object]:
+    """The one-mass API names of ``params`` and the load as a sine, or a ``ValueError``."""
     try:
         form = one_mass_form(network)
     except ValueError as err:
         raise ValueError(f"{what}: the exact sensitivities need a one-mass system; the network {err}") from None
-    names = [_api_name(network, p, what) for p in params]
     force = sine_form(one_force([load.force for load in network.loads]))
     if force is not None and not isinstance(force, SwitchedSine):
         raise ValueError(f"{what}: the exact sensitivities need a sine load or a constant one from t = 0")
     if form.oscillator.dashpot.bingham_form() is None:
         raise ValueError(f"{what}: the exact sensitivities need a Bingham or Coulomb dashpot")
-    return params, names, force
+    return [_api_name(network, p, what) for p in params], force
 
 
 def system_sensitivities(
     network: Network, t: np.ndarray | Sequence[float], parameters: str | Sequence[str], what: str = "parameters"
-) -> tuple[ExactSolution, Sensitivities]:
-    """The exact motion of a one-mass ``network`` over ``[0, t[-1]]`` and its derivatives at the times ``t``.
+) -> tuple[ExactSolution, Sensitivities] | tuple[NetworkMotion, NetworkSensitivities]:
+    """The exact motion of ``network`` over ``[0, t[-1]]`` and its derivatives at the times ``t``.
 
     Parameters
     ----------
     network : Network
         One mass on springs and a Bingham or Coulomb dashpot, all to the
-        ground, with at most one load, a sine or a constant on from ``t = 0``.
+        ground, with at most one load, a sine or a constant on from ``t = 0``;
+        or a network that the exact network solver runs (module docstring).
     t : array_like, (n,), s
         Increasing times from 0 or later; the motion is solved to the last one (``> 0``).
     parameters : str or sequence of str
@@ -95,19 +187,38 @@ def system_sensitivities(
 
     Returns
     -------
-    (ExactSolution, Sensitivities)
-        The solution, and its derivatives with ``parameters`` named as given.
+    (ExactSolution, Sensitivities) or (NetworkMotion, NetworkSensitivities)
+        The solution, and its derivatives with ``parameters`` named as given: for one mass by the
+        one-mass solver, else by the network solver (``x`` of shape (T, n, p), masses in the file's order).
 
     Raises
     ------
     ValueError
         One line: an unknown parameter, a system the exact one-mass solver does not run, bad times.
     """
-    params, names, force = prepare(network, parameters, what)
+    params, names, force = plan(network, parameters, what)
     t = np.asarray(t, dtype=float).ravel()
     if t.size == 0 or not np.all(np.isfinite(t)) or t[0] < 0 or not t[-1] > 0 or np.any(np.diff(t) < 0):
         raise ValueError("t: the times must be finite, from 0 or later, increasing, and end after 0")
+    if isinstance(names, NetworkPlan):
+        x0, v0 = (a[:-1] for a in network.initial_positions())
+        sens = network_sensitivities(parts(network), x0, v0, t, names.parameters, network.element_names)
+        return sens.motion, _scaled(sens, names.factors, tuple(p.name for p in params))
     mass = network.masses[0]
     solution = solve_exact(one_mass_form(network).oscillator, float(t[-1]), x0=mass.x0, v0=mass.v0, force=force)
     sens = sensitivities(solution, t, names)
     return solution, dataclasses.replace(sens, parameters=tuple(p.name for p in params))
+
+
+def _scaled(sens: NetworkSensitivities, factors: np.ndarray, names: tuple[str, ...]) -> NetworkSensitivities:
+    """``sens`` with each column multiplied by its chain-rule factor and named ``names``."""
+    events = tuple(dataclasses.replace(e, time=e.time * factors, x=e.x * factors) for e in sens.events)
+    return dataclasses.replace(
+        sens,
+        parameters=names,  # type: ignore[arg-type]
+        x=sens.x * factors,
+        v=sens.v * factors,
+        events=events,
+        rest_time=sens.rest_time * factors,
+        rest_position=sens.rest_position * factors,
+    )

@@ -45,7 +45,7 @@ from lumped.solvers.network_modes import (
 )
 from lumped.solvers.network_phase import Parts, Phase, parts, switch_times
 
-__all__ = ["NetworkEvent", "solve_exact_network", "march", "MAX_EVENTS"]
+__all__ = ["NetworkEvent", "solve_exact_network", "march", "sample", "MAX_EVENTS"]
 
 #: Most phases of one run before it is refused (each costs a few matrix exponentials).
 MAX_EVENTS = 20_000
@@ -132,7 +132,7 @@ def march(
             raise ValueError(f"max_events: more than {max_events} events before t_end = {t_end:g} s")
 
 
-def _sample(phases: list[Phase], times: np.ndarray) -> tuple[np.ndarray, ...]:
+def sample(phases: list[Phase], times: np.ndarray) -> tuple[np.ndarray, ...]:
     """Positions, velocities, forces (rows per time) and the rigid flags, from the phase holding each time."""
     starts = np.array([ph.start for ph in phases])
     which = np.searchsorted(starts, times, side="right") - 1
@@ -166,5 +166,5 @@ def solve_exact_network(
     p = parts(network)
     x0, v0 = (a[:-1] for a in network.initial_positions())
     phases, events = march(p, x0, v0, float(index[-1] * dt), network.element_names, max_events)
-    rows = _sample(phases, index * dt)
+    rows = sample(phases, index * dt)
     return trajectory(network, p, index, dt, save_every, rows, phases, events, "exact")

@@ -58,7 +58,7 @@ from lumped.solvers.exact_network import march, step_for
 from lumped.solvers.network_modes import NetworkEvent, event_rows
 from lumped.solvers.network_phase import Parts, Phase, groups
 
-__all__ = ["NetworkPeriodMap", "forced_parts", "mode_flow", "network_period_map"]
+__all__ = ["ModeFlow", "NetworkPeriodMap", "event_gradient", "forced_parts", "mode_flow", "network_period_map"]
 
 
 def forced_parts(p: Parts, mass: int, amplitude: float, omega: float) -> Parts:
@@ -69,12 +69,22 @@ def forced_parts(p: Parts, mass: int, amplitude: float, omega: float) -> Parts:
 @dataclass(frozen=True)
 class ModeFlow:
     """A mode's linear flow in the masses' full state: ``y' = B y + b(t)`` from ``Q y`` (module Notes), and the
-    derivative of the sticking elements' forces, ``d f_stick / dy`` (rows in the order of the elements)."""
+    derivative of the sticking elements' forces, ``d f_stick / dy`` (rows in the order of the elements).
+
+    Its parts, for the parameters' derivatives (:mod:`lumped.solvers.network_sensitivities`): ``g`` is ``G``
+    (n x n), ``stiffness`` and ``viscosity`` are ``K`` and ``C`` (n x n), and ``reach`` is
+    ``-pinv(A_S) (I - m G)`` (s x n), so that the accelerations are ``G N`` and the sticking forces
+    ``-reach N`` for the net force ``N`` on the masses (loads less the forces of the elements that do not stick).
+    """
 
     b: np.ndarray
     q: np.ndarray
     force: np.ndarray
     sticking: np.ndarray
+    g: np.ndarray
+    stiffness: np.ndarray
+    viscosity: np.ndarray
+    reach: np.ndarray
 
 
 def mode_flow(p: Parts, mode: np.ndarray) -> ModeFlow:
@@ -87,11 +97,11 @@ def mode_flow(p: Parts, mode: np.ndarray) -> ModeFlow:
     c = p.b @ np.diag(np.where(stick, 0.0, p.c)) @ p.b.T
     b = np.block([[np.zeros((n, n)), np.eye(n)], [-g @ k, -g @ c]])
     q = np.block([[np.eye(n), np.zeros((n, n))], [np.zeros((n, n)), g * p.m[None, :]]])
-    force = np.zeros((0, 2 * n))
+    force, reach = np.zeros((0, 2 * n)), np.zeros((0, n))
     if stick.any():  # f_S = pinv(A_S) (I - m G) (F - A f_free): the reactions of notebook 8's phases
         reach = -np.linalg.pinv(p.b[:, stick]) @ (np.eye(n) - p.m[:, None] * g)
         force = np.hstack([reach @ k, reach @ c])
-    return ModeFlow(b, q, force, np.flatnonzero(stick))
+    return ModeFlow(b, q, force, np.flatnonzero(stick), g, k, c, reach)
 
 
 @dataclass(frozen=True)
@@ -237,16 +247,26 @@ def _through(
     if event is None:
         return np.vstack([np.zeros(dy.shape[1]), dy])
     z = ph.z(end)
+    _, _, r, rate = event_gradient(p, ph, flow, event, names, z)
+    dt = -(r @ dy) / rate
+    return np.vstack([dt, dy + np.outer(_field(ph, z), dt)])
+
+
+def event_gradient(
+    p: Parts, ph: Phase, flow: ModeFlow, event: NetworkEvent, names: list[str], z: np.ndarray
+) -> tuple[int, float, np.ndarray, float]:
+    """The element ``e`` of ``event`` (its first), the sign ``s``, the event function's gradient ``r`` on the
+    masses' state ``y`` (2n,) and its rate ``g'`` along the flow of ``ph`` at its state ``z`` (module Notes):
+    a stop's ``g = s w_e`` (``s`` the slip direction), a breakaway's ``g = tau_e - s f_e`` (``s`` the force's sign)."""
     e = names.index(event.elements[0])
     rows, _, what = event_rows(p, ph)
     n = p.m.size
     if event.kind == "stop":
+        s = float(ph.mode[e])
         r = np.concatenate([np.zeros(n), ph.mode[e] * p.b[:, e]])
         row = rows[what.index((e, "stop"))]
     else:  # a breakaway: tau - s f_e reached 0, s the force's sign
         s = 1.0 if ph.values(z)[3][e] > 0 else -1.0
         r = -s * flow.force[int(np.flatnonzero(flow.sticking == e)[0])]
         row = rows[what.index((e, "breakaway")) + (0 if s > 0 else 1)]
-    rate = float(row @ (ph.a @ z))
-    dt = -(r @ dy) / rate
-    return np.vstack([dt, dy + np.outer(_field(ph, z), dt)])
+    return e, s, r, float(row @ (ph.a @ z))

@@ -30,7 +30,7 @@ from lumped.model.forcing import Constant, SwitchedSine, jumps, kind_of
 from lumped.model.network import Network, listed, rigid_loop
 from lumped.numerics.expm import expm
 
-__all__ = ["Parts", "Phase", "groups", "parts", "phase", "refusal"]
+__all__ = ["Parts", "Phase", "groups", "load_matrix", "parts", "phase", "refusal"]
 
 #: What the closed forms of a phase take, for the refusals.
 _TAKES = "linear springs, Bingham or Coulomb elements and linear dashpots under sine and constant loads"
@@ -188,7 +188,7 @@ class Phase(NamedTuple):
         return {"x": self.out[:n], "v": self.out[n : 2 * n], "a": self.out[2 * n : 3 * n], "f": self.out[3 * n :]}[what]
 
 
-def _load_matrix(p: Parts, t: float, dim: int, base: int) -> np.ndarray:
+def load_matrix(p: Parts, t: float, dim: int, base: int) -> np.ndarray:
     """``F(t) = L @ z`` (n, dim) for the loads on just after ``t``; generators from column ``base``."""
     out = np.zeros((p.m.size, dim))
     for i, f in p.loads:
@@ -222,7 +222,7 @@ def phase(p: Parts, t: float, x: np.ndarray, v: np.ndarray, mode: np.ndarray) ->
     stick = p.friction & (mode == 0)
     mr = member.T @ (p.m[:, None] * member)
     bu = p.b.T @ member  # the elements' elongations per unit u, (E, G)
-    load = _load_matrix(p, t, dim, base)
+    load = load_matrix(p, t, dim, base)
     # the forces of the elements that do not stick, as rows on z: springs, viscous parts, slip thresholds
     e0 = p.b.T @ x
     free = np.zeros((p.k.size, dim))

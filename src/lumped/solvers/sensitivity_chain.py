@@ -11,6 +11,7 @@ its distance from a change of the event sequence (its *margin*).
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -218,13 +219,15 @@ def direction(phase: Phase) -> int:
     return 1 if v >= 0 else -1
 
 
-def flow(B: np.ndarray, Y_a: np.ndarray, taus: np.ndarray) -> np.ndarray:
+def flow(B: np.ndarray, Y_a: np.ndarray, taus: np.ndarray, expm: Callable | None = None) -> np.ndarray:
     """``expm(B tau) Y_a`` for each ``tau`` (n x len(Y_a)); a uniform grid is marched by one step's exponential.
 
     Marching adds a rounding of about ``eps`` per step, relative to the state: ``n eps`` at worst over ``n``
-    steps, far below what the derivatives are compared with (``tests/test_sensitivities.py``).
+    steps, far below what the derivatives are compared with (``tests/test_sensitivities.py``).  ``expm`` is
+    SciPy's unless given (the networks' take :func:`lumped.numerics.expm.expm`, as their phases do).
     """
-    from scipy.linalg import expm
+    if expm is None:
+        from scipy.linalg import expm
 
     out = np.empty((taus.size, Y_a.size))
     gaps = np.diff(taus)
