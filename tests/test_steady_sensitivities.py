@@ -213,12 +213,7 @@ def test_a_system_files_names_give_the_oscillators_derivatives():
         ("net", "q", "m.mass", r"^force_on: no mass named 'q' in the system \(its masses: m\)$"),
         ("osc", None, ["x0"], r"^parameters: the steady amplitude has no derivative in 'x0'; expected some of mass,"),
         ("dict", None, ["mass"], r"^system must be a Network or an Oscillator, got dict$"),
-        (
-            "two",
-            "m1",
-            "m1.mass",
-            r"^system: the steady amplitude's derivatives need one mass on springs and a dashpot$",
-        ),
+        ("two", "m1", "force.phase", r"^parameters: the steady amplitude does not depend on 'force.phase'$"),
     ],
 )
 def test_bad_arguments_are_refused_in_one_line(system, mass, names, message):

@@ -1,4 +1,4 @@
-"""The steady amplitude of one forced mass and its derivatives, with parameters named as in a system file.
+"""The steady amplitude of a forced mass and its derivatives, with parameters named as in a system file.
 
 :func:`steady_amplitude_sensitivities` finds the periodic motion under
 ``P sin(omega t)`` (:func:`~lumped.drivers.response.find_orbit`, the fixed
@@ -6,7 +6,11 @@ point of the exact period map) and differentiates its amplitude by the
 implicit function theorem (:mod:`lumped.solvers.steady_sensitivities`).
 Where a stop appears or vanishes (the period's smallest event margin below
 :data:`MARGIN`), it also gives the one-sided derivatives, from the periodic
-motions at ``p -+ delta`` (:func:`lumped.solvers.one_sided.moved`).
+motions at ``p -+ delta`` (:func:`lumped.solvers.one_sided.moved`).  A
+network (what the ``response`` command takes with more than one mass) is
+differentiated through its own period map
+(:func:`lumped.solvers.steady_sensitivities.network_steady_sensitivities`);
+there the margin is reported and no one-sided values are formed.
 """
 
 from __future__ import annotations
@@ -19,12 +23,18 @@ from typing import NamedTuple
 from lumped.drivers.response import find_orbit
 from lumped.drivers.response.shooting import Orbit
 from lumped.drivers.response.systems import response_system
-from lumped.drivers.sensitivity import prepare
+from lumped.drivers.sensitivity import NetworkPlan, plan, prepare
 from lumped.model.forcing import SwitchedSine
 from lumped.model.network import Load, Network
 from lumped.model.oscillator import Oscillator
 from lumped.solvers.one_sided import STEP, Problem, moved
-from lumped.solvers.steady_sensitivities import STEADY_PARAMETERS, SteadySensitivities, steady_sensitivities
+from lumped.solvers.steady_sensitivities import (
+    NETWORK_STEADY_KINDS,
+    STEADY_PARAMETERS,
+    SteadySensitivities,
+    network_steady_sensitivities,
+    steady_sensitivities,
+)
 
 __all__ = ["MARGIN", "OneSidedAmplitude", "SteadyAmplitude", "steady_amplitude_sensitivities"]
 
@@ -105,8 +115,9 @@ def steady_amplitude_sensitivities(
     Parameters
     ----------
     system : Network or Oscillator
-        One mass on springs and a Bingham or Coulomb dashpot, all to the ground, without loads of its own (as
-        the ``response`` command takes it), or an oscillator.
+        A system without loads of its own, as the ``response`` command takes it (one mass on springs and a
+        Bingham or Coulomb dashpot, or a network of linear springs, Bingham and Coulomb elements and linear
+        dashpots), or an oscillator.
     mass : str or None
         The mass the sine acts on (``None`` for an oscillator).
     amplitude, omega : float
@@ -124,6 +135,8 @@ def steady_amplitude_sensitivities(
         One line: a system with more than one mass, a parameter the steady amplitude does not depend on (an
         initial state, the sine's phase or end), or Newton without a periodic motion.
     """
+    if isinstance(system, Network) and not isinstance(response_system(system, mass), Oscillator):
+        return _network(system, mass, amplitude, omega, parameters, guess)
     osc, force, names, shown = _resolve(system, mass, amplitude, omega, parameters)
     orbit = find_orbit(osc, force.amplitude, force.omega, guess)
     sens = steady_sensitivities(orbit.period.solution, names)
@@ -134,6 +147,28 @@ def steady_amplitude_sensitivities(
     return SteadyAmplitude(sens.amplitude, by_name, sens.stops, sens.margin, sides, orbit)
 
 
+def _network(
+    system: Network, mass: str, amplitude: float, omega: float, parameters, guess: Sequence[float] | None
+) -> SteadyAmplitude:
+    """The network's case: its period map and sensitivities (:func:`network_steady_sensitivities`); the
+    derivatives of the loaded mass's amplitude, no one-sided values (the margin says where they would differ)."""
+    loaded = Network(list(system.masses), list(system.elements), [Load(mass, SwitchedSine(amplitude, omega))])
+    params, how, _ = plan(loaded, parameters)
+    if not isinstance(how, NetworkPlan):  # a one-mass system is answered above
+        raise ValueError("system: expected a network")  # noqa: TRY004 (the API's one error type)
+    for prm, sp in zip(how.parameters, params, strict=True):
+        if prm.kind not in NETWORK_STEADY_KINDS:
+            raise ValueError(f"parameters: the steady amplitude does not depend on {sp.name!r}")
+    net = response_system(system, mass)
+    orbit = find_orbit(net, amplitude, omega, guess)
+    amps, derivatives, _, margin = network_steady_sensitivities(
+        orbit.period, orbit.state, how.parameters, list(net.elements)
+    )
+    d = derivatives[net.mass] * how.factors
+    by_name = {sp.name: float(v) for sp, v in zip(params, d, strict=True)}
+    return SteadyAmplitude(float(amps[net.mass]), by_name, orbit.stops, margin, (), orbit)
+
+
 def _resolve(system, mass, amplitude: float, omega: float, parameters) -> tuple:
     """``(oscillator, sine, one-mass names, names as given)``, or a one-line ``ValueError``."""
     if isinstance(system, Oscillator):
@@ -141,9 +176,7 @@ def _resolve(system, mass, amplitude: float, omega: float, parameters) -> tuple:
         return system, SwitchedSine(amplitude, omega), tuple(names), tuple(names)
     if not isinstance(system, Network):
         raise ValueError(f"system must be a Network or an Oscillator, got {type(system).__name__}")  # noqa: TRY004 (the API's one error type)
-    osc = response_system(system, mass)
-    if not isinstance(osc, Oscillator):
-        raise ValueError("system: the steady amplitude's derivatives need one mass on springs and a dashpot")  # noqa: TRY004 (the API's one error type)
+    osc = response_system(system, mass)  # an Oscillator: a network is answered by _network
     loaded = Network(list(system.masses), list(system.elements), [Load(mass, SwitchedSine(amplitude, omega))])
     params, names, force = prepare(loaded, parameters)
     for p, name in zip(params, names):

@@ -164,12 +164,24 @@ class NetworkPeriodMap:
     def amplitudes(self) -> np.ndarray:
         """Half of ``max x_i - min x_i`` over the period, per mass (m): the extremes are the phases' ends and
         the zeros of ``v_i`` inside them (bracketed on the event sub-grid, refined by Brent's method)."""
+        (hi, _), (lo, _) = self.extremes
+        return 0.5 * (hi - lo)
+
+    @cached_property
+    def extremes(self) -> tuple[tuple[np.ndarray, np.ndarray], tuple[np.ndarray, np.ndarray]]:
+        """``((max x_i, its time), (min x_i, its time))`` over the period, per mass ((n,) each; the first
+        time where there are several): at a phase's start or end (an event's time, ``0`` or ``T`` exactly) or
+        at a zero of ``v_i`` inside a phase."""
         n = self.parts.m.size
         lo, hi = np.full(n, math.inf), np.full(n, -math.inf)
+        t_lo, t_hi = np.zeros(n), np.zeros(n)
         for ph, end in zip(self.phases, [*(p.start for p in self.phases[1:]), self.t_end]):
-            xs = _extremes(ph, end)
+            times, xs = _extremes(ph, end)
+            i_hi, i_lo = xs.argmax(axis=0), xs.argmin(axis=0)
+            up, down = xs.max(axis=0) > hi, xs.min(axis=0) < lo
+            t_hi, t_lo = np.where(up, times[i_hi], t_hi), np.where(down, times[i_lo], t_lo)
             lo, hi = np.minimum(lo, xs.min(axis=0)), np.maximum(hi, xs.max(axis=0))
-        return 0.5 * (hi - lo)
+        return (hi, t_hi), (lo, t_lo)
 
     @property
     def amplitude(self) -> float:
@@ -177,8 +189,9 @@ class NetworkPeriodMap:
         return float(self.amplitudes[self.parts.loads[0][0]])
 
 
-def _extremes(ph: Phase, end: float) -> np.ndarray:
-    """Positions (rows, (k, n)) at the phase's ends and at each mass's zeros of ``v`` inside it."""
+def _extremes(ph: Phase, end: float) -> tuple[np.ndarray, np.ndarray]:
+    """Times (k,) and positions (rows, (k, n)) at the phase's sub-grid, its ends and each mass's zeros of
+    ``v`` inside it."""
     rx, rv = ph.rows("x"), ph.rows("v")
     h = step_for(ph, end - ph.start)
     times = np.append(np.arange(ph.start, end, h), end)
@@ -187,14 +200,15 @@ def _extremes(ph: Phase, end: float) -> np.ndarray:
     for t0, t1 in itertools.pairwise(times):
         zs.append(step @ zs[-1] if t1 == t0 + h else expm(ph.a * (t1 - t0)) @ zs[-1])
     z = np.array(zs)
-    out = [z @ rx.T]
+    out, when = [z @ rx.T], [times]
     v = z @ rv.T
     for i, j in zip(*np.nonzero(np.sign(v[:-1]) * np.sign(v[1:]) < 0)):
         vj = lambda s, i=i, j=j: float(rv[j] @ (expm(ph.a * (s - times[i])) @ z[i]))
         if np.sign(vj(times[i])) * np.sign(vj(times[i + 1])) < 0:  # as Brent's method will see them
             at = brentq(vj, times[i], times[i + 1])
             out.append((rx @ (expm(ph.a * (at - times[i])) @ z[i]))[None, :])
-    return np.vstack(out)
+            when.append(np.array([at]))
+    return np.concatenate(when), np.vstack(out)
 
 
 def network_period_map(

@@ -35,6 +35,19 @@ gives both sides there.  Where a stop appears on the band's edge under the
 moving force the two agree: the stick starts with zero acceleration, so
 moving its start changes the motion at second order only, and ``A`` is
 ``C^1`` though the stops per period jump (``tests/test_steady_sensitivities.py``).
+
+A network's periodic motion (:func:`network_steady_sensitivities`) takes the
+same formula with the network's period map
+(:class:`~lumped.solvers.network_monodromy.NetworkPeriodMap`) and its
+sensitivities (:func:`~lumped.solvers.network_sensitivities.network_sensitivities`,
+whose ``x0`` and ``v0`` columns at ``T`` are ``M``).  An element that sticks
+through the period keeps its elongation (the neutral direction of ``M``, where
+``I - M`` is singular): the elongation is held as the parameter moves, and the
+formula is solved on the other states (``W^T (I - M) W a = W^T dPi/dp``,
+``dz* = W a``, ``W`` the map's ``free_basis``).  A mass's extremes lie at an
+event (where its velocity may jump: the derivative of its position there is
+the event's, its time moving), at ``t = 0`` or ``T`` (``dz*/dp``), or at a
+zero of its velocity inside a phase (the derivative at that time held fixed).
 """
 
 from __future__ import annotations
@@ -46,17 +59,35 @@ from dataclasses import dataclass
 import numpy as np
 
 from lumped.solvers.exact import ExactSolution
+from lumped.solvers.network_monodromy import NetworkPeriodMap
+from lumped.solvers.network_sensitivities import Parameter, network_sensitivities
 from lumped.solvers.sensitivities import sensitivities
 
-__all__ = ["STEADY_PARAMETERS", "SteadySensitivities", "fixed_point_derivative", "steady_sensitivities"]
+__all__ = [
+    "NETWORK_STEADY_KINDS",
+    "STEADY_PARAMETERS",
+    "SteadySensitivities",
+    "fixed_point_derivative",
+    "network_steady_sensitivities",
+    "steady_sensitivities",
+]
 
 #: The parameters a periodic motion under a sine that stays on depends on (names of
 #: :data:`lumped.solvers.sensitivities.PARAMETER_NAMES`); the initial state does not enter.
 STEADY_PARAMETERS = ("mass", "stiffness", "threshold", "gamma", "viscosity", "force_amplitude", "force_omega")
 
 
+#: The kinds of a network's parameters (:data:`lumped.solvers.network_sensitivities.KINDS`) a periodic motion
+#: depends on.
+NETWORK_STEADY_KINDS = ("mass", "stiffness", "viscosity", "threshold", "amplitude", "omega")
+
+
 def fixed_point_derivative(
-    monodromy: np.ndarray, end: np.ndarray, field: np.ndarray | None = None, period: np.ndarray | None = None
+    monodromy: np.ndarray,
+    end: np.ndarray,
+    field: np.ndarray | None = None,
+    period: np.ndarray | None = None,
+    free: np.ndarray | None = None,
 ) -> np.ndarray:
     """``dz*/dp = (I - M)^{-1} (dz(T)/dp + f(T) dT/dp)`` of a fixed point ``z* = Pi(z*; p)`` (module docstring).
 
@@ -70,6 +101,9 @@ def fixed_point_derivative(
         ``f(T, z(T))``, the state's rate at the end (zero by default).
     period : ndarray, (p,), optional
         ``dT/dp`` (zero by default).
+    free : ndarray, (n, r), optional
+        A basis ``W`` of the states that keep the neutral directions of ``M`` (where ``I - M`` is singular):
+        the fixed point moves within it (module Notes).
 
     Returns
     -------
@@ -78,6 +112,8 @@ def fixed_point_derivative(
     rhs = np.array(end, dtype=float)
     if field is not None and period is not None:
         rhs = rhs + np.outer(field, period)
+    if free is not None:
+        return free @ np.linalg.solve(free.T @ (np.eye(monodromy.shape[0]) - monodromy) @ free, free.T @ rhs)
     return np.linalg.solve(np.eye(monodromy.shape[0]) - monodromy, rhs)
 
 
@@ -159,6 +195,56 @@ def steady_sensitivities(solution: ExactSolution, parameters: Sequence[str]) -> 
     return SteadySensitivities(
         names, 0.5 * float(xs[hi] - xs[lo]), 0.5 * (dx[hi] - dx[lo]), z, dz, stops, sens.smallest_margin()
     )
+
+
+def network_steady_sensitivities(
+    period: NetworkPeriodMap, state: np.ndarray, parameters: Sequence[Parameter], names: list[str]
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, float]:
+    """The amplitudes of a network's periodic motion and their derivatives (module Notes).
+
+    Parameters
+    ----------
+    period : NetworkPeriodMap
+        One period from the fixed point ``state`` (positions, then velocities; (2n,)) under the sine of its parts.
+    parameters : sequence of Parameter
+        Of the kinds :data:`NETWORK_STEADY_KINDS`.
+    names : list of str
+        The elements' names.
+
+    Returns
+    -------
+    (amplitudes (n,), their derivatives (n, p), dz*/dp (2n, p), the period's smallest event margin)
+    """
+    params = tuple(parameters)
+    for prm in params:
+        if prm.kind not in NETWORK_STEADY_KINDS:
+            raise ValueError(f"parameters: the steady amplitude does not depend on the {prm.kind} of a mass or load")
+    n, T, k = period.parts.m.size, period.t_end, len(params)
+    (hi, t_hi), (lo, t_lo) = period.extremes
+    times = np.unique(np.concatenate([t_hi, t_lo, [T]]))
+    own = [Parameter("x0", i) for i in range(n)] + [Parameter("v0", i) for i in range(n)]
+    sens = network_sensitivities(period.parts, state[:n], state[n:], times, [*params, *own], names)
+    end = np.concatenate([sens.x[-1, :, :k], sens.v[-1, :, :k]])
+    monodromy = np.concatenate([sens.x[-1, :, k:], sens.v[-1, :, k:]])
+    last = period.phases[-1]
+    _, v_end, a_end, _ = last.values(last.z(T))
+    dperiod = np.array([-T / period.parts.loads[0][1].omega if prm.kind == "omega" else 0.0 for prm in params])
+    free = period.free_basis if period.held.size else None
+    dz = fixed_point_derivative(monodromy, end, np.concatenate([v_end, a_end]), dperiod, free)
+    at_events = {e.event.time: e.x for e in sens.events}
+
+    def dx(i: int, t: float) -> np.ndarray:
+        """``d x_i/dp`` at the extreme at ``t``, the fixed point moving."""
+        if t == 0.0 or t == T:
+            return dz[i]
+        if t in at_events:  # the position at the event, its time moving
+            d = at_events[t]
+        else:  # a zero of v_i: the time held
+            d = sens.x[int(np.searchsorted(times, t)), :, :]
+        return d[i, :k] + d[i, k:] @ dz
+
+    derivatives = np.array([0.5 * (dx(i, t_hi[i]) - dx(i, t_lo[i])) for i in range(n)])
+    return 0.5 * (hi - lo), derivatives, dz, sens.smallest_margin()
 
 
 def _end_field(solution: ExactSolution) -> np.ndarray:
