@@ -31,8 +31,9 @@ import numpy as np
 from lumped.model.forcing import SwitchedSine, one_force, sine_form
 from lumped.model.network import Network
 from lumped.model.problem import one_mass_form
-from lumped.model.system_parameters import SystemParameter, system_parameters
+from lumped.model.system_parameters import SystemParameter, system_parameters, with_values
 from lumped.solvers.exact import ExactSolution, solve_exact
+from lumped.solvers.network_modes import final_rest
 from lumped.solvers.network_phase import linear_parts, parts, refusal
 from lumped.solvers.network_sensitivities import (
     NetworkMotion,
@@ -40,9 +41,10 @@ from lumped.solvers.network_sensitivities import (
     Parameter,
     network_sensitivities,
 )
+from lumped.solvers.one_sided import STEP, OneSided, one_sided
 from lumped.solvers.sensitivities import Sensitivities, sensitivities
 
-__all__ = ["NetworkPlan", "plan", "prepare", "system_sensitivities"]
+__all__ = ["NetworkOneSided", "NetworkPlan", "one_sided_sensitivities", "plan", "prepare", "system_sensitivities"]
 
 #: ``(table, key)`` of a system's parameter -> the one-mass API's name (an element's keys: its springs'
 #: and its dashpot's, checked by :func:`_api_name`).
@@ -222,3 +224,74 @@ def _scaled(sens: NetworkSensitivities, factors: np.ndarray, names: tuple[str, .
         rest_time=sens.rest_time * factors,
         rest_position=sens.rest_position * factors,
     )
+
+
+@dataclasses.dataclass(frozen=True)
+class NetworkOneSided:
+    """A network's derivatives in one parameter on each side of its value (:func:`one_sided_sensitivities`).
+
+    Attributes
+    ----------
+    parameter : str
+        Its name as in the file.
+    delta : float
+        The distance of each side from the value, in the parameter's units.
+    below, above : NetworkSensitivities
+        The derivatives (one column) of the motions at ``p - delta`` and ``p + delta``, each with its own events.
+    same_events : bool
+        True when both sides have the same events (kinds and elements, in order): differentiable at ``p``.
+    x_jump : ndarray, (T, n), m
+        Jump of each mass's position at the times ``t``.
+    rest_time_jump, rest_position_jump : ndarray, (n,), s and m
+        Jumps of each mass's rest (``nan`` for a mass that moves at the end on either side).
+    """
+
+    parameter: str
+    delta: float
+    below: NetworkSensitivities
+    above: NetworkSensitivities
+    same_events: bool
+    x_jump: np.ndarray
+    rest_time_jump: np.ndarray
+    rest_position_jump: np.ndarray
+
+
+def one_sided_sensitivities(
+    network: Network, t: np.ndarray | Sequence[float], parameters: str | Sequence[str], step: float = STEP
+) -> tuple[OneSided | NetworkOneSided, ...]:
+    """The one-sided derivatives of a system's exact motion in each of ``parameters``, and the jumps.
+
+    Where the event sequence changes with a parameter (an event's margin near 0:
+    :meth:`~lumped.solvers.network_sensitivities.NetworkSensitivities.smallest_margin`), the motion is solved
+    again at ``p -+ delta`` (``delta = step |p|``, ``step`` if ``p = 0``) and each side differentiated
+    (:mod:`lumped.solvers.one_sided`, whose Notes give the accuracy: each side's derivative is the one-sided
+    one to first order in ``delta``; a jump is ``S(p + delta) - S(p - delta) - delta (S'_+ + S'_-)``).  A
+    one-mass system is answered by :func:`lumped.solvers.one_sided.one_sided` (its parameters renamed as
+    given), a network by its own solver.
+
+    Raises
+    ------
+    ValueError
+        One line: what :func:`system_sensitivities` refuses, a step outside ``(0, 1e-3]``, or a parameter
+        that cannot move by ``delta`` (the value refused there).
+    """
+    if not 0 < step <= 1e-3:
+        raise ValueError(f"step must lie in (0, 1e-3], got {step!r}")
+    params, how, _ = plan(network, parameters)
+    if not isinstance(how, NetworkPlan):
+        solution, _ = system_sensitivities(network, t, parameters)
+        sides = one_sided(solution, how, t, step)  # type: ignore[arg-type]
+        return tuple(dataclasses.replace(side, parameter=p.name) for side, p in zip(sides, params, strict=True))
+    return tuple(_network_sides(network, t, p, step * (abs(p.value) or 1.0)) for p in params)
+
+
+def _network_sides(network: Network, t, p: SystemParameter, delta: float) -> NetworkOneSided:
+    """:class:`NetworkOneSided` of ``p`` from the motions at ``p -+ delta``."""
+    runs = [system_sensitivities(with_values(network, [p], [p.value + d]), t, [p.name]) for d in (-delta, delta)]
+    (lo_motion, below), (hi_motion, above) = runs
+    same = [(e.kind, e.elements) for e in lo_motion.events] == [(e.kind, e.elements) for e in hi_motion.events]
+    x_jump = above.positions - below.positions - delta * (below.x[:, :, 0] + above.x[:, :, 0])
+    rests = [final_rest(list(m.phases), s.positions[-1]) for m, s in ((lo_motion, below), (hi_motion, above))]
+    time_jump = rests[1][0] - rests[0][0] - delta * (below.rest_time[:, 0] + above.rest_time[:, 0])
+    position_jump = rests[1][1] - rests[0][1] - delta * (below.rest_position[:, 0] + above.rest_position[:, 0])
+    return NetworkOneSided(p.name, delta, below, above, same, x_jump, time_jump, position_jump)
