@@ -21,7 +21,7 @@ from lumped.drivers.methods import METHODS
 from lumped.drivers.network import simulate_network
 from lumped.drivers.response import continue_orbits, find_orbit
 from lumped.drivers.response.curve import response_curve
-from lumped.drivers.sensitivity import system_sensitivities
+from lumped.drivers.sensitivity import one_sided_sensitivities, system_sensitivities
 from lumped.drivers.simulation import simulate, solve
 from lumped.drivers.steady_sensitivity import steady_amplitude_sensitivities
 from lumped.laws import (
@@ -107,6 +107,7 @@ __all__ = [
     "fit",
     "load_system",
     "one_sided",
+    "one_sided_sensitivities",
     "parse_system",
     "read_record",
     "read_table",
