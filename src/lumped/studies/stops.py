@@ -69,8 +69,8 @@ __all__ = [
 ]
 
 #: ``studies`` (the configuration key) -> (values of r, values of F/P, chunks).  An exact run costs about 10 to
-#: 80 ms (more at low r, where there are more events per period): default, about 3 CPU-s in all; full, about ten
-#: minutes of CPU.
+#: 80 ms (more at low r, where there are more events per period), and its shooting and check (orbit_count,
+#: steps_over_a_stop) about as much again: default, about 3 CPU-s in all; full, about half an hour of CPU.
 GRID = {"default": (12, 8, 2), "full": (160, 120, 16)}
 CHUNKS = {resolution: chunks for resolution, (_, _, chunks) in GRID.items()}
 #: The range of ``r = omega/omega_n``, log-spaced (stop counts grow as ``r`` falls).
@@ -197,8 +197,8 @@ def steps_over_a_stop(solution: ExactSolution) -> bool:
     (:mod:`lumped.solvers.closed_form`), and near a grazing, where ``s v`` dips below zero for less than the
     grid's spacing, it can miss it and slip on with ``s v < 0``.  The dips are the local minima of ``s v``, where
     ``s a`` turns from negative to positive (``a`` the phase's acceleration); they are bracketed here on a grid of
-    spacing ``pi / (64 omega_n)`` (at most a 32nd of the shortest time between two minima of the free
-    oscillation, half its period) and refined by Brent's method.  Minima in the first interval of a phase (where a
+    spacing ``pi / (64 omega_n)`` (a 128th of the period of the free oscillation, the time between two of its
+    velocity's minima) and refined by Brent's method.  Minima in the first interval of a phase (where a
     slip from a breakaway starts at ``v = 0``, its acceleration 0 up to round-off) and in the last (where a
     tangential stop ends it) are not judged.
     """
