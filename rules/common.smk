@@ -79,7 +79,7 @@ NOTEBOOK_DATA = {
     "09_which_method": ["results/accuracy/study.json"],
     "10_where_it_rests": ["results/studies/rest.csv"],
     "11_den_hartog": ["results/studies/den_hartog.csv"],
-    "12_stops_per_cycle": ["results/studies/stops.csv"],
+    "12_stops_per_cycle": ["results/studies/stops.csv", "results/studies/stops_low.csv"],
     "13_response_curves": ["results/studies/den_hartog.csv", "examples/two_mass_response.toml"],
 }
 

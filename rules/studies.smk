@@ -129,3 +129,40 @@ rule study_stops:
         "logs/studies/stops.log",
     shell:
         "python {input.script} merge stops {output} {input.chunks} > {log} 2>&1"
+
+
+rule study_stops_low_chunk:
+    """Rows {chunk} of the (r < 0.1, F/P) grid of lumped.studies.stops_low: periodic motions by shooting.
+
+    The stops map continued to low frequency (notebook 12), with the physics
+    of config/config.yaml as committed, as study_stops_chunk.
+    """
+    input:
+        script="scripts/study.py",
+        config="config/config.yaml",
+        package=PACKAGE_SOURCES,
+    output:
+        "results/studies/stops_low/chunk-{chunk}.csv",
+    wildcard_constraints:
+        chunk=r"\d+",
+    params:
+        resolution=config["studies"],
+        chunks=lambda wildcards: lumped.studies.study("stops_low").CHUNKS[config["studies"]],
+    log:
+        "logs/studies/stops_low-{chunk}.log",
+    shell:
+        "python {input.script} chunk stops_low {input.config} {params.resolution} {wildcards.chunk} {params.chunks}"
+        " {output} > {log} 2>&1"
+
+
+rule study_stops_low:
+    """Merge the chunks, in grid order, into results/studies/stops_low.csv."""
+    input:
+        script="scripts/study.py",
+        chunks=study_chunks("stops_low"),
+    output:
+        "results/studies/stops_low.csv",
+    log:
+        "logs/studies/stops_low.log",
+    shell:
+        "python {input.script} merge stops_low {output} {input.chunks} > {log} 2>&1"

@@ -192,6 +192,7 @@ STUDY_JOBS = {
     "rest": ("10_where_it_rests", 4, 16),
     "den_hartog": ("11_den_hartog", 2, 16),
     "stops": ("12_stops_per_cycle", 2, 16),
+    "stops_low": ("12_stops_per_cycle", 2, 16),
 }
 
 

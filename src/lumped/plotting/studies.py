@@ -187,6 +187,8 @@ def stops_map(
     boundary: tuple[np.ndarray, np.ndarray] | None = None,
     boundary_label: str = "nonstop boundary",
     ax: Axes | None = None,
+    marked_label: str = "count not settled",
+    split: tuple[float, str] | None = None,
 ) -> Figure:
     """Stops per forcing period over the plane (r = omega/omega_n, F/P): one colour per integer count.
 
@@ -198,6 +200,10 @@ def stops_map(
     boundary : (ndarray, ndarray), optional
         A curve ``(r, F/P)`` drawn over the map, e.g. the analytic boundary of nonstop motion
         (the hook for :mod:`lumped.studies.den_hartog`); ``boundary_label`` names it in the legend.
+    marked_label : str
+        The legend's name for the crosses (points with ``settled == 0``).
+    split : (float, str), optional
+        ``(r, label)``: a vertical line at ``r`` with its legend entry, e.g. where the map's data change method.
     """
     fig, ax = new_axes(ax, figsize=(6.4, 4.0))
     r, q = np.unique(frequency_ratio), np.unique(friction_ratio)
@@ -211,7 +217,9 @@ def stops_map(
     bar.ax.minorticks_off()
     odd = (np.asarray(settled) == 0) | (stops_per_period != np.round(stops_per_period))
     if odd.any():
-        ax.plot(frequency_ratio[odd], friction_ratio[odd], "x", color="C3", ms=4, label="count not settled")
+        ax.plot(frequency_ratio[odd], friction_ratio[odd], "x", color="C3", ms=4, label=marked_label)
+    if split is not None:
+        ax.axvline(split[0], color="0.3", lw=1.0, ls=":", label=split[1])
     ax.axhspan(1.0, 1.1, color="0.85", lw=0, label=r"$F/P \geq 1$: never moves from rest")
     if boundary is not None:
         ax.plot(*boundary, "--", color="C1", lw=1.5, label=boundary_label)

@@ -30,6 +30,7 @@ STUDIES = {
     "rest": "lumped.studies.rest",
     "den_hartog": "lumped.studies.den_hartog",
     "stops": "lumped.studies.stops",
+    "stops_low": "lumped.studies.stops_low",
 }
 #: The values of the configuration key ``studies``.
 RESOLUTIONS = ("default", "full")

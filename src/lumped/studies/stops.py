@@ -22,7 +22,16 @@ definitions agree (``tests/test_stops_study.py``).  The file's columns
 * ``stops_per_period``: ``window_stops / K``;
 * ``settled``: 1 when the two windows hold the same number of stops (the count has reached its periodic value),
   else 0;
-* ``stuck_fraction``: the fraction of the last window the mass spends sticking (0 for nonstop motion).
+* ``stuck_fraction``: the fraction of the last window the mass spends sticking (0 for nonstop motion);
+* ``orbit_stops``: stops per period of the periodic motion of the forcing's period found by shooting
+  (:func:`lumped.drivers.response.shooting.find_orbit`, Newton on the exact period map) from the run's last state,
+  an independent check of ``stops_per_period``: where the run has not converged to a motion of period ``T``,
+  the two differ (:func:`orbit_count`; ``-1`` where Newton finds no such motion, ``-2`` where the motion it finds
+  steps over a stop, :func:`steps_over_a_stop`);
+* ``orbit_multiplier``: the largest modulus of that motion's Floquet multipliers (below 1: stable; close to 1:
+  a run from rest approaches it slowly, by a factor of about this value per period);
+* ``stepped_over``: 1 when the run itself steps over a stop (:func:`steps_over_a_stop`; its counts may then miss
+  that stop), else 0.
 """
 
 from __future__ import annotations
@@ -33,17 +42,35 @@ from typing import NamedTuple
 
 import numpy as np
 
+from lumped.drivers.response.shooting import find_orbit
 from lumped.drivers.sweep import chunk_slice
 from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator
 from lumped.numerics import validate
+from lumped.numerics.roots import brentq
+from lumped.solvers.closed_form import SlipMotion
 from lumped.solvers.exact import ExactSolution, solve_exact
 
-__all__ = ["CHUNKS", "COLUMNS", "GRID", "PERIODS", "TRANSIENT", "Count", "count_stops", "grid", "rows", "run"]
+__all__ = [
+    "CHUNKS",
+    "COLUMNS",
+    "GRID",
+    "PERIODS",
+    "TRANSIENT",
+    "Count",
+    "OrbitCount",
+    "count_stops",
+    "grid",
+    "last_state",
+    "orbit_count",
+    "rows",
+    "run",
+    "steps_over_a_stop",
+]
 
 #: ``studies`` (the configuration key) -> (values of r, values of F/P, chunks).  An exact run costs about 10 to
-#: 80 ms (more at low r, where there are more events per period): default, about 3 CPU-s in all; full, about ten
-#: minutes of CPU.
+#: 80 ms (more at low r, where there are more events per period), and its shooting and check (orbit_count,
+#: steps_over_a_stop) about as much again: default, about 3 CPU-s in all; full, about half an hour of CPU.
 GRID = {"default": (12, 8, 2), "full": (160, 120, 16)}
 CHUNKS = {resolution: chunks for resolution, (_, _, chunks) in GRID.items()}
 #: The range of ``r = omega/omega_n``, log-spaced (stop counts grow as ``r`` falls).
@@ -62,6 +89,9 @@ COLUMNS = (
     "stops_per_period",
     "settled",
     "stuck_fraction",
+    "orbit_stops",
+    "orbit_multiplier",
+    "stepped_over",
 )
 
 
@@ -76,6 +106,16 @@ class Count(NamedTuple):
     def settled(self) -> bool:
         """Whether the two windows hold the same number of stops."""
         return self.window_stops == self.previous_stops
+
+
+class OrbitCount(NamedTuple):
+    """The periodic motion of the forcing's period at one point of the map: its stops per period, the largest
+    modulus of its Floquet multipliers and the fraction of the period it spends sticking; ``stops == -1`` (and the
+    other two 0) where Newton found no such motion, ``-2`` where the motion found steps over a stop."""
+
+    stops: int
+    multiplier: float
+    stuck_fraction: float
 
 
 def grid(r_points: int, ratio_points: int) -> tuple[np.ndarray, np.ndarray]:
@@ -124,6 +164,73 @@ def run(cfg: Mapping[str, float], frequency_ratio: float, friction_ratio: float)
     return solve_exact(osc, t_end, force=force)
 
 
+def orbit_count(
+    cfg: Mapping[str, float], frequency_ratio: float, friction_ratio: float, guess: np.ndarray | None = None
+) -> OrbitCount:
+    """The periodic motion of period ``T`` at one point of the map, by shooting on the exact period map.
+
+    Newton (:func:`lumped.drivers.response.shooting.find_orbit`) starts from ``guess``, the state ``(x, v)`` (m,
+    m/s) at a time ``t = n T``, or without it from the state a run from rest reaches (``find_orbit``'s own
+    settling).  Its stops are the stop events of one period ``(0, T]`` (the definition of :func:`count_stops`).
+    A motion whose period :func:`steps_over_a_stop` is refused (``stops = -2``): its count would miss that stop.
+    Parameters as :func:`run`.
+    """
+    r = validate.positive("frequency_ratio", frequency_ratio)
+    ratio = validate.positive("friction_ratio", friction_ratio)
+    osc = Oscillator.bingham(cfg["mass"], cfg["stiffness"], cfg["threshold"], math.inf)
+    omega = r * math.sqrt(cfg["stiffness"] / cfg["mass"])
+    try:
+        orbit = find_orbit(osc, cfg["threshold"] / ratio, omega, guess)
+    except ValueError:  # no motion of period T near the guess (Newton's message names omega)
+        return OrbitCount(-1, 0.0, 0.0)
+    period = orbit.period.solution
+    if steps_over_a_stop(period):
+        return OrbitCount(-2, 0.0, 0.0)
+    stuck = sum(min(b, period.t_end) - a for a, b in period.stick_intervals())
+    return OrbitCount(orbit.stops, orbit.max_multiplier, min(stuck / period.t_end, 1.0))
+
+
+def steps_over_a_stop(solution: ExactSolution) -> bool:
+    """Whether a slip phase of ``solution`` turns its velocity against its direction ``s``: a stop it stepped over.
+
+    Within a slip phase ``s v > 0`` until the stop that ends it.  The exact solver brackets that stop on a grid
+    (:mod:`lumped.solvers.closed_form`), and near a grazing, where ``s v`` dips below zero for less than the
+    grid's spacing, it can miss it and slip on with ``s v < 0``.  The dips are the local minima of ``s v``, where
+    ``s a`` turns from negative to positive (``a`` the phase's acceleration); they are bracketed here on a grid of
+    spacing ``pi / (64 omega_n)`` (a 128th of the period of the free oscillation, the time between two of its
+    velocity's minima) and refined by Brent's method.  Minima in the first interval of a phase (where a
+    slip from a breakaway starts at ``v = 0``, its acceleration 0 up to round-off) and in the last (where a
+    tangential stop ends it) are not judged.
+    """
+    for phase in solution.phases:
+        m = phase.motion
+        if m is None or not phase.end > phase.start:
+            continue
+        s = math.copysign(1.0, m.s_tau)
+        n = 2 + math.ceil((phase.end - phase.start) * 64 * math.sqrt(m.k / m.m) / math.pi)
+        t = np.linspace(phase.start, phase.end, n)
+        x, v = m.state(t[1:-1])
+        if np.any(s * v < 0):
+            return True
+        # s a on the grid: the equation of SlipMotion.acceleration, evaluated on arrays
+        a = s * (m.P * np.sin(m.w * t[1:-1] + m.ph) - m.s_tau - m.c * v - m.k * x) / m.m
+        for i in np.flatnonzero((a[:-1] < 0) & (a[1:] >= 0)) + 1:
+            if s * m.velocity(brentq(lambda u, m=m, s=s: _along(m, s, u), t[i], t[i + 1])) < 0:
+                return True
+    return False
+
+
+def _along(motion: SlipMotion, s: float, t: float) -> float:
+    """``s a(t)``: the slip phase's acceleration along its direction ``s`` (m/s^2)."""
+    return s * motion.acceleration(t, *(float(a) for a in motion.state(t)))
+
+
+def last_state(solution: ExactSolution) -> np.ndarray:
+    """``(x, v)`` at the end of ``solution`` (m, m/s)."""
+    end = solution.evaluate(np.array([solution.t_end]))
+    return np.array([end["x"][0], end["v"][0]])
+
+
 def rows(
     cfg: Mapping[str, float], r_points: int, ratio_points: int, chunk: tuple[int, int] | None = None
 ) -> dict[str, np.ndarray]:
@@ -144,7 +251,9 @@ def rows(
     part = _slice(rr.size, chunk)
     rr, qq = rr[part], qq[part]
     omega_n = math.sqrt(cfg["stiffness"] / cfg["mass"])
-    counts = [count_stops(run(cfg, a, b), 2 * math.pi / (a * omega_n), PERIODS) for a, b in zip(rr, qq)]
+    runs = [run(cfg, a, b) for a, b in zip(rr, qq)]
+    counts = [count_stops(s, 2 * math.pi / (a * omega_n), PERIODS) for s, a in zip(runs, rr)]
+    orbits = [orbit_count(cfg, a, b, last_state(s)) for s, a, b in zip(runs, rr, qq)]
     window = np.array([c.window_stops for c in counts], dtype=np.int64)
     return {
         "frequency_ratio": rr,
@@ -154,6 +263,9 @@ def rows(
         "stops_per_period": window / PERIODS,
         "settled": np.array([float(c.settled) for c in counts]),
         "stuck_fraction": np.array([c.stuck_fraction for c in counts]),
+        "orbit_stops": np.array([o.stops for o in orbits], dtype=np.int64),
+        "orbit_multiplier": np.array([o.multiplier for o in orbits]),
+        "stepped_over": np.array([float(steps_over_a_stop(s)) for s in runs]),
     }
 
 
