@@ -234,14 +234,24 @@ def sine_argument(omega: object, phase: object, t_on: object) -> None:
     formed as the kernels form ``omega t + phase``, with rounding monotone, so
     an accepted argument is within the range there too.
     """
+    if type(omega) is float and type(phase) is float and type(t_on) is float:  # one run: the same test in floats
+        if not abs(phase) <= MAX_ARGUMENT:
+            sine_phase("force_phase", phase)
+        if not abs(omega) * t_on + abs(phase) <= MAX_ARGUMENT:
+            _span_refused(abs(omega) * t_on + abs(phase))
+        return
     omega, phase, t_on = np.broadcast_arrays(*(np.asarray(a, dtype=float) for a in (omega, phase, t_on)))
     for value in np.ravel(phase)[~(np.abs(np.ravel(phase)) <= MAX_ARGUMENT)][:1]:
         sine_phase("force_phase", float(value))
     span = np.abs(omega) * t_on + np.abs(phase)
     bad = np.ravel(~(span <= MAX_ARGUMENT))
     if np.any(bad):
-        worst = float(np.ravel(span)[int(np.argmax(bad))])
-        raise ValueError(
-            f"force_omega: |force_omega| * min(t_end, force_until) + |force_phase| = {worst:.3g} rad exceeds "
-            f"{MAX_ARGUMENT:.0e} rad, the range of the forcing's sine; lower force_omega or shorten t_end"
-        )
+        _span_refused(float(np.ravel(span)[int(np.argmax(bad))]))
+
+
+def _span_refused(worst: float) -> None:
+    """Raise the one line of :func:`sine_argument` for the argument ``worst`` (rad)."""
+    raise ValueError(
+        f"force_omega: |force_omega| * min(t_end, force_until) + |force_phase| = {worst:.3g} rad exceeds "
+        f"{MAX_ARGUMENT:.0e} rad, the range of the forcing's sine; lower force_omega or shorten t_end"
+    )

@@ -319,18 +319,45 @@ class SlipMotion:
             yield self.t0 + (start + slow * (j * _BLOCK + np.arange(1, _BLOCK + 1)))
 
     def _scan(self, t_lim: float, direction: int) -> float | None:
-        """First zero of ``v`` after ``t0``, bracketed on :meth:`_grid`, refined by Brent."""
-        lo = self.t0
+        """First zero of ``v`` after ``t0``, bracketed on :meth:`_grid`, refined by Brent.
+
+        A zero is bracketed where ``v`` changes sign between two samples, or, before that, where ``v`` dips
+        to zero and back between two samples that both have the slip's sign: there ``s v`` has a local
+        minimum, so ``s a`` (``a = v'``) goes from negative to positive; the minimum is located by Brent's
+        method on ``a`` and, if ``s v <= 0`` there, the zero is bracketed before it.  The samples alone would
+        step over a dip shorter than their spacing (a stop that only just happens, near a grazing).
+        """
+        # From rest (v0 = 0) the acceleration at t0 is the band's edge to round-off: no dip before the first sample
+        lo, turning = self.t0, math.inf if self.v0 == 0 else direction * self.acceleration(self.t0, self.x0, self.v0)
         for grid in self._grid(t_lim):
             if lo >= t_lim:
                 return None
-            ahead = direction * self.state(grid)[1] <= 0
+            x, v = self.state(grid)
+            ahead = direction * v <= 0
+            first = int(np.argmax(ahead)) if ahead.any() else grid.size
+            times = np.concatenate([[lo], grid])
+            rate = np.concatenate([[turning], direction * self._accelerations(grid, x, v)])
+            for j in np.flatnonzero((rate[:-1] < 0) & (rate[1:] > 0)):
+                if j > first or times[j] >= t_lim:
+                    break
+                t_min = brentq(self._acceleration_at, float(times[j]), float(times[j + 1]))
+                if direction * self.velocity(t_min) <= 0:
+                    return self._refine(float(times[j]), t_min, t_lim, direction)
             if ahead.any():
-                i = int(np.argmax(ahead))
-                a = lo if i == 0 else float(grid[i - 1])
-                return self._refine(a, float(grid[i]), t_lim, direction)
-            lo = float(grid[-1])
+                a = lo if first == 0 else float(grid[first - 1])
+                return self._refine(a, float(grid[first]), t_lim, direction)
+            lo, turning = float(grid[-1]), float(rate[-1])
         return None
+
+    def _accelerations(self, t: np.ndarray, x: np.ndarray, v: np.ndarray) -> np.ndarray:
+        """:meth:`acceleration` at the times ``t`` with the states ``(x, v)`` there (arrays)."""
+        force = self.P * np.sin(self.w * t + self.ph) if self.P else 0.0
+        return (force - self.s_tau - self.c * v - self.k * x) / self.m
+
+    def _acceleration_at(self, t: float) -> float:
+        """``a(t)`` of the motion (m/s^2)."""
+        x, v = (float(a) for a in self.state(t))
+        return self.acceleration(t, x, v)
 
     def _refine(self, a: float, b: float, t_lim: float, direction: int) -> float | None:
         """The zero of ``v`` in the bracket ``(a, b]``, if it lies before ``t_lim``."""

@@ -18,6 +18,7 @@ events; so every run either finishes quickly or stops at once.
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 from dataclasses import dataclass
 from typing import ClassVar
@@ -282,8 +283,15 @@ def check_scales(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float, 
     force.check_span(t_end)
     m, k = osc.mass, osc.stiffness
     dt = max(t_on, math.sqrt(m) / math.sqrt(k))
-    coulomb_part = dataclasses.replace(osc, dashpot=coulomb(osc.threshold))
+    coulomb_part = _coulomb_part(osc)
     check_magnitudes(coulomb_part, t_on, dt, x0, v0, P, carries_force=False)  # x is carried, not F_s = k x
+
+
+@functools.lru_cache(maxsize=64)
+def _coulomb_part(osc: Oscillator) -> Oscillator:
+    """``osc`` with its dashpot's Coulomb part alone (built once per oscillator: a response curve solves one
+    oscillator thousands of times)."""
+    return dataclasses.replace(osc, dashpot=coulomb(osc.threshold))
 
 
 def _closed_form(osc: Oscillator) -> SlipFactory:
