@@ -116,26 +116,15 @@ def test_a_mass_held_through_the_period_is_a_neutral_motion_not_an_unstable_one(
     assert np.all(curve.columns["stable"])
 
 
+def _vary(tmp_path: Path, omega: str, vary: str, *more: str):
+    """``python -m lumped response`` on figure3.toml under 2.5 N at ``--omega omega --vary vary``, in-process."""
+    args = ["--system", str(FIGURE3), "--force-on", "m", "--amplitude", "2.5", "--omega", omega, "--vary", vary]
+    return run_lumped("response", *args, *more, cwd=tmp_path)
+
+
 def test_command_follows_a_parameter_of_the_file(tmp_path):
     out = tmp_path / "threshold.csv"
-    done = run_lumped(
-        "response",
-        "--system",
-        str(FIGURE3),
-        "--force-on",
-        "m",
-        "--amplitude",
-        "2.5",
-        "--omega",
-        "8",
-        "--vary",
-        "dashpot.threshold=0.2:2",
-        "--points",
-        "10",
-        "--output",
-        str(out),
-        cwd=tmp_path,
-    )
+    done = _vary(tmp_path, "8", "dashpot.threshold=0.2:2", "--points", "10", "--output", str(out))
     assert done.returncode == 0, done.stderr
     rows = list(csv.DictReader(out.open()))
     assert list(rows[0])[:2] == ["dashpot.threshold", "omega"]
@@ -159,22 +148,7 @@ def test_command_follows_a_parameter_of_the_file(tmp_path):
     ],
 )
 def test_command_refuses_a_bad_vary_in_one_line(tmp_path, omega, vary, words):
-    done = run_lumped(
-        "response",
-        "--system",
-        str(FIGURE3),
-        "--force-on",
-        "m",
-        "--amplitude",
-        "2.5",
-        "--omega",
-        omega,
-        "--vary",
-        vary,
-        "--output",
-        str(tmp_path / "r.csv"),
-        cwd=tmp_path,
-    )
+    done = _vary(tmp_path, omega, vary, "--output", str(tmp_path / "r.csv"))
     assert done.returncode == 2
     assert len(done.stderr.strip().splitlines()) == 1 and words in done.stderr, done.stderr
     assert list(tmp_path.iterdir()) == []
