@@ -118,7 +118,7 @@ print(f"F/P 0.4, r 0.5: {orbit.stops} stops per period, |multipliers| {mu[0]:.3f
 # the phases beside the monodromy, a slip phase moving with $\omega$ through its
 # particular solution, a breakaway through $P\sin\omega t_c$, and the period's
 # end through $dT/d\omega = -T/\omega$ (`lumped.solvers.monodromy.derivatives`;
-# a network's is a central difference). With both exact, each Newton iterate
+# a network's phases are differentiated the same way). With both exact, each Newton iterate
 # costs one period map, and the predictor (a cubic through the last two points
 # and their tangents) is close enough that most points take two maps. Between
 # neighbours the branch is tested for

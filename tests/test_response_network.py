@@ -20,7 +20,7 @@ import lumped as L
 from lumped.drivers.response import NEWTON_TOL, find_orbit
 from lumped.drivers.response.continuation import change, signature
 from lumped.drivers.response.curve import response_curve
-from lumped.drivers.response.systems import LoadedNetwork, Scales, period_map, response_system
+from lumped.drivers.response.systems import LoadedNetwork, Scales, omega_derivative, period_map, response_system
 
 ROOT = Path(__file__).resolve().parent.parent
 EXAMPLE = ROOT / "examples" / "two_mass_response.toml"
@@ -135,6 +135,13 @@ def test_network_monodromy_is_the_derivative_of_the_exact_period_map(text, mass,
         fd[:, j] = (plus - minus) / (2 * h)
     scaled = lambda a: a * scale[None, :] / scale[:, None]
     assert np.max(np.abs(scaled(orbit.period.monodromy) - scaled(fd))) <= 1e-6
+    # dPi/domega (the continuation's column, lumped.drivers.response.systems.omega_derivative: the period's phases
+    # differentiated in omega, the end moving by -T/omega) against a central difference with h = 1e-6 omega; the
+    # same error budget, for omega dPi/domega in units of the state's scales: 1e-6.
+    h = 1e-6 * omega
+    plus, minus = (period_map(system, amplitude, omega + s, orbit.state).end for s in (h, -h))
+    exact = omega_derivative(system, amplitude, orbit)
+    assert np.max(np.abs(exact - (plus - minus) / (2 * h)) * omega / scale) <= 1e-6
 
 
 def energy_factor(system: L.Oscillator | LoadedNetwork) -> np.ndarray:

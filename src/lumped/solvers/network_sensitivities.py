@@ -84,6 +84,7 @@ __all__ = [
     "NetworkMotion",
     "NetworkSensitivities",
     "Parameter",
+    "along",
     "network_sensitivities",
 ]
 
@@ -198,6 +199,21 @@ def network_sensitivities(
     now = motion.evaluate(t)
     rest = _rest(phases, carried.starts, now["x"][-1])
     return NetworkSensitivities(params, t, now["x"], now["v"], x, v, tuple(carried.events), rest[0], rest[1], motion)
+
+
+def along(
+    p: Parts,
+    phases: Sequence[Phase],
+    events: Sequence[NetworkEvent],
+    t: np.ndarray | Sequence[float],
+    parameters: Sequence[Parameter],
+    names: list[str],
+) -> tuple[np.ndarray, np.ndarray]:
+    """``dx/dp`` and ``dv/dp`` (T, n, p) at the times ``t`` of a motion already marched (its ``phases`` and
+    ``events``, as :func:`~lumped.solvers.exact_network.march` or a period map gives them), without marching
+    again: what a period map's derivative in a parameter needs."""
+    carried = _Carry(p, list(phases), list(events), tuple(parameters), names)
+    return carried.sample(np.asarray(t, dtype=float))
 
 
 def _rest(phases: list[Phase], starts: list[np.ndarray], x_end: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

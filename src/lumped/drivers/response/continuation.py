@@ -11,8 +11,8 @@ of its rows) the predictor steps ``ds`` along ``t``; the corrector is Newton
 on ``G = 0`` and ``t . (u - u_pred) = 0``, so a fold (where ``omega`` turns
 back) is passed like any other point.  ``dG/dy = M - I`` is the analytic
 monodromy and ``dG/domega`` the derivative of the period map in omega
-(:func:`~lumped.drivers.response.systems.omega_derivative`: exact for one
-mass, so that a corrector iterate costs one period map); in another
+(:func:`~lumped.drivers.response.systems.omega_derivative`: exact, for one
+mass and for a network, so that a corrector iterate costs one period map); in another
 parameter ``dG/dlambda`` is a central difference (:data:`PARAMETER_STEP`).
 
 Between two accepted points the branch is tested for

@@ -34,6 +34,7 @@ from lumped.model.system_parameters import system_parameters, with_values
 from lumped.solvers.monodromy import PeriodMap
 from lumped.solvers.monodromy import period_map as one_mass_map
 from lumped.solvers.network_monodromy import NetworkPeriodMap, network_period_map
+from lumped.solvers.network_sensitivities import Parameter, along
 from lumped.solvers.network_phase import Parts, parts, refusal
 
 __all__ = [
@@ -107,10 +108,19 @@ OMEGA_STEP = 1e-6
 def omega_derivative(system: Oscillator | LoadedNetwork, amplitude: float, orbit) -> np.ndarray:
     """``dPi/domega`` (m s/rad, then m/rad) at ``orbit`` (an :class:`~lumped.drivers.response.shooting.Orbit`:
     its ``omega``, its state at ``t = 0`` and its period map): exact for one mass
-    (:func:`lumped.solvers.monodromy.omega_derivative`), else (a network, or an undamped resonance) a central
+    (:func:`lumped.solvers.monodromy.omega_derivative`) and for a network (the period's own phases
+    differentiated in omega at the fixed end ``T``, :func:`lumped.solvers.network_sensitivities.along`, plus the
+    end's move ``f(T) dT/domega``, ``dT/domega = -T/omega``); at an undamped resonance of one mass a central
     difference of relative step :data:`OMEGA_STEP`."""
-    if isinstance(orbit.period, PeriodMap) and (exact := orbit.period.omega_derivative) is not None:
+    period = orbit.period
+    if isinstance(period, PeriodMap) and (exact := period.omega_derivative) is not None:
         return exact
+    if isinstance(period, NetworkPeriodMap):
+        T = period.t_end
+        dx, dv = along(period.parts, period.phases, period.events, [T], [Parameter("omega")], list(system.elements))
+        last = period.phases[-1]
+        _, v_end, a_end, _ = last.values(last.z(T))
+        return np.concatenate([dx[0, :, 0], dv[0, :, 0]]) - np.concatenate([v_end, a_end]) * (T / orbit.omega)
     z, h = orbit.state, OMEGA_STEP * orbit.omega
     ends = [period_map(system, amplitude, orbit.omega + d, z).end for d in (h, -h)]
     return (ends[0] - ends[1]) / (2 * h)
