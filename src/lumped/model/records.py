@@ -15,12 +15,11 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Sequence
-from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
 
-from lumped.model.tables import MAX_TABLE_BYTES
+from lumped.model.tables import read_lines
 
 __all__ = ["Record", "read_record"]
 
@@ -45,19 +44,7 @@ def read_record(path: str | os.PathLike, masses: Sequence[str]) -> Record:
         not a finite number; fewer than two rows; a time below 0 or not after
         the one before it.
     """
-    where = f"file {str(path)!a}"
-    try:
-        size = Path(path).stat().st_size
-        if size > MAX_TABLE_BYTES:
-            raise ValueError(f"{where}: {size} bytes, more than the {MAX_TABLE_BYTES} read")
-        text = Path(path).read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as err:
-        why = getattr(err, "strerror", None) or str(err)
-        raise ValueError(f"{where}: cannot read it: {why}") from None
-    try:
-        return _parse(text.splitlines(), list(masses))
-    except ValueError as err:
-        raise ValueError(f"{where}: {err}") from None
+    return read_lines(path, lambda lines: _parse(lines, list(masses)))
 
 
 def _header(line: str, masses: list[str]) -> dict[str, int]:

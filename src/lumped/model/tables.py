@@ -12,13 +12,17 @@ problem is a ``ValueError`` of one line naming the file and the line.
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
+from typing import TypeVar
 from pathlib import Path
 
 import numpy as np
 
 from lumped.model.forcing import Table, first_bad_sample
 
-__all__ = ["MAX_TABLE_BYTES", "read_table"]
+__all__ = ["MAX_TABLE_BYTES", "read_lines", "read_table"]
+
+T = TypeVar("T")
 
 #: Largest table read (bytes): about 400,000 rows of two numbers written with 17 digits.
 MAX_TABLE_BYTES = 16 * 1024**2
@@ -35,6 +39,12 @@ def read_table(path: str | os.PathLike, column: str) -> Table:
         two numbers, fewer than two rows, a number that is not finite, or a
         time that does not follow the one before it (the line named).
     """
+    return read_lines(path, lambda lines: _parse(lines, column))
+
+
+def read_lines(path: str | os.PathLike, parse: Callable[[list[str]], T]) -> T:
+    """``parse`` of the lines of the text file ``path`` (at most :data:`MAX_TABLE_BYTES`); its ``ValueError``,
+    or one for a file that cannot be read, as one line beginning ``file 'PATH'`` (tables and records)."""
     where = f"file {str(path)!a}"
     try:
         size = Path(path).stat().st_size
@@ -45,7 +55,7 @@ def read_table(path: str | os.PathLike, column: str) -> Table:
         why = getattr(err, "strerror", None) or str(err)
         raise ValueError(f"{where}: cannot read it: {why}") from None
     try:
-        return _parse(text.splitlines(), column)
+        return parse(text.splitlines())
     except ValueError as err:
         raise ValueError(f"{where}: {err}") from None
 

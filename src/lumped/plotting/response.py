@@ -11,6 +11,7 @@ from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from lumped.plotting._base import styled
+from lumped.plotting.studies import amplitude_axes
 
 __all__ = ["network_response", "response_curves"]
 
@@ -52,13 +53,7 @@ def response_curves(
                 rows = (runs["damping"] == zeta) & (runs["friction_ratio"] == fp)
                 ax.plot(runs["frequency_ratio"][rows], runs["amplitude_ratio"][rows], "o", mfc="none", mec=f"C{i}")
         ax.set_title("Coulomb" if zeta == 0 else rf"Bingham, $\zeta = {zeta:g}$", fontsize=9)
-        ax.set_xlabel(r"frequency ratio $\omega/\omega_n$")
-        ax.set_yscale("log")
-    axes[0].set_ylabel(r"amplitude ratio $Xk/P$")
-    axes[0].set_ylim(1e-2, 50.0)
-    fig = axes[0].figure
-    fig.legend(*axes[0].get_legend_handles_labels(), loc="outside upper center", ncol=len(ratios), fontsize=8)
-    return fig  # type: ignore[return-value]
+    return amplitude_axes(axes, len(ratios))
 
 
 def _panel(ax: Axes, branch: Mapping[str, np.ndarray], fp: float, colour: str) -> None:

@@ -118,12 +118,19 @@ def den_hartog_amplitudes(
         for i, fp in enumerate(ratios):
             _den_hartog_panel(ax, table, curves[(zeta, fp)], zeta, fp, f"C{i}")
         ax.set_title("Coulomb" if zeta == 0 else rf"Coulomb + viscous, $\zeta = {zeta:g}$", fontsize=9)
+    return amplitude_axes(axes, len(ratios))
+
+
+def amplitude_axes(axes: Sequence[Axes], columns: int) -> Figure:
+    """Finish panels of amplitude ratio against frequency ratio (Den Hartog's and the response curves'): log
+    amplitude from 1e-2 to 50, the axes' labels, one legend of ``columns`` entries above; their figure."""
+    for ax in axes:
         ax.set_xlabel(r"frequency ratio $\omega/\omega_n$")
         ax.set_yscale("log")
     axes[0].set_ylabel(r"amplitude ratio $Xk/P$")
     axes[0].set_ylim(1e-2, 50.0)
     fig = axes[0].figure
-    fig.legend(*axes[0].get_legend_handles_labels(), loc="outside upper center", ncol=len(ratios), fontsize=8)
+    fig.legend(*axes[0].get_legend_handles_labels(), loc="outside upper center", ncol=columns, fontsize=8)
     return fig  # type: ignore[return-value]
 
 
