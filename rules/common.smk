@@ -83,7 +83,6 @@ NOTEBOOK_DATA = {
     "13_response_curves": ["results/studies/den_hartog.csv", "examples/two_mass_response.toml"],
 }
 
-#: Report section of each notebook.
 #: The report's category of each notebook's figures.  No colon in a name: Snakemake writes
 #: ``.. _<category>: javascript:...`` for each, and docutils reads a colon as the end of the
 #: target's name (tests/test_report.py).
