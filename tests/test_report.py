@@ -47,7 +47,10 @@ def test_the_built_report_has_no_system_message(tmp_path):
     page = tmp_path / "report.html"
     run = subprocess.run(
         [sys.executable, "-m", "snakemake", "--report", str(page)],
-        cwd=ROOT, capture_output=True, text=True, timeout=300,
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+        timeout=300,
     )
     assert run.returncode == 0, run.stderr[-2000:]
     html = page.read_text(encoding="utf-8")
