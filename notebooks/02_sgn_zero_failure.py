@@ -235,8 +235,9 @@ print(f"largest distance from x0 + a0 t^2/2 (a0 = {a0:+.3f} m/s^2): below 1e-7 m
 # %% [markdown]
 # The returned path, $x \approx x_0 + a_0 t^2/2$ ($x_0 - t^2/4$
 # with the paper's values), is that of a mass under the constant acceleration
-# $a_0 = -kx_0/m$ ($-0.5$ m/s²) that the right-hand side has only at $v = 0$,
-# as if neither the spring nor the friction acted once it moved. A silent
+# $a_0 = -kx_0/m$ ($-0.5$ m/s²) that the right-hand side has only at $v = 0$:
+# as if the spring force stayed frozen at its initial value $-kx_0$ and friction
+# were absent once the mass moved. A silent
 # wrong answer is worse than the honest stall of RK45.
 
 # %% [markdown]

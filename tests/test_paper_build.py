@@ -55,6 +55,11 @@ def test_pdf_has_at_least_six_pages(builds: tuple[bytes, bytes]) -> None:
     assert pages >= 6
 
 
+def test_pdf_is_under_three_megabytes(builds: tuple[bytes, bytes]) -> None:
+    """Dense curves are thinned to what the eye resolves (path.simplify in the style file)."""
+    assert len(builds[0]) < 3_000_000, f"{len(builds[0]) / 1e6:.1f} MB"
+
+
 def test_figures_are_embedded_as_vector_graphics(builds: tuple[bytes, bytes]) -> None:
     # Each embedded PDF becomes a form XObject; a PNG would be an image XObject.
     assert not re.search(rb"/Subtype\s*/Image", builds[0])
