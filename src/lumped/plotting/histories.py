@@ -31,6 +31,7 @@ __all__ = [
     "difference",
     "time_history",
     "time_history_panels",
+    "rest_inset",
 ]
 
 #: Axis labels of the trajectory columns (with units).
@@ -249,6 +250,52 @@ def time_history(
     if legend:
         legend_above(ax, ncol=3)
     return fig  # type: ignore[return-value]
+
+
+@styled
+def rest_inset(
+    ax: Axes,
+    trajectory: Trajectory,
+    solution: ExactSolution,
+    band: float,
+    bounds: Sequence[float] = (0.62, 0.56, 0.37, 0.36),
+) -> Axes:
+    """An inset of ``ax`` magnifying where the mass comes to rest, the static band shaded.
+
+    On a displacement axis scaled to the first swing, a rest a few millimetres
+    from ``x = 0`` cannot be told from the unstretched position; the inset shows
+    the last swing and the rest against the band ``|x| <= band`` (``tau / k``).
+
+    Parameters
+    ----------
+    ax : Axes
+        The displacement axes of :func:`time_history` (``column="x"``).
+    trajectory, solution
+        As drawn in ``ax``.
+    band : float, m
+        Half-width of the static band, ``mu_s N_f / k``.
+    bounds : (x0, y0, width, height)
+        Where the inset sits, in fractions of ``ax``.
+
+    Returns
+    -------
+    Axes
+        The inset.
+    """
+    inset = ax.inset_axes(list(bounds))
+    turns = solution.event_times("reversal")
+    start = turns[turns <= solution.rest_time][-1] if turns.size else 0.0
+    inset.axhspan(-band, band, color="0.85", lw=0, label=r"static band $|x| \leq \mu_s N_f/k$")
+    inset.axhline(0.0, color="0.4", lw=0.6)
+    fine = exact_fine(solution)
+    inset.plot(trajectory.t, trajectory.x, **_NUMERIC)
+    inset.plot(fine["t"], fine["x"], **_EXACT)
+    inset.set(xlim=(start, trajectory.t[-1]), ylim=(-2.0 * band, 2.0 * band))
+    inset.tick_params(labelsize=7)
+    inset.yaxis.set_major_formatter(lambda y, _: f"{1e3 * y:g}")
+    inset.set_ylabel("x (mm)", fontsize=7)
+    inset.set_title("the rest, magnified; band shaded", fontsize=7)
+    return inset
 
 
 @styled
