@@ -30,6 +30,8 @@ from lumped import (  # noqa: E402
     simulate_network,
 )
 from lumped.plotting import histories  # noqa: E402
+from lumped.plotting.convergence import ERRORS as CONVERGENCE_ERRORS  # noqa: E402
+from lumped.plotting.convergence import UNITS as CONVERGENCE_UNITS  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 OSC = L.Oscillator.bingham()
@@ -168,10 +170,22 @@ def test_convergence_figure_has_a_slope_one_reference_in_each_panel(close):
         assert np.polyfit(x, y, 1)[0] == pytest.approx(1.0, rel=1e-12)
 
 
+def test_convergence_figure_puts_one_unit_on_each_axis(close):
+    # Figure 15 of the article once drew m, m/s and N s on one axis "error (SI units)".
+    fig = plotting.convergence(NUMBERS)
+    units = {ax.get_ylabel() for ax in fig.axes if ax.get_ylabel()}
+    assert units == {"error (m)", "error (m/s)", "error (N s)"}
+    rows = [tuple(CONVERGENCE_ERRORS[k][0] for k in keys) for keys in CONVERGENCE_UNITS.values()]
+    for i, ax in enumerate(fig.axes):
+        drawn = tuple(line.get_label() for line in ax.lines if not line.get_label().startswith("slope"))
+        assert drawn == rows[i // 2]  # a row per unit, holding only that unit's errors
+
+
 def test_convergence_figure_skips_points_without_a_value(close):
     # None / "still moving" (no rest) and 0 (no log) are left out, nothing else.
     fig = plotting.convergence(NUMBERS)
-    rest = [[line for line in ax.lines if "rest" in line.get_label()][0] for ax in fig.axes]
+    rest = [line for ax in fig.axes for line in ax.lines if "rest" in line.get_label()]
+    assert len(rest) == 2  # the first row (m) of each example
     np.testing.assert_array_equal(rest[0].get_xdata(), [1e-3, 1e-4])
     np.testing.assert_array_equal(rest[1].get_xdata(), [1e-3])
 
