@@ -304,3 +304,19 @@ def test_stick_band_label_is_clear_of_the_velocity_axis(close):
     (label,) = [t for t in ax.texts if t.get_text().startswith("stick band")]
     axis = ax.spines["left"].get_window_extent()
     assert not label.get_window_extent().overlaps(axis)
+
+
+def test_work_precision_labels_each_tanh_point_with_its_eps(close):
+    # Figure 16 of the article: the tanh model's points carried no eps, the legend read "rtol 1e-06".
+    rows = [
+        {"case": "c", "method": "tanh", "resolution": rtol, "eps": eps, "work": work, "relative_position_error": err}
+        for rtol, works in ((1e-6, (1000, 950)), (1e-9, (1900, 1800)))
+        for eps, work, err in zip((1e-2, 1e-3), works, (0.5, 0.01))
+    ]
+    fig = plotting.work_precision({"results": rows, "references": {"c": {"title": "case"}}}, ("c",))
+    (ax,) = fig.axes
+    labels = [t.get_text() for t in ax.texts]
+    assert labels == [r"$\varepsilon = 10^{-2}$", r"$\varepsilon = 10^{-3}$"]  # on the first line, in order
+    legend = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert any(text.endswith(r"rtol $10^{-6}$") for text in legend), legend
+    assert not any("e-0" in text for text in legend), legend
