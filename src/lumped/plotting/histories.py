@@ -214,6 +214,7 @@ def time_history(
     ax: Axes | None = None,
     legend: bool = True,
     diff_ax: Axes | None = None,
+    exact_label: str = _EXACT["label"],
 ) -> Figure:
     """One column of Algorithm 1 against time, with the exact solution and its events.
 
@@ -232,6 +233,8 @@ def time_history(
         Draw the legend, above the axes (outside them: it hides no data).
     diff_ax : Axes, optional
         With ``ax`` given: where to draw the difference (nowhere if ``None``).
+    exact_label : str
+        The exact solution's legend entry (Figure 5 names its closed form, eq. (19)).
     """
     if ax is None:
         fig, ax, diff_ax = _history_axes(solution is not None)
@@ -239,7 +242,7 @@ def time_history(
     ax.plot(trajectory.t, getattr(trajectory, column), label=step_label(trajectory), **_NUMERIC)
     if solution is not None:
         fine = exact_fine(solution)
-        ax.plot(fine["t"], fine[column], **_EXACT)
+        ax.plot(fine["t"], fine[column], **{**_EXACT, "label": exact_label})
         _mark_events(ax, solution, column)
         if diff_ax is not None:
             difference(trajectory, solution, column, ax=diff_ax)
@@ -298,18 +301,29 @@ def rest_inset(
     return inset
 
 
+def _zero_throughout(trajectory: Trajectory, solution: ExactSolution | None, column: str) -> bool:
+    """Whether ``column`` is exactly 0 at every grid point and, if given, in the exact solution."""
+    if np.any(getattr(trajectory, column) != 0.0):
+        return False
+    return solution is None or not np.any(exact_fine(solution)[column] != 0.0)
+
+
 @styled
 def time_history_panels(
     trajectory: Trajectory,
     solution: ExactSolution | None,
     columns: Sequence[str] = ("x", "v", "F_s", "F_d"),
     axes: Sequence[Axes] | None = None,
+    exact_label: str = _EXACT["label"],
 ) -> Figure:
     """Several columns in a grid of two columns (Figures 5 and 10), one legend above.
 
     No difference panels: these are the runs in which the mass never moves
     and Algorithm 1 equals the exact solution (the notebooks print the
-    largest difference).
+    largest difference).  A column that is exactly zero throughout, in
+    Algorithm 1 and in the exact solution, is said to be so in its panel, so
+    that a flat line reads as the result it is.  ``exact_label`` as in
+    :func:`time_history`.
     """
     if axes is None:
         rows = (len(columns) + 1) // 2
@@ -317,7 +331,17 @@ def time_history_panels(
         axes = list(np.ravel(grid))
     fig = axes[0].figure
     for i, (name, ax) in enumerate(zip(columns, axes)):
-        time_history(trajectory, solution, name, ax=ax, legend=False)
+        time_history(trajectory, solution, name, ax=ax, legend=False, exact_label=exact_label)
+        if _zero_throughout(trajectory, solution, name):
+            ax.text(
+                0.5,
+                0.62,
+                f"${SYMBOLS[name][0]} = 0$ throughout: the mass never moves",
+                transform=ax.transAxes,
+                ha="center",
+                fontsize=7,
+                color="0.3",
+            )
         if i < len(columns) - 2:  # a shared time axis is labelled on the bottom row only
             ax.set_xlabel("")
     handles, labels = axes[0].get_legend_handles_labels()
