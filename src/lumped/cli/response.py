@@ -35,7 +35,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     """The ``response`` subcommand."""
     rp = sub.add_parser(
         "response",
-        help="follow the forced periodic motion in omega and write the response curve",
+        help="follow a forced periodic motion in omega: its response curve",
         description=_DESCRIPTION,
         allow_abbrev=False,
         formatter_class=HelpFormatter,
