@@ -26,15 +26,16 @@ import numpy as np
 
 from lumped.drivers.response.systems import LoadedNetwork, Scales, period_map
 from lumped.model.oscillator import Oscillator
-from lumped.solvers.monodromy import PeriodMap
+from lumped.solvers.monodromy import RESOLUTION, PeriodMap
 from lumped.solvers.network_monodromy import NetworkPeriodMap
 
 __all__ = ["NEWTON_TOL", "Orbit", "Scales", "find_orbit", "newton_step"]
 
 #: Newton stops when ``|Pi(z) - z|`` (largest component, in :class:`Scales` units) is below this:
-#: some 1e5 ulps of unit amplitude, above the period map's own round-off (its event times are
-#: refined to a few ulps of the period), far below any amplitude a response curve shows.
-NEWTON_TOL = 1e-11
+#: the map's :data:`~lumped.solvers.monodromy.RESOLUTION`, some 1e5 ulps of unit amplitude, above the
+#: period map's own round-off (its event times are refined to a few ulps of the period), far below any
+#: amplitude a response curve shows.
+NEWTON_TOL = RESOLUTION
 #: Newton iterations before a fixed point is declared not found.
 MAX_NEWTON = 40
 #: Periods of motion from rest (at most) that bring the first guess near the orbit.
