@@ -452,3 +452,28 @@ def test_two_changes_in_one_step_each_located():
     assert int(np.sum(stops[1:] != stops[:-1])) == list(kind).count("stops-change") == 5
     rows = np.flatnonzero(kind == "stops-change")
     assert np.all(stops[rows] != stops[rows - 1])
+
+
+SPRING_ONLY = """
+[[mass]]
+name = "m"
+mass = 1.0
+[[element]]
+name = "spring"
+kind = "spring"
+between = ["ground", "m"]
+stiffness = 100.0
+"""
+
+
+@pytest.mark.parametrize("omega", [0.37, 2.3, 3.0, 4.1, 7.7, 13.0])
+def test_undamped_multipliers_are_marginal(tmp_path, omega):
+    """A mass on a spring alone: its multipliers are ``exp(+-i omega_n T)``, on the unit circle exactly; the
+    computed moduli miss 1 by a few ulps either way (2e-15 to 4e-15 here, their sign a matter of round-off).
+    Within the monodromy's error bound (:attr:`Orbit.margin`) ``max_multiplier`` is exactly 1 and ``stable``
+    false, whichever way the last bits fall; the bound stays far below any modulus a damped motion shows."""
+    path = tmp_path / "spring.toml"
+    path.write_text(SPRING_ONLY)
+    orbit = find_orbit(response_system(L.load_system(path), "m"), 1.0, omega, np.zeros(2))
+    assert orbit.max_multiplier == 1.0 and orbit.stable is False
+    assert np.all(np.abs(np.abs(orbit.multipliers) - 1) <= orbit.margin) and orbit.margin < 1e-9
