@@ -16,8 +16,10 @@ shooting on the exact period map and pseudo-arclength continuation, folds
 included.  One row per point along the branch, the first at START and the last
 at STOP when the branch gets there: omega, amplitude_<mass> for each mass (half
 of max x minus min x over the period, m), stops_per_period (slip-to-stick
-switches of the friction elements), stable (true when every Floquet multiplier
-lies inside the unit circle), max_multiplier (the largest modulus) and kind
+switches of the friction elements that move; a held one's stick is no stop),
+stable (true when every Floquet multiplier lies inside the unit circle by more
+than the monodromy's computed error), max_multiplier (the largest modulus,
+exactly 1 where it is 1 within that error: a marginal motion, stable false) and kind
 (regular, fold, period-doubling or stops-change, the located point of a change).
 The system: one mass on linear springs and a Bingham or Coulomb dashpot, or a
 network of linear springs, Bingham and Coulomb elements and linear dashpots

@@ -16,12 +16,14 @@ mass and for a network, so that a corrector iterate costs one period map); in an
 parameter ``dG/dlambda`` is a central difference (:data:`PARAMETER_STEP`).
 
 Between two accepted points the branch is tested for
-``stops-change`` (the stops per period differ), ``fold`` (``det(M - I)``
+``stops-change`` (the stops per period of the friction elements that move differ: a held element's
+permanent stick is no stop), ``fold`` (``det(M - I)``
 changes sign: a multiplier crosses +1) and ``period-doubling``
 (``det(M + I)`` changes sign: one crosses -1), in that order: where the stops
 change the multipliers jump, and a sign change there is not a smooth
 bifurcation.  The point of change is located by bisection along the secant
-(:data:`BISECTIONS` halvings) and inserted with its ``kind``.
+(:data:`BISECTIONS` halvings, each point corrected to :data:`NEWTON_TOL`) and inserted with its ``kind``; a
+second change between it and the next point is located the same way, so each change is one row.
 
 Notes
 -----
@@ -59,10 +61,8 @@ __all__ = [
 
 #: Halvings of the secant that locate a change (to 2^-12 of a step).
 BISECTIONS = 12
-#: The residual to which the points tried by the bisection are corrected: they are only asked which side of
-#: the change they lie on, and a residual of 1e-8 (in the units of ``Scales``) moves a point far less than
-#: 2^-12 of a step; the located point itself is then corrected to :data:`NEWTON_TOL`.
-BISECTION_TOL = 1e-8
+#: Further changes located within one step after the first (the rest are left to the next step's row).
+MAX_CHANGES = 3
 #: Corrector iterations before a step is halved.
 MAX_CORRECTOR = 8
 #: Largest relative change of the state ``(x, v)`` in one step (see :func:`_largest_step`).
@@ -159,6 +159,8 @@ class _Branch:
         try:
             at = self.found(u)
             for _ in range(MAX_CORRECTOR):
+                if not np.all(np.isfinite(at.jacobian)):  # an event met at a tangency: no derivative there
+                    return None
                 g = self.residual(at.orbit)
                 if np.max(np.abs(g)) <= tol:
                     return at
@@ -237,11 +239,14 @@ def _signature(p: _Point) -> tuple[int, float, float]:
 
 
 def _locate(branch: _Branch, a: _Point, b: _Point, kind: str) -> _Point:
-    """Bisect the secant ``a -> b`` for the change ``kind``; the corrected point on ``b``'s side of it.
+    """Bisect the secant ``a -> b`` for the change ``kind``: the point nearest ``a`` found whose
+    :func:`signature` differs from ``a``'s (``b`` itself if none), corrected to :data:`NEWTON_TOL`.
 
     The point at a fraction ``mid`` of the secant is the branch's crossing of the hyperplane through
     ``a + mid (b - a)`` normal to the secant; the corrector starts from where the tangent line of the last point
-    found on ``a``'s side crosses that hyperplane, which comes closer at each halving (fewer iterates)."""
+    found on ``a``'s side crosses that hyperplane, which comes closer at each halving (fewer iterates).  Each
+    point tried is corrected to :data:`NEWTON_TOL`, the accuracy of every row, so the located point is on the
+    side the bisection put it (a point corrected further after the bisection could cross back)."""
     index = {"stops-change": 0, "fold": 1, "period-doubling": 2}[kind]
     secant = b.u - a.u
     normal = secant / np.linalg.norm(secant)
@@ -250,7 +255,7 @@ def _locate(branch: _Branch, a: _Point, b: _Point, kind: str) -> _Point:
         mid = 0.5 * (lo + hi)
         on_plane = a.u + mid * secant
         guess = near.u + tangent * (normal @ (on_plane - near.u)) / (normal @ tangent)
-        p = branch.correct(guess, normal, a, BISECTION_TOL)
+        p = branch.correct(guess, normal, a)
         if p is None:
             break
         if _signature(p)[index] == _signature(a)[index]:
@@ -258,9 +263,7 @@ def _locate(branch: _Branch, a: _Point, b: _Point, kind: str) -> _Point:
             tangent = _tangent(p, tangent)
         else:
             hi, best = mid, p
-    if best is b:
-        return b
-    return branch.correct(best.u, normal, a) or b
+    return best
 
 
 def continue_orbits(
@@ -327,14 +330,18 @@ def continue_orbits(
     return Branch(out, end)
 
 
-def _append(branch: _Branch, out: list[ResponsePoint], a: _Point, b: _Point) -> None:
-    """Append ``b``, preceded by the located change between ``a`` and ``b`` if there is one."""
+def _append(branch: _Branch, out: list[ResponsePoint], a: _Point, b: _Point, depth: int = 0) -> None:
+    """Append ``b``, preceded by the located changes between ``a`` and ``b``: the first change from ``a``
+    (:func:`_locate`), then those between it and ``b`` the same way (two in one step: a count of stops held
+    over a short interval), each once."""
     kind = change(_signature(a), _signature(b))
-    if kind is not None:
-        at = _locate(branch, a, b, kind)
-        if at is not b:
-            out.append(ResponsePoint(at.orbit, kind, at.value))
+    if kind is None:
+        out.append(ResponsePoint(b.orbit, "regular", b.value))
+        return
+    at = _locate(branch, a, b, kind)
+    out.append(ResponsePoint(at.orbit, kind, at.value))
+    if at is not b:
+        if depth < MAX_CHANGES:
+            _append(branch, out, at, b, depth + 1)
         else:
-            out.append(ResponsePoint(b.orbit, kind, b.value))
-            return
-    out.append(ResponsePoint(b.orbit, "regular", b.value))
+            out.append(ResponsePoint(b.orbit, "regular", b.value))
