@@ -61,7 +61,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 #: The API's argument names that this command's messages may begin with -> its options.
-_API_NAMES = {"force_omega": "--omega", "force_amplitude": "--amplitude", "t_end": "--omega", "vary": "--vary"}
+_API_NAMES = {
+    "force_omega": "--omega",
+    "force_amplitude": "--amplitude",
+    "t_end": "--omega",
+    "omega": "--omega",
+    "points": "--points",
+    "vary": "--vary",
+}
 
 
 def _interval(text: str, option: str = "--omega") -> tuple[float, float]:
@@ -95,7 +102,7 @@ def _vary(text: str) -> tuple[str, float, float]:
 
 def run(args: argparse.Namespace, output: Output) -> str:
     """Validate, read the system, reserve the output, follow the branch, write; returns the summary."""
-    from lumped.drivers.response.curve import response_curve
+    from lumped.drivers.response.curve import request, response_curve
     from lumped.drivers.response.systems import response_system
     from lumped.drivers.sweep import Progress
     from lumped.model.files import load_system
@@ -121,11 +128,8 @@ def run(args: argparse.Namespace, output: Output) -> str:
     except ValueError as err:
         raise ValueError(f"{args.system}: {str(err).split(': ', 1)[1]}") from None
     bar = Progress(sys.stderr, True, label="response", unit="")
-    try:
-        if vary is not None:  # the parameter's name and its two ends, before the output is reserved
-            from lumped.drivers.response.systems import parameter_family
-
-            parameter_family(network, args.force_on, amplitude, omega, vary, start, stop)
+    try:  # every bound before the output is reserved and any period is run
+        request(network, args.force_on, amplitude, start, stop, points, vary, omega)
         output.create()
         curve = response_curve(network, args.force_on, amplitude, start, stop, points, bar, vary, omega)
     except ValueError as err:  # the API's names as this command's options
