@@ -43,7 +43,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, find_orbit
+from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, Scales, find_orbit
 from lumped.drivers.response.systems import Family, LoadedNetwork, omega_family, period_map
 from lumped.model.oscillator import Oscillator
 
@@ -142,6 +142,12 @@ class _Branch:
     def residual(self, orbit: Orbit) -> np.ndarray:
         return self.s.state(orbit.period.end - orbit.state)
 
+    def own(self, value: float) -> Scales:
+        """The :class:`Scales` of the member at ``value``: what its residual and amplitude are measured in (a
+        family in the amplitude or a mass spans decades of ``P/k``; the unknowns keep the start's)."""
+        system, p, _ = self.family.member(value)
+        return Scales.of(system, p)
+
     def correct(self, guess: np.ndarray, normal: np.ndarray, start: _Point, tol: float = NEWTON_TOL) -> _Point | None:
         """Newton on ``G(u) = 0``, ``normal . (u - guess) = 0`` to ``|G| <= tol``, each iterate with its own
         Jacobian (the held elongations of elements that stick through the period pinned to ``start``'s);
@@ -151,7 +157,7 @@ class _Branch:
             at = self.found(u)
             for _ in range(MAX_CORRECTOR):
                 g = self.residual(at.orbit)
-                if np.max(np.abs(g)) <= tol:
+                if np.max(np.abs(self.own(at.value).state(at.orbit.period.end - at.orbit.state))) <= tol:
                     return at
                 matrix, rhs = at.system(g, u, start.u)
                 u = u - np.linalg.solve(np.vstack([matrix, normal]), np.append(rhs, normal @ (u - guess)))
@@ -309,7 +315,7 @@ def continue_orbits(
         ds = min(1.5 * ds, _largest_step(p.u, tangent, ds_max))
         if progress is not None:
             progress(int(1000 * min(max((q.u[-1] - w0) / (w1 - w0), 0.0), 1.0)), 1000)
-        if q.orbit.amplitude > max_amplitude * branch.s.x:
+        if q.orbit.amplitude > max_amplitude * branch.own(q.value).x:
             end = "amplitude"
             break
         if q.u[-1] < w0 - 10 * ds_max:
