@@ -28,7 +28,14 @@ neutral multiplier (exactly 1) is left out of stable and max_multiplier.
 With --vary NAME=START:STOP the branch is followed in NAME instead, at the
 fixed frequency --omega W: NAME is amplitude (the force's, N) or a numeric
 parameter of the file written element.key or mass.key (dashpot.threshold,
-spring.stiffness, m.mass); its column comes first."""
+spring.stiffness, m.mass); its column comes first, and a range may start on
+the edge of the parameter's domain (dashpot.threshold=0:3).
+Bounds, checked before any work: omega from 1e-3 of the system's fastest free
+oscillation (a period of thousands of phases below it) to 100 times its
+slowest natural frequency (above it the amplitude, (P/k)(omega_n/omega)^2, is
+below what Newton's tolerance on the period map resolves); the fastest decay
+rate at most 1e11 omega; a range at least 1e-6 of its largest value wide;
+--points from 2 to 10000.  With --vary, the omega bounds hold at both ends."""
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -55,7 +62,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="follow NAME (amplitude, or element.key / mass.key of the file) from START to STOP at the fixed --omega",
     )
     rp.add_argument(
-        "--points", default="200", metavar="N", help="about the rows of a branch monotone in omega [default: 200]"
+        "--points",
+        default="200",
+        metavar="N",
+        help="about the rows of a branch monotone in omega, 2 to 10000 [default: 200]",
     )
     rp.add_argument("--output", required=True, help="output file, .csv or .npz")
 
