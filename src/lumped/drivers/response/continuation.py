@@ -13,7 +13,8 @@ back) is passed like any other point.  ``dG/dy = M - I`` is the analytic
 monodromy and ``dG/domega`` the derivative of the period map in omega
 (:func:`~lumped.drivers.response.systems.omega_derivative`: exact, for one
 mass and for a network, so that a corrector iterate costs one period map); in another
-parameter ``dG/dlambda`` is a central difference (:data:`PARAMETER_STEP`).
+parameter ``dG/dlambda`` is exact too, and into the parameter's domain on its edge
+(:func:`~lumped.drivers.response.systems.exact_derivative`): the family's ``derivative``.
 
 Between two accepted points the branch is tested for
 ``stops-change`` (the stops per period of the friction elements that move differ: a held element's
@@ -44,14 +45,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, find_orbit
-from lumped.drivers.response.systems import Family, LoadedNetwork, omega_derivative, omega_family, period_map
+from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, Scales, find_orbit
+from lumped.drivers.response.systems import Family, LoadedNetwork, omega_family, period_map
 from lumped.model.oscillator import Oscillator
 
 __all__ = [
     "BISECTIONS",
     "MAX_AMPLITUDE",
-    "PARAMETER_STEP",
     "Branch",
     "ResponsePoint",
     "change",
@@ -72,10 +72,6 @@ STATE_STEP = 0.1
 MAX_AMPLITUDE = 50.0
 #: Smallest step as a fraction of the largest before the continuation gives up.
 MIN_STEP = 1e-7
-#: Step of the central difference ``dPi/dlambda`` in a parameter other than omega, in the family's unit
-#: (``max(|start|, |stop|)``): truncation ``step^2`` (1e-12) and round-off (the map's ~1e-14 over the step,
-#: 1e-8) leave the derivative good to 1e-8, which only slows the corrector's last digit, never moves the point.
-PARAMETER_STEP = 1e-6
 
 
 class ResponsePoint(NamedTuple):
@@ -136,12 +132,7 @@ class _Branch:
         u = np.append(self.s.state(orbit.state), value / unit)
         scale = np.repeat([self.s.x, self.s.v], u.size // 2)
         jz = (orbit.period.monodromy - np.eye(scale.size)) * scale[None, :] / scale[:, None]
-        if self.family.name == "omega":
-            system, amplitude, _ = self.family.member(value)
-            jw = self.s.state(omega_derivative(system, amplitude, orbit)) * unit
-        else:
-            ends = [self.orbit_at(np.append(u[:-1], u[-1] + d)).period.end for d in (PARAMETER_STEP, -PARAMETER_STEP)]
-            jw = self.s.state(ends[0] - ends[1]) / (2 * PARAMETER_STEP)
+        jw = self.s.state(self.family.derivative(orbit, value)) * unit
         return _Point(u, orbit, np.column_stack([jz, jw]), value)
 
     def found(self, u: np.ndarray) -> _Point:
@@ -150,6 +141,12 @@ class _Branch:
 
     def residual(self, orbit: Orbit) -> np.ndarray:
         return self.s.state(orbit.period.end - orbit.state)
+
+    def own(self, value: float) -> Scales:
+        """The :class:`Scales` of the member at ``value``: what its residual and amplitude are measured in (a
+        family in the amplitude or a mass spans decades of ``P/k``; the unknowns keep the start's)."""
+        system, p, _ = self.family.member(value)
+        return Scales.of(system, p)
 
     def correct(self, guess: np.ndarray, normal: np.ndarray, start: _Point, tol: float = NEWTON_TOL) -> _Point | None:
         """Newton on ``G(u) = 0``, ``normal . (u - guess) = 0`` to ``|G| <= tol``, each iterate with its own
@@ -162,7 +159,7 @@ class _Branch:
                 if not np.all(np.isfinite(at.jacobian)):  # an event met at a tangency: no derivative there
                     return None
                 g = self.residual(at.orbit)
-                if np.max(np.abs(g)) <= tol:
+                if np.max(np.abs(self.own(at.value).state(at.orbit.period.end - at.orbit.state))) <= tol:
                     return at
                 matrix, rhs = at.system(g, u, start.u)
                 u = u - np.linalg.solve(np.vstack([matrix, normal]), np.append(rhs, normal @ (u - guess)))
@@ -321,7 +318,7 @@ def continue_orbits(
         ds = min(1.5 * ds, _largest_step(p.u, tangent, ds_max))
         if progress is not None:
             progress(int(1000 * min(max((q.u[-1] - w0) / (w1 - w0), 0.0), 1.0)), 1000)
-        if q.orbit.amplitude > max_amplitude * branch.s.x:
+        if q.orbit.amplitude > max_amplitude * branch.own(q.value).x:
             end = "amplitude"
             break
         if q.u[-1] < w0 - 10 * ds_max:
