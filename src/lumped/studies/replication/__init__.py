@@ -67,16 +67,14 @@ from __future__ import annotations
 from lumped.studies.replication.numbers import ORIGINAL, PACKAGES, compute
 from lumped.studies.replication.runs import CONVERGENCE_STEPS, ORIGINAL_DT
 from lumped.studies.replication.textbook_model import TEXTBOOK
-from lumped.studies.replication.verdicts import CHECKS, CURVE_TOL, STRETCH_TOL, VERDICT_KEYS, Verdict
+from lumped.studies.replication.verdicts import CHECKS, VERDICT_KEYS, Verdict
 
 __all__ = [
     "CHECKS",
     "CONVERGENCE_STEPS",
-    "CURVE_TOL",
     "ORIGINAL",
     "ORIGINAL_DT",
     "PACKAGES",
-    "STRETCH_TOL",
     "TEXTBOOK",
     "VERDICT_KEYS",
     "Verdict",
