@@ -181,7 +181,7 @@ def _be_summary(be: Trajectory) -> dict[str, Any]:
         "max_F_d": float(np.max(be.F_d)),
         "stick_fraction": float(np.mean(be.v == 0.0)),
         "reversals": sign_changes(be.v),
-        "first_move_time": _rest(float(be.t[np.argmax(be.v != 0.0)]) if np.any(be.v != 0.0) else math.nan),
+        "first_move_time": float(be.t[np.argmax(be.v != 0.0)]) if np.any(be.v != 0.0) else math.nan,
         "turning_positions": _turning_positions(be.x, be.v),
         "energy_residual": float(np.max(np.abs(be.energy_balance().residual))),
         "steps": int(be.t.size - 1),

@@ -245,7 +245,7 @@ def _forced_parts(n: int, block: dict[str, Any], suffix: str, osc: Oscillator) -
     if n == 7:
         t_b = ex["first_event_time"]
         first = be["first_move_time"]
-        sharp = not _moving(first) and t_b < first <= t_b + be["dt"]
+        sharp = first is not None and t_b is not None and t_b < first <= t_b + be["dt"]
         return (
             "the mass sticks ($v = 0$ exactly) until $F_2$ first exceeds $mu_s N_f$ and moves from then on,"
             " until a final stop after which $v = 0$ exactly",
