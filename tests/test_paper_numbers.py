@@ -32,6 +32,7 @@ reference, with the reason.
 from __future__ import annotations
 
 import importlib.metadata
+import itertools
 import json
 import math
 import platform
@@ -433,6 +434,7 @@ def expected_sweep() -> dict[str, Any]:
     literal = literal_sweep(releases, DT, CFG["t_end_large"])
     return {
         "x0": Holds(lambda g: np.allclose(g, releases, rtol=0, atol=1e-15), "x0 - j band/2"),
+        "spacing": Near(TAU / K / 2, rel=1e-15),
         "exact": Holds(lambda g: np.allclose(g, rests, rtol=1e-9, atol=1e-10), "the recurrence's rests"),
         "algorithm1": Holds(lambda g: np.allclose(g, literal, rtol=1e-9, atol=1e-11), "the literal BE's rests"),
     }
@@ -701,7 +703,7 @@ def _sweep_ok(rests: Any) -> tuple[bool, bool, bool]:
 
 
 def _decreasing(turns: Any) -> bool:
-    return all(abs(b) < abs(a) for a, b in zip(turns, turns[1:]))
+    return all(abs(b) < abs(a) for a, b in itertools.pairwise(turns))
 
 
 def expected_verdict_words() -> dict[str, str]:
@@ -818,7 +820,8 @@ def expected_friction_oscillator() -> dict[str, Any]:
 
     case = dict(FRICTION_OSCILLATOR)
     n = math.ceil(math.sqrt(205) / 2)
-    rows = np.loadtxt(gzip.open(ROOT / "tests" / "data" / "siconos" / "FrictionOscillator.ref.gz", "rt"), skiprows=1)
+    with gzip.open(ROOT / "tests" / "data" / "siconos" / "FrictionOscillator.ref.gz", "rt") as f:
+        rows = np.loadtxt(f, skiprows=1)
     rows = rows[rows[:, 0] <= case["t_end"] + 1e-9]
     v_mj = np.where(np.abs(rows[:, 2]) <= 1e-14, 0.0, rows[:, 2])
     be = coulomb_algorithm1(case)

@@ -225,6 +225,7 @@ def rest_sweep(run: examples.Example, dt: float, spacing: float = SWEEP_SPACING)
     moved = [dataclasses.replace(run, x0=x0) for x0 in releases]
     return {
         "x0": releases,
+        "spacing": spacing * band,
         "exact": [_rest(r.exact().rest_position) for r in moved],
         "algorithm1": [_rest(r.algorithm1(dt).rest_position) for r in moved],
     }

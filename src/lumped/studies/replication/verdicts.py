@@ -21,6 +21,7 @@ decides nothing.  The reasons, claims and differences are Typst markup
 
 from __future__ import annotations
 
+import itertools
 import math
 from dataclasses import asdict, dataclass
 from typing import Any
@@ -138,13 +139,13 @@ def _rest_difference(q: str, block: dict[str, Any], suffix: str, osc: Oscillator
     if q in ("F_s", "F_d"):
         held = f"held {'spring' if q == 'F_s' else 'dashpot'} force"
         where = (
-            f"the {held} differs by $k |Delta x_\"rest\"|$ = {_num(osc.stiffness * dx, 2)} N{side},"
+            f'the {held} differs by $k |Delta x_"rest"|$ = {_num(osc.stiffness * dx, 2)} N{side},'
             f" {_pct(dx / osc.static_band)} of $mu_s N_f$"
         )
     else:
         where = (
             f"Algorithm 1 rests at $x$ = {_num(be['rest_position'])} m, the exact solution at"
-            f" {_num(ex['rest_position'])} m{side}: $|Delta x_\"rest\"|$ = {_num(dx, 2)} m,"
+            f' {_num(ex["rest_position"])} m{side}: $|Delta x_"rest"|$ = {_num(dx, 2)} m,'
             f" {_pct(dx / osc.static_band)} of the band half-width $mu_s N_f slash k$"
             f" and {_pct(dx / ex['peak_x'])} of $max|x|$"
         )
@@ -210,7 +211,7 @@ def _figure10(cfg: dict[str, Any], block: dict[str, Any], suffix: str, osc: Osci
         return _not_checked("Figure 10", claim, reason)
     ex, be, err = block["exact"], block["be" + suffix], block["error" + suffix]
     parts = [("$v = 0$ and $x = x_0$", ex["peak_v"] == 0, be["peak_v"] == 0 and err["max_x"] == 0)]
-    diff = f"$max|x - x^\"exact\"|$ = {_num(err['max_x'])} m, $max|v|$ = {_num(be['peak_v'])} m/s with Algorithm 1"
+    diff = f'$max|x - x^"exact"|$ = {_num(err["max_x"])} m, $max|v|$ = {_num(be["peak_v"])} m/s with Algorithm 1'
     return _judged("Figure 10", claim, parts, diff)
 
 
@@ -228,7 +229,7 @@ def _holds_spring(s: dict[str, Any]) -> bool:
 
 def _decays(turning: list[float]) -> bool:
     """Whether each turning point lies nearer zero than the one before."""
-    return all(abs(b) < abs(a) for a, b in zip(turning, turning[1:]))
+    return all(abs(b) < abs(a) for a, b in itertools.pairwise(turning))
 
 
 def _forced_parts(n: int, block: dict[str, Any], suffix: str, osc: Oscillator) -> tuple[str, list[Part]]:
@@ -238,8 +239,10 @@ def _forced_parts(n: int, block: dict[str, Any], suffix: str, osc: Oscillator) -
     if n == 6:
         moved = ("the mass moves", ex["breakaways"] > 0, be["peak_v"] > 0)
         return (
-            "$F_2$ exceeds $mu_s N_f$, so the mass breaks away; after the forcing ends it comes to rest"
-            " inside the static band, $|F_s| <= mu_s N_f$",
+            (
+                "$F_2$ exceeds $mu_s N_f$, so the mass breaks away; after the forcing ends it comes to rest"
+                " inside the static band, $|F_s| <= mu_s N_f$"
+            ),
             [moved, ("it comes to rest", rest_e[0], rest_b[0]), ("$|F_s| <= mu_s N_f$ at rest", rest_e[2], rest_b[2])],
         )
     if n == 7:
@@ -247,8 +250,10 @@ def _forced_parts(n: int, block: dict[str, Any], suffix: str, osc: Oscillator) -
         first = be["first_move_time"]
         sharp = first is not None and t_b is not None and t_b < first <= t_b + be["dt"]
         return (
-            "the mass sticks ($v = 0$ exactly) until $F_2$ first exceeds $mu_s N_f$ and moves from then on,"
-            " until a final stop after which $v = 0$ exactly",
+            (
+                "the mass sticks ($v = 0$ exactly) until $F_2$ first exceeds $mu_s N_f$ and moves from then on,"
+                " until a final stop after which $v = 0$ exactly"
+            ),
             [
                 ("it first moves at the first grid point after the breakaway", ex["breakaways"] > 0, sharp),
                 ("it comes to a final stop", rest_e[0], rest_b[0]),
@@ -260,8 +265,10 @@ def _forced_parts(n: int, block: dict[str, Any], suffix: str, osc: Oscillator) -
             [("$F_s != 0$ at rest", rest_e[1], rest_b[1]), ("$|F_s| <= mu_s N_f$ at rest", rest_e[2], rest_b[2])],
         )
     return (
-        "$F_d$ lies on the graph of eq. (6) at every instant ($|F_d| <= mu_s N_f$ where $v = 0$, the sign of"
-        " $v$ where $v != 0$), and at rest it holds the spring, $F_d = -F_s$",
+        (
+            "$F_d$ lies on the graph of eq. (6) at every instant ($|F_d| <= mu_s N_f$ where $v = 0$, the sign of"
+            " $v$ where $v != 0$), and at rest it holds the spring, $F_d = -F_s$"
+        ),
         [
             ("$(v, F_d)$ on the graph of eq. (6)", ex["law_violations"] == 0, be["law_violations"] == 0),
             ("$F_d = -F_s$ at rest", _holds_spring(ex), _holds_spring(be)),
@@ -277,13 +284,15 @@ def _free_parts(n: int, block: dict[str, Any], suffix: str, osc: Oscillator) -> 
     inside = ("inside the static band, $|F_s| <= mu_s N_f$", rest_e[2], rest_b[2])
     if n == 11:
         return (
-            "the mass comes to rest with the spring stretched, inside the static band: $0 < |k x_\"rest\"| <= mu_s N_f$",
+            'the mass comes to rest with the spring stretched, inside the static band: $0 < |k x_"rest"| <= mu_s N_f$',
             [("it comes to rest", rest_e[0], rest_b[0]), stretched, inside],
         )
     if n == 12:
         return (
-            "the oscillation decays and ends: each turning point lies nearer zero than the one before,"
-            " and from a final stop on $v = 0$ exactly",
+            (
+                "the oscillation decays and ends: each turning point lies nearer zero than the one before,"
+                " and from a final stop on $v = 0$ exactly"
+            ),
             [
                 ("the turning points decrease", _decays(ex["reversal_positions"]), _decays(be["turning_positions"])),
                 ("it comes to a final stop", rest_e[0], rest_b[0]),
@@ -328,8 +337,10 @@ def _zero_release(x0: list[float], rests: list[Any]) -> float:
 
 def _sweep_text(sweep: dict[str, Any]) -> str:
     x0 = sweep["x0"]
-    step = abs(x0[1] - x0[0]) if len(x0) > 1 else 0.0
-    return f"released at rest from {len(x0)} positions $x_0$ from {_num(x0[-1])} m to {_num(x0[0])} m, {_num(step)} m apart"
+    return (
+        f"released at rest from {len(x0)} positions $x_0$ from {_num(x0[-1])} m to {_num(x0[0])} m,"
+        f" {_num(sweep['spacing'])} m apart"
+    )
 
 
 def _sweep_parts(sweep: dict[str, Any], osc: Oscillator) -> tuple[dict[str, Any], dict[str, Any]]:
@@ -378,11 +389,11 @@ def _rest_stretched(block: dict[str, Any], suffix: str, osc: Oscillator) -> dict
     e, b = _sweep_parts(sweep, osc)
     claim = (
         "a free vibration can end with the spring stretched, so the rest is not the minimum of the energy:"
-        f" {_sweep_text(sweep)}, the mass comes to rest inside the band with $x_\"rest\" != 0$"
+        f' {_sweep_text(sweep)}, the mass comes to rest inside the band with $x_"rest" != 0$'
     )
     parts = [
         ("every release comes to rest inside the band", e["rest"] and e["band"], b["rest"] and b["band"]),
-        ("$x_\"rest\" != 0$", e["nonzero"], b["nonzero"]),
+        ('$x_"rest" != 0$', e["nonzero"], b["nonzero"]),
     ]
     if not e["rest"]:
         return _not_checked("rest with the spring stretched", claim, _STILL)
