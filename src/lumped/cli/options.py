@@ -11,11 +11,12 @@ refused (:func:`refuse_repeats`).
 from __future__ import annotations
 
 import argparse
+import sys
 from collections.abc import Sequence
 
 from lumped.cli.loads import FLAGS as LOAD_FLAGS
 from lumped.cli.messages import API_TO_OPTION
-from lumped.drivers.methods import METHODS, OPTIONS, SWEEP_METHODS
+from lumped.drivers.methods import ALIASES, METHODS, OPTIONS, SWEEP_METHODS
 from lumped.model.parameters import PARAMETERS, PER_ROW
 from lumped.numerics import validate
 
@@ -44,7 +45,7 @@ class Parser(argparse.ArgumentParser):
 
 
 class HelpFormatter(argparse.HelpFormatter):
-    """Wraps option help at spaces only: "event-capturing" is never split at its hyphen."""
+    """Wraps option help at spaces only: "event-locating" is never split at its hyphen."""
 
     def _split_lines(self, text: str, width: int) -> list[str]:
         import textwrap
@@ -52,9 +53,14 @@ class HelpFormatter(argparse.HelpFormatter):
         return textwrap.wrap(" ".join(text.split()), width, break_on_hyphens=False)
 
 
+def _alias_note(aliases: tuple[str, ...]) -> str:
+    """`` (alias: event-capturing)`` for a method with former names, else nothing."""
+    return f" (alias: {', '.join(aliases)})" if aliases else ""
+
+
 def _method_help() -> str:
     """One line per registered method (:data:`lumped.drivers.methods.METHODS`): its name and its description."""
-    lines = (f"{name}: {m.description}" for name, m in METHODS.items())
+    lines = (f"{name}: {m.description}{_alias_note(m.aliases)}" for name, m in METHODS.items())
     return "; ".join(lines) + " [default: backward-euler]"
 
 
@@ -86,9 +92,12 @@ def method_options(args: argparse.Namespace) -> dict[str, object]:
 
 
 def check_method(name: str) -> None:
-    """Refuse a ``--method`` that is not in the registry (:data:`lumped.drivers.methods.METHODS`)."""
+    """Refuse a ``--method`` that is not in the registry (:data:`lumped.drivers.methods.METHODS`);
+    for a former name (:data:`~lumped.drivers.methods.ALIASES`), say on stderr which method it selects."""
     if name not in METHODS:
         raise ValueError(f"--method must be one of {', '.join(METHODS)}; got {name!r}")
+    if name in ALIASES:
+        print(f"note: --method {name} is an alias of {ALIASES[name]}", file=sys.stderr)
 
 
 def _is_option(item: str) -> bool:
