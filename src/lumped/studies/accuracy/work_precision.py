@@ -239,7 +239,7 @@ def headline(result: Study) -> dict[str, Any]:
     rest-position and absolute rest-time difference from ``exact``;
     ``herschel_bulkley``: per case, the largest ``rtol`` whose relative error
     is at most :data:`HB_TARGET`, its steps, and backward Euler's steps and
-    relative error at the finest step; ``tanh``: the cheapest setting (fewest
+    relative error at the original's step (:data:`ORIGINAL_DT`); ``tanh``: the cheapest setting (fewest
     steps) with relative error at most :data:`TANH_TARGET`, or ``None``.
     """
     free = {m: result.select("free-decay", m) for m in (*SCHEMES, "event-driven", TANH)}
