@@ -347,7 +347,6 @@ def refuse_sweep(method: object) -> None:
     if not isinstance(method, str) or method not in METHODS:
         raise ValueError(f"method: a sweep runs {', '.join(SWEEP_METHODS)}; got {method!r}")
     m = METHODS[method]
+    named = repr(m.name) if method == m.name else f"{method!r} (an alias of {m.name!r})"
     if not m.batch:
-        raise ValueError(
-            f"method: {m.name!r} cannot run a sweep: {m.not_batch} (a sweep runs {', '.join(SWEEP_METHODS)})"
-        )
+        raise ValueError(f"method: {named} cannot run a sweep: {m.not_batch} (a sweep runs {', '.join(SWEEP_METHODS)})")
