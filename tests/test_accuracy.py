@@ -28,9 +28,6 @@ from lumped.studies import accuracy as A
 from lumped.studies.accuracy import methods as M
 from lumped.studies.accuracy.orders import fitted_slope
 
-# Three halvings from 1e-3: enough for a slope, ~1 s for the three schemes on one case.
-STEPS = (1e-3, 5e-4, 2.5e-4)
-
 
 # ---------------------------------------------------------------- the methods, from the registry
 
