@@ -65,7 +65,7 @@ print("largest deviation from eq. (19):", ", ".join(f"{c} {d:.3e}" for c, d in d
 
 # %%
 print("exact solution's stick intervals (s):", [f"{a:.4f}-{b:.4f}" for a, b in weak_exact.stick_intervals()])
-fig = P.time_history_panels(weak, weak_exact)
+fig = P.time_history_panels(weak, weak_exact, exact_label="exact: eq. (19), stuck throughout")
 _ = P.save_figure(fig, "fig05_forced_small")
 
 # %% [markdown]

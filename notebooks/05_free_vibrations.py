@@ -163,6 +163,7 @@ print(f"zeta = {zeta:.4f}, r = {r:.4f}: threshold loss {(1 + r) * band:.4f} m pe
 
 # %%
 fig = P.time_history(large, exact, "x")
+_ = P.rest_inset(fig.axes[0], large, exact, band)  # the stretched rest, which the 0.4 m axis hides
 _ = P.save_figure(fig, "fig11_free_large_x")
 turns = np.abs([e.x for e in exact.events if e.kind == "reversal"])
 start = np.r_[abs(x0), turns[:-1]]  # |x| at the start of each half-swing ending in a reversal

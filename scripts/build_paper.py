@@ -13,8 +13,10 @@ which the article reads.  A missing figure is an error unless ``--draft`` is
 given, in which case the article shows an empty frame in its place.
 
 The PDF is deterministic: the document date is fixed in ``paper.typ``
-(from ``paper/metadata.yaml``), system fonts are ignored (the fonts embedded
-in the ``typst`` package are used), so two builds from the same inputs are
+(from ``paper/metadata.yaml``), system fonts are ignored: the text is set in
+DejaVu Serif from Matplotlib's own font files (:data:`FIGURE_FONTS`, the font
+of the figures, so figures and text share one family), the mathematics in the
+fonts embedded in the ``typst`` package, so two builds from the same inputs are
 byte-identical.
 """
 
@@ -26,7 +28,12 @@ import re
 import sys
 from pathlib import Path
 
+import matplotlib
+
 ROOT = Path(__file__).resolve().parent.parent
+
+#: Matplotlib's font files: the article's text is set in the figures' DejaVu Serif.
+FIGURE_FONTS = str(Path(matplotlib.get_data_path()) / "fonts" / "ttf")
 FIGURE_COUNT = 14
 #: The article's own figure (``scripts/paper_figures.py``), key ``"convergence"`` of figures.json.
 CONVERGENCE = ROOT / "paper" / "build" / "convergence.pdf"
@@ -84,6 +91,7 @@ def build(out: Path, figures: list[str], draft: bool = False) -> Path:
         output=str(out),
         root=str(ROOT),
         ignore_system_fonts=True,
+        font_paths=[FIGURE_FONTS],
         sys_inputs={"draft": "true" if draft else "false"},
     )
     return out

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import os
 import shutil
 import subprocess
@@ -31,6 +32,25 @@ F17A = examples.paper()["forced_small"].force
 F17B = examples.paper()["forced_large"].force
 #: The kernels of Algorithm 1 to test: the Python loop always, the C kernel too when built.
 KERNELS = ["python"] + (["compiled"] if backward_euler.KERNEL == "compiled" else [])
+
+
+def assert_same_trajectory(a: L.Trajectory, b: L.Trajectory) -> None:
+    """``a`` and ``b`` are the same run bit for bit: every field of the trajectory (the saved arrays, the
+    final rest found at full resolution, the events, the system, the method, the path), and what is derived
+    from them (rest time and position, stick intervals).  ``as_array()`` alone would miss a rest step off
+    by one, which lives in ``final_rest``, not in the saved rows."""
+    for f in dataclasses.fields(a):
+        x, y = getattr(a, f.name), getattr(b, f.name)
+        if f.name == "final_rest" and x is not None and y is not None:
+            x, y = np.concatenate(x), np.concatenate(y)
+        if isinstance(x, np.ndarray) or isinstance(y, np.ndarray):
+            assert isinstance(x, np.ndarray) and isinstance(y, np.ndarray) and x.dtype == y.dtype, f.name
+            assert np.array_equal(x, y, equal_nan=True), f.name
+        else:
+            assert x == y, f.name
+    assert np.array_equal(a.rest_times, b.rest_times, equal_nan=True), "rest_times"
+    assert np.array_equal(a.rest_positions, b.rest_positions, equal_nan=True), "rest_positions"
+    assert a.stick_intervals() == b.stick_intervals(), "stick_intervals"
 
 
 def energy_scale(eb: L.EnergyBalance) -> float:

@@ -21,6 +21,10 @@ So no rounding enters and the checks are exact: ``v == 0`` at every step,
 path exposes is set.  One ulp outside the band (``x0 = nextafter(0.25, 1)``:
 ``k x0 = 1 + 2^-52``, exact) every path must slip at the first step: the band
 is closed, not widened.
+
+The methods that locate events (exact, event-driven, event-locating) follow at
+the end: released on the edge, held there by a force that switches off, and
+(the exact solution) stopping on the edge after a slip.
 """
 
 from __future__ import annotations
@@ -140,3 +144,77 @@ def test_a_band_of_zero_width_is_never_rigid(solver: str, law: str) -> None:
     tr = simulate_network(net, T_END, DT, solver=solver)
     assert not net.elements[1].rigid_capable
     assert np.all(tr.v == 0) and not tr.rigid.any()
+
+
+# ---- the methods that locate events: exact, event-driven, event-locating ----------------------------
+#
+# Their stick test at a release, a breakaway check and a forcing switch-off is the same closed band
+# (:meth:`EventMarch.mode`, :func:`lumped.laws.sticks`), and at a zero of ``v`` after a slip in direction
+# ``s`` the rule is strict: the mass reverses only if ``-s (F - k x) > tau`` (:meth:`EventMarch.stop_or_reverse`);
+# on the edge it stops.  Released on the edge with no force, or held there by a force that switches off
+# (``F = +-0.5 sin(pi t)`` until ``t_off = 0.5``: ``F - k x0`` stays in ``[-1, -0.5]`` (or ``[0.5, 1]``) and
+# is ``-+tau`` again, exactly, once the force is off), the mass never moves: no event but the forcing's
+# switch-off and the rest, dated at ``t = 0``.
+
+EVENT_METHODS = ("exact", "event-driven", "event-locating")
+T_OFF = 0.5
+HOLDING = {"unforced": None, "forcing-off": T_OFF}
+
+
+def located(method: str, osc: L.Oscillator, x0: float, force: L.SwitchedSine | None):  # noqa: ANN201
+    """``(events, trajectory)`` of an event-locating method on the grid ``DT`` to ``t = 2`` (past the stop at ``pi/2``)."""
+    kw = dict(x0=x0, force=force)
+    if method == "event-locating":
+        run = L.event_capturing(osc, 2.0, DT, **kw)
+        return run.events, run.trajectory
+    sol = L.METHODS[method].solution(osc, 2.0, **kw)
+    return sol.events, sol.sample(DT)
+
+
+@pytest.mark.parametrize("holding", HOLDING)
+@pytest.mark.parametrize("start", STARTS)
+@pytest.mark.parametrize("method", EVENT_METHODS)
+def test_an_event_method_holds_the_mass_released_on_the_edge(method: str, start: str, holding: str) -> None:
+    x0 = STARTS[start]
+    force = None if HOLDING[holding] is None else L.SwitchedSine(-math.copysign(0.5, -x0), math.pi, 0.0, T_OFF)
+    assert force is None or force.amplitude * x0 > 0  # pushes inwards, so |F - k x0| <= tau while on
+    events, tr = located(method, oscillator(math.inf), x0, force)
+    expected = [("rest", 0.0, x0)] + ([] if force is None else [("forcing-off", T_OFF, x0)])
+    assert [(e.kind, e.time, e.x) for e in events] == expected
+    assert np.all(tr.x == x0) and np.all(tr.v == 0) and tr.rest_time == 0.0 and tr.rest_position == x0
+
+
+#: Released from ``x0 = +-3 tau/k = +-0.75`` (Coulomb, no force), the mass slips about the centre
+#: ``+-tau/k`` with amplitude ``tau/k * 2 = 0.5`` and stops half a period later at ``-+tau/k``: on the edge.
+STOPS = {"from-above": 3 * EDGE, "from-below": -3 * EDGE}
+
+
+@pytest.mark.parametrize("start", STOPS)
+def test_a_stop_exactly_on_the_edge_is_a_stop(start: str) -> None:
+    """The exact solution stops on the edge in exact arithmetic here, and so in floating point.
+
+    Its free slip phase is ``x = c + cos(q (t - t0)) (x0 - c)`` with the centre ``c = +-0.25`` (exact), ``q =
+    sqrt(k/m) = 2`` and the stop at ``q (t - t0) = pi``: :func:`closed_form._first_zero` returns
+    ``math.pi``, halved (exact) and doubled back (exact), and ``cos(math.pi)`` is ``-1`` in every libm (the
+    true value is ``-1 + 7.5e-33``; ``scripts/perturb`` leaves ``+-1`` alone for that reason).  So ``x_stop
+    = c - (x0 - c) = -+0.25`` and the net force ``-k x_stop = +-tau`` exactly: the strict rule stops it.
+    (The event-driven and event-locating methods reach the stop with their integration error, ``2e-11``
+    and ``1e-14`` m off the edge, so only the exact method meets the edge itself after a slip.)
+    """
+    x0 = STOPS[start]
+    assert np.cos(math.pi) == -1.0 and math.sqrt(K / M) == 2.0
+    events, tr = located("exact", oscillator(math.inf), x0, None)
+    edge = -math.copysign(EDGE, x0)
+    assert [(e.kind, e.x) for e in events] == [("stop", edge), ("rest", edge)]
+    assert events[0].time == events[1].time == math.pi / 2
+    assert tr.x[-1] == edge and tr.v[-1] == 0 and tr.rest_position == edge
+
+
+@pytest.mark.parametrize("start", STOPS)
+def test_a_stop_one_ulp_beyond_the_edge_reverses(start: str) -> None:
+    """The rule is strict, not widened: from ``x0`` one ulp further out the stop lies an ulp past the edge
+    (``x0 - c = 0.5 + 2^-53`` and ``x_stop = c - (x0 - c) = -+(0.25 + 2^-53)``, exact), where ``|k x| = tau +
+    2^-51 > tau``: the mass reverses."""
+    x0 = math.nextafter(STOPS[start], math.copysign(math.inf, STOPS[start]))
+    events, _ = located("exact", oscillator(math.inf), x0, None)
+    assert events[0].kind == "reversal" and K * abs(events[0].x) == TAU + 2.0**-51

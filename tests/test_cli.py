@@ -214,8 +214,8 @@ def test_top_help_is_plain_text_with_an_example(capsys):
 def test_simulate_help_lists_the_registered_methods_and_requires_output(capsys):
     text = " ".join(_help(["simulate", "--help"], capsys).split())  # unwrap the lines
     assert "--method {" + ",".join(L.METHODS) + "}" in text
-    for name, method in L.METHODS.items():
-        assert f"{name}: {method.description}" in text
+    for name, method in L.METHODS.items():  # the table under the options (tests/test_cli_reference.py: all of it)
+        assert f"{name} {method.description}." in text
     usage = text[: text.index("options:")]
     assert "--output OUTPUT" in usage and "[--output" not in usage  # not optional
     assert "required arguments: --output OUTPUT" in text

@@ -73,8 +73,21 @@ def test_a_dry_run_through_the_profile_plans_the_full_studys_chunks_with_the_pro
         assert {k: resources[k] for k in per_rule} == per_rule, rule
 
 
-def test_the_script_parses():
-    subprocess.run(["bash", "-n", str(SCRIPT)], check=True, timeout=30)
+def test_the_script_parses_and_builds_what_the_workflow_names():
+    """``bash -n`` reads it without a word; what it builds and compares is the rest study's merged output
+    (the one output of rule ``study_rest``), the rules whose lines it prints are rules of the workflow, and
+    its four daemons listen on four different unprivileged ports."""
+    done = subprocess.run(["bash", "-n", str(SCRIPT)], capture_output=True, text=True, timeout=30)
+    assert (done.returncode, done.stdout, done.stderr) == (0, "", "")
+    text = SCRIPT.read_text()
+    (target,) = re.findall(r'^readonly TARGET="([^"]+)"$', text, re.M)
+    studies = (ROOT / "rules" / "studies.smk").read_text()
+    (outputs,) = re.findall(r"^rule study_rest:.*?\n    output:\n(.*?)\n    log:", studies, re.M | re.S)
+    assert re.findall(r'"([^"]+)"', outputs) == [target] == ["results/studies/rest.csv"]
+    assert re.search(r"^rule study_rest_chunk:", studies, re.M)  # the grep's study_rest[a-z_]* lines
+    (ports,) = re.findall(r"^readonly (PORT_CTLD=.*)$", text, re.M)
+    numbers = [int(p.split("=")[1]) for p in ports.split()]
+    assert len(numbers) == len(set(numbers)) == 4 and all(1024 <= n < 65536 for n in numbers)
 
 
 def test_the_script_passes_shellcheck():

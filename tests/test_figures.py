@@ -30,6 +30,8 @@ from lumped import (  # noqa: E402
     simulate_network,
 )
 from lumped.plotting import histories  # noqa: E402
+from lumped.plotting.convergence import ERRORS as CONVERGENCE_ERRORS  # noqa: E402
+from lumped.plotting.convergence import UNITS as CONVERGENCE_UNITS  # noqa: E402
 
 ROOT = Path(__file__).resolve().parent.parent
 OSC = L.Oscillator.bingham()
@@ -168,10 +170,22 @@ def test_convergence_figure_has_a_slope_one_reference_in_each_panel(close):
         assert np.polyfit(x, y, 1)[0] == pytest.approx(1.0, rel=1e-12)
 
 
+def test_convergence_figure_puts_one_unit_on_each_axis(close):
+    # Figure 15 of the article once drew m, m/s and N s on one axis "error (SI units)".
+    fig = plotting.convergence(NUMBERS)
+    units = {ax.get_ylabel() for ax in fig.axes if ax.get_ylabel()}
+    assert units == {"error (m)", "error (m/s)", "error (N s)"}
+    rows = [tuple(CONVERGENCE_ERRORS[k][0] for k in keys) for keys in CONVERGENCE_UNITS.values()]
+    for i, ax in enumerate(fig.axes):
+        drawn = tuple(line.get_label() for line in ax.lines if not line.get_label().startswith("slope"))
+        assert drawn == rows[i // 2]  # a row per unit, holding only that unit's errors
+
+
 def test_convergence_figure_skips_points_without_a_value(close):
     # None / "still moving" (no rest) and 0 (no log) are left out, nothing else.
     fig = plotting.convergence(NUMBERS)
-    rest = [[line for line in ax.lines if "rest" in line.get_label()][0] for ax in fig.axes]
+    rest = [line for ax in fig.axes for line in ax.lines if "rest" in line.get_label()]
+    assert len(rest) == 2  # the first row (m) of each example
     np.testing.assert_array_equal(rest[0].get_xdata(), [1e-3, 1e-4])
     np.testing.assert_array_equal(rest[1].get_xdata(), [1e-3])
 
@@ -290,3 +304,19 @@ def test_stick_band_label_is_clear_of_the_velocity_axis(close):
     (label,) = [t for t in ax.texts if t.get_text().startswith("stick band")]
     axis = ax.spines["left"].get_window_extent()
     assert not label.get_window_extent().overlaps(axis)
+
+
+def test_work_precision_labels_each_tanh_point_with_its_eps(close):
+    # Figure 16 of the article: the tanh model's points carried no eps, the legend read "rtol 1e-06".
+    rows = [
+        {"case": "c", "method": "tanh", "resolution": rtol, "eps": eps, "work": work, "relative_position_error": err}
+        for rtol, works in ((1e-6, (1000, 950)), (1e-9, (1900, 1800)))
+        for eps, work, err in zip((1e-2, 1e-3), works, (0.5, 0.01))
+    ]
+    fig = plotting.work_precision({"results": rows, "references": {"c": {"title": "case"}}}, ("c",))
+    (ax,) = fig.axes
+    labels = [t.get_text() for t in ax.texts]
+    assert labels == [r"$\varepsilon = 10^{-2}$", r"$\varepsilon = 10^{-3}$"]  # on the first line, in order
+    legend = [t.get_text() for t in fig.legends[0].get_texts()]
+    assert any(text.endswith(r"rtol $10^{-6}$") for text in legend), legend
+    assert not any("e-0" in text for text in legend), legend

@@ -397,3 +397,83 @@ def test_command_refuses_a_network_it_cannot_follow_in_one_line(tmp_path_factory
     assert done.returncode == 2 and "spring-string" in done.stderr
     assert len(done.stderr.strip().splitlines()) == 1
     assert list(work.iterdir()) == []
+
+
+# --- issue 31: a mass that comes to be held, its stops and the change reported once --------------------------------
+
+
+def _m2_curve(start: float, stop: float, points: int) -> dict[str, np.ndarray]:
+    """The example with the sine (3 N) on ``m2``: above about 18.72 rad/s the force ``m2`` passes through the
+    spring ``k12`` no longer reaches ``floor1``'s threshold and ``m1`` is held."""
+    return response_curve(L.load_system(EXAMPLE), "m2", 3.0, start, stop, points).columns
+
+
+def test_held_mass_stops_reported_once():
+    """From 18 to 24 rad/s the stops per period change once, from 2 (both contacts stick at the turns) to 0 (``m1``
+    held, ``m2`` reversing without sticking), and that change is the one ``stops-change`` row: a held mass's
+    permanent stick is no stop, and a velocity of round-off size that Newton leaves on it (a slip of 1e-22 m
+    at ``t = 0``) does not make one.  Before issue 31 the held rows said 0, 1, 0 ... with 7 ``stops-change``."""
+    c = _m2_curve(18.0, 24.0, 30)
+    stops, kind, omega = c["stops_per_period"], c["kind"], c["omega"]
+    changes = int(np.sum(stops[1:] != stops[:-1]))
+    assert changes == 1 and stops[0] == 2 and stops[-1] == 0
+    assert list(kind).count("stops-change") == 1
+    at = int(np.flatnonzero(kind == "stops-change")[0])
+    assert stops[at] == 0 and stops[at - 1] == 2  # the located row shows what the rows after it show
+    assert np.all(np.diff(omega) > 0)  # no step back around the change
+    held = omega >= omega[at]
+    # held: m1 moves by less than the resolution of the fixed point (NEWTON_TOL P/k, amplified near the change)
+    assert np.all(c["amplitude_m1"][held] < NEWTON_TOL * 3.0 / 200.0)
+    assert np.all(c["amplitude_m1"][~held] > 0)
+
+
+def test_round_off_slip_is_held():
+    """The cause of the flicker: at 22 rad/s ``m1`` is held (its contact ``floor1`` sticks through the period);
+    a velocity of 1e-22 m/s on it at ``t = 0`` makes the exact map slip it for no time and stop it at once.
+    That element is still held (its slip, 1e-24 m, is far below the fixed point's resolution) and the stop is
+    no stop per period; the neutral multiplier stays out of ``max_multiplier``."""
+    system = response_system(L.load_system(EXAMPLE), "m2")
+    orbit = find_orbit(system, 3.0, 22.0)
+    assert list(orbit.period.held) == [2] and orbit.stops == 0
+    y = orbit.state.copy()
+    y[2] = 1e-22  # v of m1
+    pm = period_map(system, 3.0, 22.0, y)
+    assert any(e.kind == "stop" and e.elements == ("floor1",) for e in pm.events)
+    assert list(pm.held) == [2] and pm.stops == 0
+    assert np.max(np.abs(pm.multipliers)) < 0.6
+
+
+@pytest.mark.slow
+def test_two_changes_in_one_step_each_located():
+    """The example (5 N on ``m1``) goes from 4 stops to 2 near 3.94 rad/s and from 2 to 0 near 4.14 rad/s, both
+    within one step of a 30-point curve: each is located and reported once (before issue 31 the second was not)."""
+    c = response_curve(L.load_system(EXAMPLE), "m1", P, 2.0, 25.0, 30).columns
+    stops, kind = c["stops_per_period"], c["kind"]
+    assert int(np.sum(stops[1:] != stops[:-1])) == list(kind).count("stops-change") == 5
+    rows = np.flatnonzero(kind == "stops-change")
+    assert np.all(stops[rows] != stops[rows - 1])
+
+
+SPRING_ONLY = """
+[[mass]]
+name = "m"
+mass = 1.0
+[[element]]
+name = "spring"
+kind = "spring"
+between = ["ground", "m"]
+stiffness = 100.0
+"""
+
+
+@pytest.mark.parametrize("omega", [0.37, 2.3, 3.0, 4.1, 7.7, 13.0])
+def test_undamped_multipliers_are_marginal(tmp_path, omega):
+    """A mass on a spring alone: its multipliers are ``exp(+-i omega_n T)``, on the unit circle exactly; the
+    computed moduli miss 1 by a few ulps either way (2e-15 to 4e-15 here, their sign a matter of round-off).
+    Within the monodromy's error bound (:attr:`Orbit.margin`) ``max_multiplier`` is exactly 1 and ``stable``
+    false, whichever way the last bits fall; the bound stays far below any modulus a damped motion shows."""
+    path = tmp_path / "spring.toml"
+    path.write_text(SPRING_ONLY)
+    orbit = find_orbit(response_system(L.load_system(path), "m"), 1.0, omega, np.zeros(2))
+    assert orbit.max_multiplier == 1.0 and orbit.stable is False
+    assert np.all(np.abs(np.abs(orbit.multipliers) - 1) <= orbit.margin) and orbit.margin < 1e-9

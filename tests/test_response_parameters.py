@@ -141,7 +141,7 @@ def test_command_follows_a_parameter_of_the_file(tmp_path):
         ("8", "m.x0=0:1", "initial state"),
         ("8", "dashpot.threshold=-1:2", "threshold must be >= 0"),
         ("8", "dashpot.threshold=2:1", "START < STOP"),
-        ("8", "amplitude=0:3", "force_amplitude must be finite and > 0"),
+        ("8", "amplitude=0:3", "--vary: amplitude = 0 gives no system the response takes (amplitude must be"),
         ("8", "threshold", "NAME=START:STOP"),
         ("2:8", "amplitude=1:2", "--omega"),
         ("-1", "amplitude=1:2", "--omega"),

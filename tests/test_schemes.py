@@ -328,7 +328,9 @@ def test_event_capturing_is_an_alias_of_event_locating(tmp_path):
     assert cli.returncode == 0 and cli.stderr.splitlines()[0] == note and cli.stderr.count("alias") == 1
     plain = run_lumped("simulate", "--method", "event-locating", "--t-end", "0.5", "--output", out)
     assert plain.returncode == 0 and "alias" not in plain.stderr
-    assert "(alias: event-capturing)" in " ".join(run_lumped("simulate", "--help").stdout.split())
+    assert "Alias: event-capturing (a former name; it selects this method)." in " ".join(
+        run_lumped("simulate", "--help").stdout.split()
+    )
     sweep = run_lumped("sweep", "--method", "event-capturing", "--vary", "x0=0:1:3", "--output", out)
     assert (
         sweep.returncode == 2 and "'event-capturing' (an alias of 'event-locating') cannot run a sweep" in sweep.stderr

@@ -409,10 +409,26 @@ def test_the_batched_binding_refuses_each_bad_argument(case):
 
 @pytest.mark.skipif(batched.BATCH_KERNEL != "compiled", reason="batched C kernel not built")
 def test_the_batched_binding_accepts_the_edges():
-    """No steps (n_steps = 0 or first = last + 1), no trajectories, nothing saved: nothing to do, no error."""
-    batched._compiled_batch(DT, 1, 0, 0, 0, np.ones((10, 3)), np.full(3, 1.0), np.empty((7, 3)), np.empty(0))
-    batched._compiled_batch(DT, 5, 4, 10, 4, np.ones((10, 3)), np.full(3, 1.0), np.zeros((7, 3)), np.empty((0, 3)))
-    batched._compiled_batch(DT, 1, 10, 10, 4, np.ones((10, 0)), np.empty(0), np.empty((7, 0)), np.empty((3, 0)))
+    """No steps (n_steps = 0 or first = last + 1), no trajectories, nothing saved: no error, and the
+    summaries are what no step leaves.
+
+    From step 0 (``first = 1``) a call with no step writes the initial state: ``v = v0``, ``F_s = k x0``,
+    ``rest`` the first step of the current run of ``v == 0`` (0 if ``v0 == 0``, else 1) and every count
+    and maximum 0 (``_batch_kernel.c``'s layout).  With ``m = k = x0 = 1`` these are exact: ``(v0, 1,
+    rest, 0, 0, 0, 0)``.  Resuming (``first > 1``) with no step leaves the summaries as they were.
+    """
+    par = np.ones((10, 3))
+    par[5] = (1.0, 0.0, -2.0)  # v0: moving, at rest, moving the other way
+    sums = np.full((7, 3), np.nan)
+    batched._compiled_batch(DT, 1, 0, 0, 0, par, np.full(3, 1.0), sums, np.empty(0))
+    expected = np.array([[1.0, 0.0, -2.0], [1.0] * 3, [1.0, 0.0, 1.0], *([[0.0] * 3] * 4)])
+    assert np.array_equal(sums, expected)
+    resumed = np.arange(21.0).reshape(7, 3)
+    batched._compiled_batch(DT, 5, 4, 10, 4, par, np.full(3, 1.0), resumed, np.empty((0, 3)))
+    assert np.array_equal(resumed, np.arange(21.0).reshape(7, 3))
+    sums, xs = np.empty((7, 0)), np.empty((3, 0))
+    batched._compiled_batch(DT, 1, 10, 10, 4, np.ones((10, 0)), np.empty(0), sums, xs)
+    assert sums.shape == (7, 0) and xs.shape == (3, 0)
 
 
 @pytest.mark.skipif(batched.BATCH_KERNEL != "compiled", reason="batched C kernel not built")

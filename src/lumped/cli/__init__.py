@@ -1,4 +1,4 @@
-"""Command line: ``python -m lumped simulate [options]`` and ``python -m lumped sweep [options]``.
+"""Command line: ``python -m lumped COMMAND [options]``, COMMAND one of ``simulate``, ``sweep``, ``response``, ``fit``.
 
 ``fit`` estimates a system file's parameters from a record (:mod:`lumped.drivers.fit`);
 ``response`` follows a forced periodic motion in omega
@@ -19,7 +19,8 @@ This module holds the entry point (:func:`main`) and the parser
   :mod:`~lumped.cli.sweep`, :mod:`~lumped.cli.response` and :mod:`~lumped.cli.fit`: the subcommands
   (``simulate --system`` in ``system``, ``simulate --sensitivities`` in :mod:`~lumped.cli.sensitivity`);
 * :mod:`~lumped.cli.options`: the parser's class, the methods' options and the
-  reading of ``argv``;
+  reading of ``argv``; :mod:`~lumped.cli.reference`: the methods' table of
+  ``--help`` and of ``book/guide/cli.md``, from the registry;
 * :mod:`~lumped.cli.messages`: the API's argument names as options
   (:func:`option_message`);
 * :mod:`~lumped.cli.output`: the output file; :mod:`~lumped.cli.signals`: interrupts.
@@ -42,13 +43,9 @@ from lumped.cli.signals import Terminated, signals_unwind
 __all__ = ["main", "build_parser", "option_message"]
 
 _DESCRIPTION = """\
-Vibrations of a mass on a linear spring and a Bingham (or Coulomb) dashpot,
-solved as a differential-algebraic system (Darbha, Nakshatrala and Rajagopal).
-The simulate command integrates one motion and writes t, x, v, F_s, F_d, F to
-a .csv or .npz file; the sweep command writes one row of summaries (rest time
-and position, largest |x|, stops, ...) per parameter set of a grid; the
-response command follows a forced periodic motion in the frequency; the fit
-command estimates a system file's parameters from a measured record."""
+Vibrations of masses on springs and Bingham (or Coulomb) dashpots, solved as
+differential-algebraic systems (Darbha, Nakshatrala and Rajagopal): one motion,
+a grid of runs, a response curve or a fit to a record, one command each."""
 
 _EXAMPLE = """\
 example (free vibration from x0 = 0.5 m, the paper's Figures 11 to 14):
@@ -57,7 +54,7 @@ example (free vibration from x0 = 0.5 m, the paper's Figures 11 to 14):
 a sweep of the initial displacement (one row per x0):
   python -m lumped sweep --vary x0=-1:1:2001 --t-end 4 --output rest.csv
 
-Run "python -m lumped simulate --help" or "python -m lumped sweep --help" for the options."""
+Run "python -m lumped COMMAND --help" for the options of a command ({commands})."""
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -71,7 +68,6 @@ def build_parser() -> argparse.ArgumentParser:
     parser = Parser(
         prog="lumped",
         description=_DESCRIPTION,
-        epilog=_EXAMPLE,
         allow_abbrev=False,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
@@ -81,6 +77,7 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_parser(sub)
     response.add_parser(sub)
     fit.add_parser(sub)
+    parser.epilog = _EXAMPLE.format(commands=", ".join(sub.choices))  # each command, one line of help above
     return parser
 
 

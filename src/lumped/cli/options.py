@@ -16,6 +16,7 @@ from collections.abc import Sequence
 
 from lumped.cli.loads import FLAGS as LOAD_FLAGS
 from lumped.cli.messages import API_TO_OPTION
+from lumped.cli.reference import sweep_option_names
 from lumped.drivers.methods import ALIASES, METHODS, OPTIONS, SWEEP_METHODS
 from lumped.model.parameters import PARAMETERS, PER_ROW
 from lumped.numerics import validate
@@ -45,33 +46,43 @@ class Parser(argparse.ArgumentParser):
 
 
 class HelpFormatter(argparse.HelpFormatter):
-    """Wraps option help at spaces only: "event-locating" is never split at its hyphen."""
+    """Wraps option help at spaces only: "event-locating" is never split at its hyphen.  The description
+    and the epilog are filled paragraph by paragraph; a paragraph with indented lines (the methods' table of
+    :func:`lumped.cli.reference.methods_help`) is kept as it is."""
 
     def _split_lines(self, text: str, width: int) -> list[str]:
         import textwrap
 
         return textwrap.wrap(" ".join(text.split()), width, break_on_hyphens=False)
 
+    def _fill_text(self, text: str, width: int, indent: str) -> str:
+        import textwrap
 
-def _alias_note(aliases: tuple[str, ...]) -> str:
-    """`` (alias: event-capturing)`` for a method with former names, else nothing."""
-    return f" (alias: {', '.join(aliases)})" if aliases else ""
+        def fill(p: str) -> str:
+            if any(line.startswith(" ") for line in p.splitlines()):
+                return p
+            return textwrap.fill(" ".join(p.split()), width, initial_indent=indent, subsequent_indent=indent)
 
-
-def _method_help() -> str:
-    """One line per registered method (:data:`lumped.drivers.methods.METHODS`): its name and its description."""
-    lines = (f"{name}: {m.description}{_alias_note(m.aliases)}" for name, m in METHODS.items())
-    return "; ".join(lines) + " [default: backward-euler]"
+        return "\n\n".join(fill(p) for p in text.split("\n\n"))
 
 
 def add_method_options(parser: argparse.ArgumentParser, sweep: bool = False) -> None:
-    """``--method`` and the methods' options (``--rtol``), from the registry; a sweep's lists its methods."""
+    """``--method`` and the methods' options (``--rtol``), from the registry; a sweep's lists its methods and
+    offers only their options.  The methods themselves are described in the epilog
+    (:func:`lumped.cli.reference.methods_help`)."""
     names = SWEEP_METHODS if sweep else tuple(METHODS)
     metavar = "{" + ",".join(names) + "}"
+    which = "one of the methods a sweep runs" if sweep else "the method"
     parser.add_argument(
-        "--method", default="backward-euler", metavar=metavar, **({} if sweep else {"help": _method_help()})
+        "--method",
+        default="backward-euler",
+        metavar=metavar,
+        help=f"{which} (listed below with what each runs and its options) [default: backward-euler]",
     )
     for option, users in OPTIONS.values():
+        if sweep and option.name not in sweep_option_names():
+            continue
+        users = tuple(u for u in users if u in names)
         takers = f"of --method {', '.join(users)}"
         text = (
             f"{option.help} {takers} [default: {option.default:g}]"
@@ -86,7 +97,7 @@ def add_method_options(parser: argparse.ArgumentParser, sweep: bool = False) -> 
 def method_options(args: argparse.Namespace) -> dict[str, object]:
     """The options of ``--method`` given on the command line (``--rtol``), checked by the registry."""
     method = METHODS[args.method]
-    given = {name: getattr(args, name) for name in OPTIONS if getattr(args, name) is not None}
+    given = {name: getattr(args, name, None) for name in OPTIONS if getattr(args, name, None) is not None}
     method.takes(given)  # refuses an option the method does not take, before its value is read
     return method.check_options({name: validate.parse_float(name, text) for name, text in given.items()})
 

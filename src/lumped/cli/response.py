@@ -16,8 +16,10 @@ shooting on the exact period map and pseudo-arclength continuation, folds
 included.  One row per point along the branch, the first at START and the last
 at STOP when the branch gets there: omega, amplitude_<mass> for each mass (half
 of max x minus min x over the period, m), stops_per_period (slip-to-stick
-switches of the friction elements), stable (true when every Floquet multiplier
-lies inside the unit circle), max_multiplier (the largest modulus) and kind
+switches of the friction elements that move; a held one's stick is no stop),
+stable (true when every Floquet multiplier lies inside the unit circle by more
+than the monodromy's computed error), max_multiplier (the largest modulus,
+exactly 1 where it is 1 within that error: a marginal motion, stable false) and kind
 (regular, fold, period-doubling or stops-change, the located point of a change).
 The system: one mass on linear springs and a Bingham or Coulomb dashpot, or a
 network of linear springs, Bingham and Coulomb elements and linear dashpots
@@ -28,14 +30,21 @@ neutral multiplier (exactly 1) is left out of stable and max_multiplier.
 With --vary NAME=START:STOP the branch is followed in NAME instead, at the
 fixed frequency --omega W: NAME is amplitude (the force's, N) or a numeric
 parameter of the file written element.key or mass.key (dashpot.threshold,
-spring.stiffness, m.mass); its column comes first."""
+spring.stiffness, m.mass); its column comes first, and a range may start on
+the edge of the parameter's domain (dashpot.threshold=0:3).
+Bounds, checked before any work: omega from 1e-3 of the system's fastest free
+oscillation (a period of thousands of phases below it) to 100 times its
+slowest natural frequency (above it the amplitude, (P/k)(omega_n/omega)^2, is
+below what Newton's tolerance on the period map resolves); the fastest decay
+rate at most 1e11 omega; a range at least 1e-6 of its largest value wide;
+--points from 2 to 10000.  With --vary, the omega bounds hold at both ends."""
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     """The ``response`` subcommand."""
     rp = sub.add_parser(
         "response",
-        help="follow the forced periodic motion in omega and write the response curve",
+        help="follow a forced periodic motion in omega: its response curve",
         description=_DESCRIPTION,
         allow_abbrev=False,
         formatter_class=HelpFormatter,
@@ -55,13 +64,23 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="follow NAME (amplitude, or element.key / mass.key of the file) from START to STOP at the fixed --omega",
     )
     rp.add_argument(
-        "--points", default="200", metavar="N", help="about the rows of a branch monotone in omega [default: 200]"
+        "--points",
+        default="200",
+        metavar="N",
+        help="about the rows of a branch monotone in omega, 2 to 10000 [default: 200]",
     )
     rp.add_argument("--output", required=True, help="output file, .csv or .npz")
 
 
 #: The API's argument names that this command's messages may begin with -> its options.
-_API_NAMES = {"force_omega": "--omega", "force_amplitude": "--amplitude", "t_end": "--omega", "vary": "--vary"}
+_API_NAMES = {
+    "force_omega": "--omega",
+    "force_amplitude": "--amplitude",
+    "t_end": "--omega",
+    "omega": "--omega",
+    "points": "--points",
+    "vary": "--vary",
+}
 
 
 def _interval(text: str, option: str = "--omega") -> tuple[float, float]:
@@ -95,7 +114,7 @@ def _vary(text: str) -> tuple[str, float, float]:
 
 def run(args: argparse.Namespace, output: Output) -> str:
     """Validate, read the system, reserve the output, follow the branch, write; returns the summary."""
-    from lumped.drivers.response.curve import response_curve
+    from lumped.drivers.response.curve import request, response_curve
     from lumped.drivers.response.systems import response_system
     from lumped.drivers.sweep import Progress
     from lumped.model.files import load_system
@@ -121,11 +140,8 @@ def run(args: argparse.Namespace, output: Output) -> str:
     except ValueError as err:
         raise ValueError(f"{args.system}: {str(err).split(': ', 1)[1]}") from None
     bar = Progress(sys.stderr, True, label="response", unit="")
-    try:
-        if vary is not None:  # the parameter's name and its two ends, before the output is reserved
-            from lumped.drivers.response.systems import parameter_family
-
-            parameter_family(network, args.force_on, amplitude, omega, vary, start, stop)
+    try:  # every bound before the output is reserved and any period is run
+        request(network, args.force_on, amplitude, start, stop, points, vary, omega)
         output.create()
         curve = response_curve(network, args.force_on, amplitude, start, stop, points, bar, vary, omega)
     except ValueError as err:  # the API's names as this command's options

@@ -9,6 +9,7 @@ from typing import TYPE_CHECKING
 from lumped.cli import loads, system
 from lumped.cli.options import HelpFormatter, add_method_options, check_method, method_options
 from lumped.cli.output import Output, check_output
+from lumped.cli.reference import methods_help
 from lumped.cli.sensitivity import check_sensitivities, sensitivity_columns
 from lumped.drivers.methods import METHODS, OPTIONS
 from lumped.drivers.sensitivity import plan
@@ -25,6 +26,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "simulate",
         help="integrate one motion and write it to a file",
         description="Integrate one motion and write it to a .csv or .npz file.",
+        epilog=methods_help(),
         allow_abbrev=False,
         formatter_class=HelpFormatter,
     )
@@ -38,7 +40,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         help="a network of masses and elements described in a TOML file (see "
         "book/guide/systems.md; examples in examples/, such as examples/building.toml); only --t-end, --dt, --save-every, --method, "
         f"{', '.join(o.flag for o, _ in OPTIONS.values())}, --output go with it "
-        f"(a method other than {', '.join(n for n, m in METHODS.items() if m.runs_networks)} needs one mass)",
+        "(the networks each --method runs are listed below)",
     )
     add_method_options(sim)
     sim.add_argument(

@@ -11,22 +11,10 @@ import time
 from lumped.cli.loads import no_sine
 from lumped.cli.options import HelpFormatter, add_method_options, method_options
 from lumped.cli.output import Output, check_output
+from lumped.cli.reference import methods_help
 from lumped.drivers.methods import METHODS, SWEEP_METHODS
 from lumped.model.parameters import PARAMETERS, shown
 from lumped.numerics import validate
-
-
-class _SweepHelpFormatter(HelpFormatter):
-    """Option help wrapped as :class:`HelpFormatter`; the description keeps its paragraphs."""
-
-    def _fill_text(self, text: str, width: int, indent: str) -> str:
-        import textwrap
-
-        paragraphs = text.split("\n\n")
-        return "\n\n".join(
-            textwrap.fill(" ".join(p.split()), width, initial_indent=indent, subsequent_indent=indent)
-            for p in paragraphs
-        )
 
 
 _SWEEP_DESCRIPTION = """\
@@ -64,10 +52,11 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     sw = sub.add_parser(
         "sweep",
-        help="run a grid of parameter sets and write one row of summaries per set",
+        help="one row of summaries per parameter set of a grid",
         description=_SWEEP_DESCRIPTION.format(**bounds),
         allow_abbrev=False,
-        formatter_class=_SweepHelpFormatter,
+        epilog=methods_help(sweep=True),
+        formatter_class=HelpFormatter,
     )
     for p in PARAMETERS.values():
         if p.name != "save_every":  # a sweep keeps summaries, not trajectories

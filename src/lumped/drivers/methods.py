@@ -27,7 +27,10 @@ Adding a method
    form), and its :class:`Option` s.
 
 A method asked to run what it cannot says so in one line that names the
-method and the reason (:meth:`Method.refusal`).
+method and the reason (:meth:`Method.refusal`).  What ``--help`` and the
+guide's reference page say a method runs, and its options, are read from
+the same fields (:attr:`Method.runs`, :attr:`Method.option_texts`,
+:mod:`lumped.cli.reference`).
 """
 
 from __future__ import annotations
@@ -44,11 +47,12 @@ from lumped.model.oscillator import Oscillator
 from lumped.model.trajectory import Trajectory
 from lumped.solvers.backward_euler import backward_euler
 from lumped.solvers.event_capturing import event_capturing
+from lumped.solvers.event_capturing_network import solve_capturing_network
 from lumped.solvers.event_driven import DEFAULT_RTOL, solve_event_driven, validate_rtol
 from lumped.solvers.exact import ExactSolution, solve_exact
-from lumped.solvers.event_capturing_network import solve_capturing_network
 from lumped.solvers.exact_network import solve_exact_network
 from lumped.solvers.moreau_jean import BINGHAM_REASON, DEFAULT_THETA, moreau_jean, validate_theta
+from lumped.solvers.network_phase import _TAKES as PIECEWISE_TAKES  # the one wording of what they take
 from lumped.solvers.network_phase import refusal
 from lumped.solvers.theta import theta_method
 
@@ -140,6 +144,27 @@ class Method:
     def runs_networks(self) -> bool:
         """True if it runs any network, not only one-mass networks."""
         return bool(self.network_solvers)
+
+    @property
+    def runs(self) -> str:
+        """What it runs, in words (``--help`` and the guide): one mass with which law and load, and which networks."""
+        law = "a Bingham or Coulomb law" if self.bingham_only else "any monotone dashpot law"
+        load = "a sine or a constant load from t = 0" if self.sine_forcing else "any load"
+        if self.sine_forcing and self.piecewise_any_load:  # a refused load runs as a one-mass network (by_network)
+            load += " (any load with a Bingham or Coulomb law)"
+        if self.runs_networks:
+            networks = "any network"
+        elif self.piecewise_networks is not None:
+            takes = PIECEWISE_TAKES.split(" under ")[0] + (" under any load" if self.piecewise_any_load else "")
+            networks = "networks of " + (takes if self.piecewise_any_load else PIECEWISE_TAKES)
+        else:
+            networks = "no network of more than one mass"
+        return f"one mass with {law} under {load}; {networks}"
+
+    @property
+    def option_texts(self) -> tuple[str, ...]:
+        """Each option as ``--flag: what it is, the values it accepts, its default`` (``--help`` and the guide)."""
+        return tuple(f"{o.flag}: {o.help}, {o.accepted}, default {o.default:g}" for o in self.options)
 
     def refusal(self, oscillator: Oscillator) -> str | None:
         """Why this method cannot run ``oscillator`` (one line naming the method), or ``None`` if it can."""

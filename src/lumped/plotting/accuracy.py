@@ -16,7 +16,7 @@ import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
-from lumped.plotting._base import styled
+from lumped.plotting._base import sci_tex, styled
 from lumped.plotting.convergence import error_points
 from lumped.plotting.figures import _axes_row
 
@@ -109,6 +109,22 @@ def accuracy_convergence(
     return fig
 
 
+def _label_eps(ax: Axes, rows: Sequence[Mapping[str, Any]], colour: str) -> None:
+    """Write each point's ``eps`` of the tanh model to its left."""
+    for r in rows:
+        if r["relative_position_error"] > 0:
+            ax.annotate(
+                rf"$\varepsilon = {sci_tex(r['eps'], show_one=False)}$",
+                (r["work"], r["relative_position_error"]),
+                xytext=(-4, 0),
+                textcoords="offset points",
+                ha="right",
+                va="center",
+                fontsize=5.5,
+                color=colour,
+            )
+
+
 def _work_panel(ax: Axes, data: Mapping[str, Any], case: str) -> None:
     """Relative final-position error against steps, every method with results on ``case``."""
     for method, (label, marker, colour) in METHOD_STYLE.items():
@@ -117,7 +133,10 @@ def _work_panel(ax: Axes, data: Mapping[str, Any], case: str) -> None:
             for rtol, ls in zip(sorted({r["resolution"] for r in rows}, reverse=True), ("-", "--")):
                 sub = [r for r in rows if r["resolution"] == rtol]
                 w, e = error_points([r["work"] for r in sub], [r["relative_position_error"] for r in sub])
-                ax.plot(w, e, marker=marker, color=colour, ms=4, lw=1.0, ls=ls, label=f"{label}, rtol {rtol:.0e}")
+                rtol_tex = sci_tex(rtol, show_one=False)
+                ax.plot(w, e, marker=marker, color=colour, ms=4, lw=1.0, ls=ls, label=f"{label}, rtol ${rtol_tex}$")
+                if ls == "-":  # the other tolerance's line has the same eps, in the same order
+                    _label_eps(ax, sub, colour)
             continue
         w, e = error_points([r["work"] for r in rows], [r["relative_position_error"] for r in rows])
         if w.size:

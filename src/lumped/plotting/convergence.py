@@ -10,22 +10,25 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from lumped.plotting._base import styled
-from lumped.plotting.figures import _axes_row
 
-__all__ = ["ERRORS", "EXAMPLES", "convergence", "error_points"]
+__all__ = ["ERRORS", "EXAMPLES", "UNITS", "convergence", "error_points"]
 
 #: The errors drawn: key of numbers.json -> (legend label, marker, line style).
 ERRORS = {
-    "max_x": (r"$\max|\Delta x|$ (m)", "o", "-"),
-    "max_v": (r"$\max|\Delta v|$ (m/s)", "s", "-"),
-    "int_F_d": (r"$\int|\Delta F_d|\,\mathrm{d}t$ (N s)", "^", "-"),
-    "rest_position": (r"$|\Delta x_\mathrm{rest}|$ (m)", "D", ":"),
+    "max_x": (r"$\max|\Delta x|$", "o", "-"),
+    "rest_position": (r"$|\Delta x_\mathrm{rest}|$", "D", ":"),
+    "max_v": (r"$\max|\Delta v|$", "s", "-"),
+    "int_F_d": (r"$\int|\Delta F_d|\,\mathrm{d}t$", "^", "-"),
 }
+
+#: One row of panels per unit: unit -> the errors of :data:`ERRORS` measured in it.
+UNITS = {"m": ("max_x", "rest_position"), "m/s": ("max_v",), "N s": ("int_F_d",)}
 
 #: The examples drawn, one panel each: key of numbers.json -> panel title, in
 #: which ``{x0}`` is the ``parameters.x0_large`` of numbers.json.
@@ -58,16 +61,15 @@ def _slope_one(ax: Axes, steps: np.ndarray, anchor: tuple[np.ndarray, np.ndarray
     ax.plot(span, c * span, color="0.45", lw=1.0, ls="--", label="slope 1 (first order)")
 
 
-def _panel(ax: Axes, steps: np.ndarray, errors: Mapping[str, Any], title: str) -> None:
-    """One example: each error of :data:`ERRORS` against the step, and slope 1."""
-    for key, (label, marker, ls) in ERRORS.items():
+def _panel(ax: Axes, steps: np.ndarray, errors: Mapping[str, Any], keys: Sequence[str]) -> None:
+    """The errors ``keys`` of one example (all in one unit) against the step, and slope 1."""
+    for key in keys:
+        label, marker, ls = ERRORS[key]
         h, e = error_points(steps, errors.get(key, []))
-        ax.plot(h, e, marker=marker, ls=ls, ms=4, lw=1.0, label=label)
-    _slope_one(ax, steps, error_points(steps, errors.get("max_x", [])))
+        ax.plot(h, e, marker=marker, ls=ls, ms=4, lw=1.0, color=f"C{list(ERRORS).index(key)}", label=label)
+    _slope_one(ax, steps, error_points(steps, errors.get(keys[0], [])))
     ax.set_xscale("log")
     ax.set_yscale("log")
-    ax.set_xlabel(r"step $\Delta t$ (s)")
-    ax.set_title(title, fontsize=10)
 
 
 @styled
@@ -79,9 +81,11 @@ def convergence(numbers: Mapping[str, Any], axes: Sequence[Axes] | None = None) 
     numbers : mapping
         The content of ``numbers.json``; its ``convergence`` object is read
         (``steps`` and one mapping of error lists per key of :data:`EXAMPLES`).
-    axes : sequence of two Axes, optional
-        Where to draw the two examples; ``None`` makes a new figure 6.3 in
-        wide (the article's text width: printed at the size it is drawn).
+    axes : sequence of Axes, optional
+        Where to draw: one per unit of :data:`UNITS` and example of
+        :data:`EXAMPLES`, row by row (a unit a row, an example a column);
+        ``None`` makes a new figure 6.3 in wide (the article's text width:
+        printed at the size it is drawn).
 
     Notes
     -----
@@ -89,15 +93,30 @@ def convergence(numbers: Mapping[str, Any], axes: Sequence[Axes] | None = None) 
     position's error is not monotone in ``dt`` (coarse steps stop the motion a
     half-cycle early, or on the other side of zero), and the dotted line
     through its markers shows that as it is.  The dashed reference line has
-    slope 1, the order of backward Euler.
+    slope 1, the order of backward Euler.  Errors in different units never
+    share an axis: each row holds one unit.
     """
     table = numbers["convergence"]
     steps = np.asarray(table["steps"], dtype=float)
-    fig, row = _axes_row(len(EXAMPLES), axes, width=3.15, height=2.9)
+    if axes is None:
+        fig, grid = plt.subplots(len(UNITS), len(EXAMPLES), figsize=(6.3, 6.0), sharex=True, squeeze=False)
+        axes = list(grid.flat)
+    fig = axes[0].figure
     x0 = numbers.get("parameters", {}).get("x0_large", "x_0")
-    for ax, (key, title) in zip(row, EXAMPLES.items()):
-        _panel(ax, steps, table[key], title.format(x0=x0))
-    row[0].set_ylabel("error (SI units)")
-    handles, labels = row[0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside upper center", ncol=3, fontsize=8)
-    return fig
+    cells = [(unit, example) for unit in UNITS for example in EXAMPLES]
+    for ax, (unit, example) in zip(axes, cells):
+        _panel(ax, steps, table[example], UNITS[unit])
+        if example == next(iter(EXAMPLES)):
+            ax.set_ylabel(f"error ({unit})")
+        if unit == next(iter(UNITS)):
+            ax.set_title(EXAMPLES[example].format(x0=x0), fontsize=10)
+        if unit == list(UNITS)[-1]:
+            ax.set_xlabel(r"step $\Delta t$ (s)")
+    handles, labels = [], []
+    for ax in axes[:: len(EXAMPLES)]:  # the first column holds every error once
+        for h, label in zip(*ax.get_legend_handles_labels()):
+            if label not in labels:
+                handles.append(h)
+                labels.append(label)
+    fig.legend(handles, labels, loc="outside upper center", ncol=5, fontsize=8)
+    return fig  # type: ignore[return-value]

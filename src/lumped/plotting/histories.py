@@ -31,6 +31,7 @@ __all__ = [
     "difference",
     "time_history",
     "time_history_panels",
+    "rest_inset",
 ]
 
 #: Axis labels of the trajectory columns (with units).
@@ -213,6 +214,7 @@ def time_history(
     ax: Axes | None = None,
     legend: bool = True,
     diff_ax: Axes | None = None,
+    exact_label: str = _EXACT["label"],
 ) -> Figure:
     """One column of Algorithm 1 against time, with the exact solution and its events.
 
@@ -231,6 +233,8 @@ def time_history(
         Draw the legend, above the axes (outside them: it hides no data).
     diff_ax : Axes, optional
         With ``ax`` given: where to draw the difference (nowhere if ``None``).
+    exact_label : str
+        The exact solution's legend entry (Figure 5 names its closed form, eq. (19)).
     """
     if ax is None:
         fig, ax, diff_ax = _history_axes(solution is not None)
@@ -238,7 +242,7 @@ def time_history(
     ax.plot(trajectory.t, getattr(trajectory, column), label=step_label(trajectory), **_NUMERIC)
     if solution is not None:
         fine = exact_fine(solution)
-        ax.plot(fine["t"], fine[column], **_EXACT)
+        ax.plot(fine["t"], fine[column], **{**_EXACT, "label": exact_label})
         _mark_events(ax, solution, column)
         if diff_ax is not None:
             difference(trajectory, solution, column, ax=diff_ax)
@@ -252,17 +256,74 @@ def time_history(
 
 
 @styled
+def rest_inset(
+    ax: Axes,
+    trajectory: Trajectory,
+    solution: ExactSolution,
+    band: float,
+    bounds: Sequence[float] = (0.62, 0.56, 0.37, 0.36),
+) -> Axes:
+    """An inset of ``ax`` magnifying where the mass comes to rest, the static band shaded.
+
+    On a displacement axis scaled to the first swing, a rest a few millimetres
+    from ``x = 0`` cannot be told from the unstretched position; the inset shows
+    the last swing and the rest against the band ``|x| <= band`` (``tau / k``).
+
+    Parameters
+    ----------
+    ax : Axes
+        The displacement axes of :func:`time_history` (``column="x"``).
+    trajectory, solution
+        As drawn in ``ax``.
+    band : float, m
+        Half-width of the static band, ``mu_s N_f / k``.
+    bounds : (x0, y0, width, height)
+        Where the inset sits, in fractions of ``ax``.
+
+    Returns
+    -------
+    Axes
+        The inset.
+    """
+    inset = ax.inset_axes(list(bounds))
+    turns = solution.event_times("reversal")
+    start = turns[turns <= solution.rest_time][-1] if turns.size else 0.0
+    inset.axhspan(-band, band, color="0.85", lw=0, label=r"static band $|x| \leq \mu_s N_f/k$")
+    inset.axhline(0.0, color="0.4", lw=0.6)
+    fine = exact_fine(solution)
+    inset.plot(trajectory.t, trajectory.x, **_NUMERIC)
+    inset.plot(fine["t"], fine["x"], **_EXACT)
+    inset.set(xlim=(start, trajectory.t[-1]), ylim=(-2.0 * band, 2.0 * band))
+    inset.tick_params(labelsize=7)
+    inset.yaxis.set_major_formatter(lambda y, _: f"{1e3 * y:g}")
+    inset.set_ylabel("x (mm)", fontsize=7)
+    inset.set_title("the rest, magnified; band shaded", fontsize=7)
+    return inset
+
+
+def _zero_throughout(trajectory: Trajectory, solution: ExactSolution | None, column: str) -> bool:
+    """Whether ``column`` is exactly 0 at every grid point and, if given, in the exact solution."""
+    if np.any(getattr(trajectory, column) != 0.0):
+        return False
+    return solution is None or not np.any(exact_fine(solution)[column] != 0.0)
+
+
+@styled
 def time_history_panels(
     trajectory: Trajectory,
     solution: ExactSolution | None,
     columns: Sequence[str] = ("x", "v", "F_s", "F_d"),
     axes: Sequence[Axes] | None = None,
+    exact_label: str = _EXACT["label"],
 ) -> Figure:
     """Several columns in a grid of two columns (Figures 5 and 10), one legend above.
 
     No difference panels: these are the runs in which the mass never moves
     and Algorithm 1 equals the exact solution (the notebooks print the
-    largest difference).
+    largest difference).  A column that is exactly zero throughout, in
+    Algorithm 1 and in the exact solution, is said to be so in its panel, so
+    that a flat line reads as the result it is.  ``exact_label`` as in
+    :func:`time_history`.
     """
     if axes is None:
         rows = (len(columns) + 1) // 2
@@ -270,7 +331,17 @@ def time_history_panels(
         axes = list(np.ravel(grid))
     fig = axes[0].figure
     for i, (name, ax) in enumerate(zip(columns, axes)):
-        time_history(trajectory, solution, name, ax=ax, legend=False)
+        time_history(trajectory, solution, name, ax=ax, legend=False, exact_label=exact_label)
+        if _zero_throughout(trajectory, solution, name):
+            ax.text(
+                0.5,
+                0.62,
+                f"${SYMBOLS[name][0]} = 0$ throughout: the mass never moves",
+                transform=ax.transAxes,
+                ha="center",
+                fontsize=7,
+                color="0.3",
+            )
         if i < len(columns) - 2:  # a shared time axis is labelled on the bottom row only
             ax.set_xlabel("")
     handles, labels = axes[0].get_legend_handles_labels()

@@ -52,7 +52,19 @@ from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator
 from lumped.solvers.exact import ExactSolution, solve_exact
 
-__all__ = ["PeriodMap", "derivatives", "monodromy", "omega_derivative", "period_map"]
+__all__ = ["RESOLUTION", "PeriodMap", "derivatives", "held_slip", "monodromy", "omega_derivative", "period_map"]
+
+#: The resolution of a periodic motion, in units of the static deflection ``P/k`` of the loaded mass: the
+#: residual ``|Pi(z) - z|`` to which shooting solves (:data:`lumped.drivers.response.shooting.NEWTON_TOL` is
+#: this value), some 1e5 ulps of unit amplitude, above the map's own round-off.  A motion is known to this
+#: much, and a slip over the period shorter than it (:func:`held_slip`) is not resolved: the element is held.
+RESOLUTION = 1e-11
+
+
+def held_slip(amplitude: float, stiffness: float) -> float:
+    """The longest slip per period (m) of an element counted as held under ``amplitude sin(omega t)`` on a mass of
+    diagonal stiffness ``stiffness``: :data:`RESOLUTION` times ``P/k``."""
+    return RESOLUTION * amplitude / stiffness
 
 
 class PeriodMap(NamedTuple):
@@ -71,7 +83,10 @@ class PeriodMap(NamedTuple):
 
     @property
     def stops(self) -> int:
-        """Stop events in ``(0, T]``: the stops per period of a periodic motion."""
+        """Stop events in ``(0, T]``: the stops per period of a periodic motion; none when :attr:`held` (a held
+        mass's permanent stick is not a stop)."""
+        if self.held:
+            return 0
         return sum(1 for e in self.solution.events if e.kind == "stop" and e.time > 0)
 
     @property
@@ -88,9 +103,14 @@ class PeriodMap(NamedTuple):
 
     @property
     def held(self) -> bool:
-        """True when the mass sticks through the whole period: any position in the band is then periodic, a
-        neutral direction with the multiplier 1 (as a network's held elements)."""
-        return all(p.motion is None for p in self.solution.phases)
+        """True when the mass sticks through the whole period, or slips less than :func:`held_slip` over it (a
+        slip a fixed point does not resolve): any position in the band is then periodic, a neutral direction
+        with the multiplier 1 (as a network's held elements)."""
+        phases = self.solution.phases
+        ends = [p.x_start for p in phases[1:]] + [float(self.end[0])]
+        slip = sum(abs(b - p.x_start) for p, b in zip(phases, ends) if p.motion is not None)
+        P, k = self.solution.force.canonical()[0], self.solution.oscillator.stiffness
+        return slip <= held_slip(P, k)
 
     @property
     def multipliers(self) -> np.ndarray:

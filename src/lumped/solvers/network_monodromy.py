@@ -55,6 +55,7 @@ from lumped.model.forcing import SwitchedSine
 from lumped.numerics.expm import expm
 from lumped.numerics.roots import brentq
 from lumped.solvers.exact_network import march, step_for
+from lumped.solvers.monodromy import RESOLUTION, held_slip
 from lumped.solvers.network_modes import NetworkEvent, event_rows
 from lumped.solvers.network_phase import Parts, Phase, groups
 
@@ -122,30 +123,56 @@ class NetworkPeriodMap:
 
     @property
     def stops(self) -> int:
-        """Slip-to-stick switches of friction elements in ``(0, T]``: the stops per period of a periodic motion."""
+        """Slip-to-stick switches in ``(0, T]`` of the friction elements that move (not :attr:`held`): the
+        stops per period of a periodic motion (a held element's permanent stick is not a stop)."""
+        moving = self.parts.friction.copy()
+        moving[self.held] = False
         count = 0
         for before, after in zip(self.phases[:-1], self.phases[1:]):
-            count += int(np.sum(self.parts.friction & (before.mode != 0) & (after.mode == 0)))
+            count += int(np.sum(moving & (before.mode != 0) & (after.mode == 0)))
         return count
 
     @cached_property
+    def slips(self) -> np.ndarray:
+        """The length each element slips over the period (E,, m): the sum over its slip phases of
+        ``|b_e . (x_end - x_start)|`` (an element's elongation is monotone within a slip phase)."""
+        total = np.zeros(self.parts.k.size)
+        for ph, end in zip(self.phases, [*(p.start for p in self.phases[1:]), self.t_end]):
+            if np.any(ph.mode != 0):
+                moved = self.parts.b.T @ (ph.values(ph.z(end))[0] - ph.values(ph.z0)[0])
+                total += np.where(ph.mode != 0, np.abs(moved), 0.0)
+        return total
+
+    @cached_property
     def held(self) -> np.ndarray:
-        """The friction elements that stick through the whole period (indices): their elongations are kept by
-        the map, each a neutral direction with the multiplier 1 (any elongation in the band is periodic)."""
-        stuck = np.logical_and.reduce([ph.mode == 0 for ph in self.phases]) & self.parts.friction
-        return np.flatnonzero(stuck)
+        """The friction elements held through the period (indices): those that stick throughout, or slip less
+        than the fixed point resolves.  That is :func:`~lumped.solvers.monodromy.held_slip` (the residual
+        shooting solves to) times ``|(W^T (M - I) W)^-1|`` in the units ``P/k`` and ``omega_n P/k`` of the loaded
+        mass, ``W`` the states that keep the elongations of the elements that stick throughout: the error of a
+        fixed point is its residual so amplified, which grows without bound where a mass's motion dies out and
+        it comes to be held (the multiplier tends to 1).  A smaller slip (a velocity of round-off size left at
+        ``t = 0`` by Newton, or a dying motion's last nanometres) is not resolved: the element is held.  Their
+        elongations are kept by the map, each a neutral direction with the multiplier 1 (any elongation in
+        the band is periodic)."""
+        (mass, load), k = self.parts.loads[0], self.parts.b @ np.diag(self.parts.k) @ self.parts.b.T
+        kmm = float(k[mass, mass])
+        tol = held_slip(abs(load.amplitude), kmm)
+        stuck = self.parts.friction & (self.slips == 0)
+        n = self.parts.m.size
+        scale = np.repeat([1.0, math.sqrt(kmm / self.parts.m[mass])], n)  # the state in units of (P/k, omega_n P/k)
+        w = _keeping(self.parts, np.flatnonzero(stuck))
+        free = w.T @ ((self.monodromy - np.eye(2 * n)) * scale[None, :] / scale[:, None]) @ w
+        with np.errstate(all="ignore"):
+            sv = np.linalg.svd(free, compute_uv=False) if np.all(np.isfinite(free)) else np.array([0.0])
+        amplify = 1 / sv[-1] if sv.size and sv[-1] > 0 else math.inf
+        return np.flatnonzero(self.parts.friction & (self.slips <= tol * max(1.0, amplify)))
 
     @cached_property
     def free_basis(self) -> np.ndarray:
         """An orthonormal basis ``W`` (2n x (2n - s)) of the states that leave the held elongations unchanged:
         the map keeps it (``r M = r`` for each held elongation ``r``), and ``W^T M W`` carries the multipliers
         other than the neutral ones."""
-        n = self.parts.m.size
-        if not self.held.size:
-            return np.eye(2 * n)
-        _, sv, vt = np.linalg.svd(self.parts.b[:, self.held].T)
-        wx = vt[int(np.sum(sv > 1e-12 * sv[0])) :].T  # the forest's columns are independent: rank s
-        return np.block([[wx, np.zeros((n, n))], [np.zeros((n, wx.shape[1])), np.eye(n)]])
+        return _keeping(self.parts, self.held)
 
     @property
     def neutral(self) -> np.ndarray:
@@ -189,10 +216,23 @@ class NetworkPeriodMap:
         return float(self.amplitudes[self.parts.loads[0][0]])
 
 
+def _keeping(p: Parts, held: np.ndarray) -> np.ndarray:
+    """An orthonormal basis (2n x (2n - s)) of the states that leave the elongations of the elements ``held``
+    unchanged."""
+    n = p.m.size
+    if not held.size:
+        return np.eye(2 * n)
+    _, sv, vt = np.linalg.svd(p.b[:, held].T)
+    wx = vt[int(np.sum(sv > 1e-12 * sv[0])) :].T  # the forest's columns are independent: rank s
+    return np.block([[wx, np.zeros((n, n))], [np.zeros((n, wx.shape[1])), np.eye(n)]])
+
+
 def _extremes(ph: Phase, end: float) -> tuple[np.ndarray, np.ndarray]:
     """Times (k,) and positions (rows, (k, n)) at the phase's sub-grid, its ends and each mass's zeros of
     ``v`` inside it."""
     rx, rv = ph.rows("x"), ph.rows("v")
+    if not end > ph.start:  # a phase of no duration (a stop at its start): its one state
+        return np.array([ph.start]), (ph.z0 @ rx.T)[None, :]
     h = step_for(ph, end - ph.start)
     times = np.append(np.arange(ph.start, end, h), end)
     step = expm(ph.a * h)

@@ -13,15 +13,18 @@ back) is passed like any other point.  ``dG/dy = M - I`` is the analytic
 monodromy and ``dG/domega`` the derivative of the period map in omega
 (:func:`~lumped.drivers.response.systems.omega_derivative`: exact, for one
 mass and for a network, so that a corrector iterate costs one period map); in another
-parameter ``dG/dlambda`` is a central difference (:data:`PARAMETER_STEP`).
+parameter ``dG/dlambda`` is exact too, and into the parameter's domain on its edge
+(:func:`~lumped.drivers.response.systems.exact_derivative`): the family's ``derivative``.
 
 Between two accepted points the branch is tested for
-``stops-change`` (the stops per period differ), ``fold`` (``det(M - I)``
+``stops-change`` (the stops per period of the friction elements that move differ: a held element's
+permanent stick is no stop), ``fold`` (``det(M - I)``
 changes sign: a multiplier crosses +1) and ``period-doubling``
 (``det(M + I)`` changes sign: one crosses -1), in that order: where the stops
 change the multipliers jump, and a sign change there is not a smooth
 bifurcation.  The point of change is located by bisection along the secant
-(:data:`BISECTIONS` halvings) and inserted with its ``kind``.
+(:data:`BISECTIONS` halvings, each point corrected to :data:`NEWTON_TOL`) and inserted with its ``kind``; a
+second change between it and the next point is located the same way, so each change is one row.
 
 Notes
 -----
@@ -42,14 +45,13 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, find_orbit
-from lumped.drivers.response.systems import Family, LoadedNetwork, omega_derivative, omega_family, period_map
+from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, Scales, find_orbit
+from lumped.drivers.response.systems import Family, LoadedNetwork, omega_family, period_map
 from lumped.model.oscillator import Oscillator
 
 __all__ = [
     "BISECTIONS",
     "MAX_AMPLITUDE",
-    "PARAMETER_STEP",
     "Branch",
     "ResponsePoint",
     "change",
@@ -59,10 +61,8 @@ __all__ = [
 
 #: Halvings of the secant that locate a change (to 2^-12 of a step).
 BISECTIONS = 12
-#: The residual to which the points tried by the bisection are corrected: they are only asked which side of
-#: the change they lie on, and a residual of 1e-8 (in the units of ``Scales``) moves a point far less than
-#: 2^-12 of a step; the located point itself is then corrected to :data:`NEWTON_TOL`.
-BISECTION_TOL = 1e-8
+#: Further changes located within one step after the first (the rest are left to the next step's row).
+MAX_CHANGES = 3
 #: Corrector iterations before a step is halved.
 MAX_CORRECTOR = 8
 #: Largest relative change of the state ``(x, v)`` in one step (see :func:`_largest_step`).
@@ -72,10 +72,6 @@ STATE_STEP = 0.1
 MAX_AMPLITUDE = 50.0
 #: Smallest step as a fraction of the largest before the continuation gives up.
 MIN_STEP = 1e-7
-#: Step of the central difference ``dPi/dlambda`` in a parameter other than omega, in the family's unit
-#: (``max(|start|, |stop|)``): truncation ``step^2`` (1e-12) and round-off (the map's ~1e-14 over the step,
-#: 1e-8) leave the derivative good to 1e-8, which only slows the corrector's last digit, never moves the point.
-PARAMETER_STEP = 1e-6
 
 
 class ResponsePoint(NamedTuple):
@@ -136,12 +132,7 @@ class _Branch:
         u = np.append(self.s.state(orbit.state), value / unit)
         scale = np.repeat([self.s.x, self.s.v], u.size // 2)
         jz = (orbit.period.monodromy - np.eye(scale.size)) * scale[None, :] / scale[:, None]
-        if self.family.name == "omega":
-            system, amplitude, _ = self.family.member(value)
-            jw = self.s.state(omega_derivative(system, amplitude, orbit)) * unit
-        else:
-            ends = [self.orbit_at(np.append(u[:-1], u[-1] + d)).period.end for d in (PARAMETER_STEP, -PARAMETER_STEP)]
-            jw = self.s.state(ends[0] - ends[1]) / (2 * PARAMETER_STEP)
+        jw = self.s.state(self.family.derivative(orbit, value)) * unit
         return _Point(u, orbit, np.column_stack([jz, jw]), value)
 
     def found(self, u: np.ndarray) -> _Point:
@@ -151,6 +142,12 @@ class _Branch:
     def residual(self, orbit: Orbit) -> np.ndarray:
         return self.s.state(orbit.period.end - orbit.state)
 
+    def own(self, value: float) -> Scales:
+        """The :class:`Scales` of the member at ``value``: what its residual and amplitude are measured in (a
+        family in the amplitude or a mass spans decades of ``P/k``; the unknowns keep the start's)."""
+        system, p, _ = self.family.member(value)
+        return Scales.of(system, p)
+
     def correct(self, guess: np.ndarray, normal: np.ndarray, start: _Point, tol: float = NEWTON_TOL) -> _Point | None:
         """Newton on ``G(u) = 0``, ``normal . (u - guess) = 0`` to ``|G| <= tol``, each iterate with its own
         Jacobian (the held elongations of elements that stick through the period pinned to ``start``'s);
@@ -159,8 +156,10 @@ class _Branch:
         try:
             at = self.found(u)
             for _ in range(MAX_CORRECTOR):
+                if not np.all(np.isfinite(at.jacobian)):  # an event met at a tangency: no derivative there
+                    return None
                 g = self.residual(at.orbit)
-                if np.max(np.abs(g)) <= tol:
+                if np.max(np.abs(self.own(at.value).state(at.orbit.period.end - at.orbit.state))) <= tol:
                     return at
                 matrix, rhs = at.system(g, u, start.u)
                 u = u - np.linalg.solve(np.vstack([matrix, normal]), np.append(rhs, normal @ (u - guess)))
@@ -237,11 +236,14 @@ def _signature(p: _Point) -> tuple[int, float, float]:
 
 
 def _locate(branch: _Branch, a: _Point, b: _Point, kind: str) -> _Point:
-    """Bisect the secant ``a -> b`` for the change ``kind``; the corrected point on ``b``'s side of it.
+    """Bisect the secant ``a -> b`` for the change ``kind``: the point nearest ``a`` found whose
+    :func:`signature` differs from ``a``'s (``b`` itself if none), corrected to :data:`NEWTON_TOL`.
 
     The point at a fraction ``mid`` of the secant is the branch's crossing of the hyperplane through
     ``a + mid (b - a)`` normal to the secant; the corrector starts from where the tangent line of the last point
-    found on ``a``'s side crosses that hyperplane, which comes closer at each halving (fewer iterates)."""
+    found on ``a``'s side crosses that hyperplane, which comes closer at each halving (fewer iterates).  Each
+    point tried is corrected to :data:`NEWTON_TOL`, the accuracy of every row, so the located point is on the
+    side the bisection put it (a point corrected further after the bisection could cross back)."""
     index = {"stops-change": 0, "fold": 1, "period-doubling": 2}[kind]
     secant = b.u - a.u
     normal = secant / np.linalg.norm(secant)
@@ -250,7 +252,7 @@ def _locate(branch: _Branch, a: _Point, b: _Point, kind: str) -> _Point:
         mid = 0.5 * (lo + hi)
         on_plane = a.u + mid * secant
         guess = near.u + tangent * (normal @ (on_plane - near.u)) / (normal @ tangent)
-        p = branch.correct(guess, normal, a, BISECTION_TOL)
+        p = branch.correct(guess, normal, a)
         if p is None:
             break
         if _signature(p)[index] == _signature(a)[index]:
@@ -258,9 +260,7 @@ def _locate(branch: _Branch, a: _Point, b: _Point, kind: str) -> _Point:
             tangent = _tangent(p, tangent)
         else:
             hi, best = mid, p
-    if best is b:
-        return b
-    return branch.correct(best.u, normal, a) or b
+    return best
 
 
 def continue_orbits(
@@ -318,7 +318,7 @@ def continue_orbits(
         ds = min(1.5 * ds, _largest_step(p.u, tangent, ds_max))
         if progress is not None:
             progress(int(1000 * min(max((q.u[-1] - w0) / (w1 - w0), 0.0), 1.0)), 1000)
-        if q.orbit.amplitude > max_amplitude * branch.s.x:
+        if q.orbit.amplitude > max_amplitude * branch.own(q.value).x:
             end = "amplitude"
             break
         if q.u[-1] < w0 - 10 * ds_max:
@@ -327,14 +327,18 @@ def continue_orbits(
     return Branch(out, end)
 
 
-def _append(branch: _Branch, out: list[ResponsePoint], a: _Point, b: _Point) -> None:
-    """Append ``b``, preceded by the located change between ``a`` and ``b`` if there is one."""
+def _append(branch: _Branch, out: list[ResponsePoint], a: _Point, b: _Point, depth: int = 0) -> None:
+    """Append ``b``, preceded by the located changes between ``a`` and ``b``: the first change from ``a``
+    (:func:`_locate`), then those between it and ``b`` the same way (two in one step: a count of stops held
+    over a short interval), each once."""
     kind = change(_signature(a), _signature(b))
-    if kind is not None:
-        at = _locate(branch, a, b, kind)
-        if at is not b:
-            out.append(ResponsePoint(at.orbit, kind, at.value))
+    if kind is None:
+        out.append(ResponsePoint(b.orbit, "regular", b.value))
+        return
+    at = _locate(branch, a, b, kind)
+    out.append(ResponsePoint(at.orbit, kind, at.value))
+    if at is not b:
+        if depth < MAX_CHANGES:
+            _append(branch, out, at, b, depth + 1)
         else:
-            out.append(ResponsePoint(b.orbit, kind, b.value))
-            return
-    out.append(ResponsePoint(b.orbit, "regular", b.value))
+            out.append(ResponsePoint(b.orbit, "regular", b.value))

@@ -35,12 +35,12 @@ import numpy as np
 
 from lumped.drivers.response.continuation import Branch, ResponsePoint, continue_orbits
 from lumped.drivers.response.shooting import Orbit, find_orbit
-from lumped.drivers.response.systems import Family, LoadedNetwork, parameter_family, response_system
+from lumped.drivers.response.systems import Family, LoadedNetwork, check_omega, parameter_family, response_system
 from lumped.model.network import Network
 from lumped.model.oscillator import Oscillator
 from lumped.numerics import validate
 
-__all__ = ["COLUMNS", "Curve", "response_curve"]
+__all__ = ["COLUMNS", "MAX_POINTS", "MIN_WIDTH", "Curve", "Request", "request", "response_curve"]
 
 #: The columns after ``omega`` and ``amplitude_<mass>``.
 COLUMNS = ("stops_per_period", "stable", "max_multiplier", "kind")
@@ -76,6 +76,86 @@ def _branches(
     return [first, continue_orbits(osc, amplitude, orbit.omega, stop, points, progress, start_orbit=orbit)]
 
 
+#: The most rows asked for: 1e4 is five times the width of a printed figure at 600 dpi, and, with a range at
+#: least :data:`MIN_WIDTH` wide, keeps a step above ``1e-10`` of the parameter, so that a change located to
+#: ``2^-12`` of a step (:data:`~lumped.drivers.response.continuation.BISECTIONS`) stays ~100 ulps apart.
+MAX_POINTS = 10_000
+#: The narrowest range, relative to its largest value ``max(|START|, |STOP|)`` (see :data:`MAX_POINTS`).
+MIN_WIDTH = 1e-6
+
+
+class Request(NamedTuple):
+    """A checked request for a curve: its system, force amplitude, range, rows and family (``None`` in omega)."""
+
+    system: Oscillator | LoadedNetwork
+    amplitude: float
+    start: float
+    stop: float
+    points: int
+    family: Family | None
+
+
+def request(
+    network: Network,
+    mass: str,
+    amplitude: float,
+    start: float,
+    stop: float,
+    points: int = 200,
+    vary: str | None = None,
+    omega: float | None = None,
+) -> Request:
+    """:func:`response_curve`'s arguments checked before any work, or a one-line ``ValueError`` naming the
+    argument and its limit: ``points`` in ``[2, MAX_POINTS]``, a finite range at least :data:`MIN_WIDTH` wide,
+    every forcing frequency within :data:`~lumped.drivers.response.systems.OMEGA_RATIO` of the system's time
+    scales (:func:`~lumped.drivers.response.systems.check_omega`: in omega at both ends; with ``vary``, the
+    fixed ``omega`` for the systems at both ends of the range, between which the time scales are monotone)."""
+    amplitude = validate.positive("force_amplitude", amplitude)
+    points = validate.positive_int("points", points)
+    if not 2 <= points <= MAX_POINTS:
+        raise ValueError(f"points: between 2 and {MAX_POINTS} rows, got {points}")
+    system = response_system(network, mass)
+    axis = "START:STOP" if vary is None else vary
+    if vary is None and omega is not None:
+        raise ValueError("omega: a fixed omega goes with vary (START:STOP are then the parameter's)")
+    if vary == "omega":
+        raise ValueError("vary: omega is followed without vary, from START to STOP")
+    if vary is not None:
+        if omega is None:
+            raise ValueError("omega: vary needs the fixed forcing frequency omega")
+        omega = validate.positive("force_omega", omega)
+    start, stop = _range("omega" if vary is None else "vary", axis, start, stop)
+    if vary is None:
+        for value in (start, stop):
+            check_omega(system, value, "omega")
+        return Request(system, amplitude, start, stop, points, None)
+    family = parameter_family(network, mass, amplitude, omega, vary, start, stop)  # type: ignore[arg-type]
+    for value in (start, stop):
+        check_omega(family.member(value)[0], omega, f"vary: at {vary} = {value:g}")  # type: ignore[arg-type]
+    return Request(system, amplitude, start, stop, points, family)
+
+
+def _range(what: str, axis: str, start: float, stop: float) -> tuple[float, float]:
+    """``(start, stop)`` of ``axis`` finite, in order (and positive in omega), at least :data:`MIN_WIDTH` wide;
+    messages begin with ``what``."""
+    try:
+        start, stop = float(start), float(stop)
+    except (TypeError, ValueError):
+        raise ValueError(f"{what}: {axis}: START and STOP must be real numbers, got {start!r}:{stop!r}") from None
+    if not (math.isfinite(start) and math.isfinite(stop)):
+        raise ValueError(f"{what}: {axis}: START and STOP must be finite, got {start!r}:{stop!r}")
+    if what == "omega" and not start > 0:
+        raise ValueError(f"{what}: {axis}: START must be > 0, got {start!r}")
+    if not start < stop:
+        raise ValueError(f"{what}: {axis}: START must be below STOP, got {start!r}:{stop!r}")
+    if stop - start < MIN_WIDTH * max(abs(start), abs(stop)):
+        raise ValueError(
+            f"{what}: {axis} = {start!r}:{stop!r} is narrower than {MIN_WIDTH:g} of its largest value, "
+            "the least width the continuation resolves"
+        )
+    return start, stop
+
+
 def response_curve(
     network: Network,
     mass: str,
@@ -100,9 +180,11 @@ def response_curve(
     amplitude : float, N
         ``P > 0``.
     start, stop : float, rad/s
-        ``0 < start < stop``; with ``vary``, the parameter's values, ``start < stop``.
+        ``0 < start < stop``, at least :data:`MIN_WIDTH` of ``stop`` apart, within
+        :data:`~lumped.drivers.response.systems.OMEGA_RATIO` of the system's time scales; with ``vary``, the
+        parameter's values, ``start < stop`` (:func:`request` checks them all before any work).
     points : int
-        At least 2: about the number of rows of a branch monotone in omega
+        2 to :data:`MAX_POINTS`: about the number of rows of a branch monotone in omega
         (:func:`~lumped.drivers.response.continuation.continue_orbits`).
     vary : str, optional
         ``amplitude`` or a parameter of the file (``element.key``, ``mass.key``) to follow instead of omega.
@@ -116,26 +198,8 @@ def response_curve(
         minus min x over the period, m), then :data:`COLUMNS`; with ``vary``,
         its column first.
     """
-    amplitude = validate.positive("force_amplitude", amplitude)
-    points = validate.positive_int("points", points)
-    if points < 2:
-        raise ValueError(f"points must be at least 2, got {points}")
-    system = response_system(network, mass)
-    if vary is None:
-        if omega is not None:
-            raise ValueError("omega: a fixed omega goes with vary (START:STOP are then the parameter's)")
-        start, stop = validate.positive("start", start), validate.positive("stop", stop)
-    else:
-        if vary == "omega":
-            raise ValueError("vary: omega is followed without vary, from START to STOP")
-        if omega is None:
-            raise ValueError("omega: vary needs the fixed forcing frequency omega")
-        omega = validate.positive("force_omega", omega)
-        start, stop = validate.finite("start", start), validate.finite("stop", stop)
-    if not start < stop:
-        raise ValueError(f"{vary or 'omega'}: START must be below STOP, got {start!r}:{stop!r}")
-    family = None if vary is None else parameter_family(network, mass, amplitude, omega, vary, start, stop)
-    branches = _branches(system, amplitude, start, stop, points, progress, family)
+    req = request(network, mass, amplitude, start, stop, points, vary, omega)
+    branches = _branches(req.system, req.amplitude, req.start, req.stop, req.points, progress, req.family)
     rows = [p for b in branches for p in b.points]
     return Curve(_table(rows, network.mass_names, vary), _summary(branches, rows, vary or "omega"))
 

@@ -22,19 +22,28 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+import math
+
 import numpy as np
+import scipy.linalg
 
 from lumped.drivers.response.systems import LoadedNetwork, Scales, period_map
 from lumped.model.oscillator import Oscillator
-from lumped.solvers.monodromy import PeriodMap
+from lumped.solvers.monodromy import RESOLUTION, PeriodMap
 from lumped.solvers.network_monodromy import NetworkPeriodMap
 
 __all__ = ["NEWTON_TOL", "Orbit", "Scales", "find_orbit", "newton_step"]
 
 #: Newton stops when ``|Pi(z) - z|`` (largest component, in :class:`Scales` units) is below this:
-#: some 1e5 ulps of unit amplitude, above the period map's own round-off (its event times are
-#: refined to a few ulps of the period), far below any amplitude a response curve shows.
-NEWTON_TOL = 1e-11
+#: the map's :data:`~lumped.solvers.monodromy.RESOLUTION`, some 1e5 ulps of unit amplitude, above the
+#: period map's own round-off (its event times are refined to a few ulps of the period), far below any
+#: amplitude a response curve shows.
+NEWTON_TOL = RESOLUTION
+#: The error of a computed monodromy matrix, in ulps of its (balanced) norm per unit of work: each phase's factor
+#: ``expm(B h)`` is computed by scaling and squaring to some tens of ulps times ``max(1, rho(B) h)`` (the
+#: squarings' growth, Higham 2005), its projection, saltation and event time (refined to a few ulps of the
+#: period) add a few more; 256 covers them with room, composed over the phases (first order: the errors add).
+MULTIPLIER_ULPS = 256
 #: Newton iterations before a fixed point is declared not found.
 MAX_NEWTON = 40
 #: Periods of motion from rest (at most) that bring the first guess near the orbit.
@@ -56,13 +65,31 @@ class Orbit(NamedTuple):
         return self.period.multipliers
 
     @property
+    def margin(self) -> float:
+        """The error bound of the multipliers' moduli: ``MULTIPLIER_ULPS eps`` times the work of the phases
+        composed (``sum max(1, rho(B) h)``), times the norm of the balanced ``W^T M W`` and the condition of its
+        eigenvectors (Bauer-Fike: an eigenvalue moves by at most ``cond(V) |E|`` for an error ``E``)."""
+        w = self.period.free_basis
+        m = w.T @ self.period.monodromy @ w
+        if not m.size:
+            return 0.0
+        balanced = scipy.linalg.matrix_balance(m, permute=False)[0]
+        _, v = np.linalg.eig(balanced)
+        v = v / np.linalg.norm(v, axis=0)
+        work = _work(self.period)
+        return float(MULTIPLIER_ULPS * np.finfo(float).eps * work * np.linalg.norm(balanced, 2) * np.linalg.cond(v))
+
+    @property
     def max_multiplier(self) -> float:
-        """The largest modulus of a multiplier."""
-        return float(np.max(np.abs(self.multipliers)))
+        """The largest modulus of a multiplier; exactly 1 where it is 1 within :attr:`margin` (a marginal motion:
+        an undamped system's, or one at a fold), so that no last bit decides it."""
+        mu = float(np.max(np.abs(self.multipliers), initial=0.0))
+        return 1.0 if abs(mu - 1.0) <= self.margin else mu
 
     @property
     def stable(self) -> bool:
-        """True when every multiplier lies inside the unit circle."""
+        """True when every multiplier lies inside the unit circle by more than :attr:`margin` (asymptotically
+        stable); False where one lies outside, and at the margin (:attr:`max_multiplier` exactly 1)."""
         return self.max_multiplier < 1.0
 
     @property
@@ -79,6 +106,20 @@ class Orbit(NamedTuple):
     def stops(self) -> int:
         """Stops per period."""
         return self.period.stops
+
+
+def _work(period: PeriodMap | NetworkPeriodMap) -> float:
+    """``sum max(1, rho(B) h)`` over the phases of the period: the work of composing its monodromy matrix."""
+    if isinstance(period, PeriodMap):
+        osc, phases = period.solution.oscillator, period.solution.phases
+        rho = math.sqrt(osc.stiffness / osc.mass) + osc.dashpot.bingham_form().viscosity / osc.mass
+        ends = [p.start for p in phases[1:]] + [period.solution.t_end]
+        return sum(max(1.0, rho * (e - p.start)) for p, e in zip(phases, ends))
+    ends = [p.start for p in period.phases[1:]] + [period.t_end]
+    return sum(
+        max(1.0, float(np.max(np.abs(np.linalg.eigvals(p.a)), initial=0.0)) * (e - p.start))
+        for p, e in zip(period.phases, ends)
+    )
 
 
 def _settle(system: Oscillator | LoadedNetwork, amplitude: float, omega: float, scales: Scales) -> np.ndarray:

@@ -4,6 +4,10 @@
   solution and by Algorithm 1 at the configured and at the original's step,
   with their differences;
 * :func:`eq19`: Figure 5's run against eq. (19);
+* :func:`rest_sweep`: where the large free vibration rests, released from a
+  row of positions (:data:`SWEEP_POINTS`, :data:`SWEEP_SPACING`);
+* :func:`friction_oscillator_ends`: how Siconos' FrictionOscillator ends, by
+  the exact solution, Algorithm 1 and Moreau-Jean at Siconos' step;
 * :func:`convergence`: the differences for each step of
   :data:`CONVERGENCE_STEPS`, their fitted orders, and how each run ends.
 
@@ -13,14 +17,18 @@ position.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any
 
 import numpy as np
 
+from lumped.drivers.methods import METHODS
+from lumped.model.oscillator import Oscillator
 from lumped.model.trajectory import Trajectory, sign_changes
-from lumped.solvers.exact import ExactSolution
+from lumped.solvers.exact import ExactSolution, solve_exact
 from lumped.studies import examples
+from lumped.studies.accuracy.friction_oscillator import FRICTION_OSCILLATOR
 
 __all__ = [
     "CONVERGENCE_STEPS",
@@ -28,10 +36,15 @@ __all__ = [
     "ORIGINAL_DT",
     "QUANTITIES",
     "STILL_MOVING",
+    "SWEEP_POINTS",
+    "SWEEP_SPACING",
     "convergence",
     "eq19",
+    "friction_oscillator_ends",
+    "law_violations",
     "motion_end",
     "paper_run",
+    "rest_sweep",
     "same_side",
 ]
 
@@ -44,6 +57,14 @@ STILL_MOVING = "still moving"
 #: The quantity each time-history figure shows, per run.
 CURVES = {"forced_large": (6, 7, 8, 9), "free_large": (11, 12, 13, 14)}
 QUANTITIES = ("x", "v", "F_s", "F_d")
+#: Release positions of :func:`rest_sweep`: ``x0`` and this many more, towards zero.
+SWEEP_POINTS = 40
+#: Their spacing, as a fraction of the band half-width ``mu_s N_f / k``.  A
+#: free motion from rest is non-expansive in the energy norm, so two rests lie
+#: no farther apart than their releases: neighbouring rests of the sweep are at
+#: most half a band half-width apart, and every value between two of them is
+#: the rest of some release in between (the rest is continuous in ``x0``).
+SWEEP_SPACING = 0.5
 
 
 def _rest(value: float) -> float | str:
@@ -112,7 +133,36 @@ def _exact_summary(ex: ExactSolution, sampled: Trajectory) -> dict[str, Any]:
         "peak_v": float(np.max(np.abs(sampled.v))),
         "peak_F_d": float(np.max(np.abs(sampled.F_d))),
         "int_abs_F_d": _integral(np.abs(sampled.F_d), sampled.t, _motion_of(ex, sampled), sampled.dt),
+    } | _end_forces(sampled)
+
+
+def _end_forces(tr: Trajectory) -> dict[str, Any]:
+    """The forces at the last grid point, and the grid points off the graph of eq. (6)."""
+    return {
+        "end_F_s": float(tr.F_s[-1]),
+        "end_F_d": float(tr.F_d[-1]),
+        "law_violations": law_violations(tr.v, tr.F_d, tr.oscillator.threshold),
     }
+
+
+def law_violations(v: np.ndarray, f_d: np.ndarray, tau: float) -> int:
+    """Grid points where ``(v, F_d)`` is off the graph of eq. (6): ``|F_d| > tau`` at ``v = 0``, or ``F_d``
+    of the other sign than ``v != 0``.
+
+    Neither test involves round-off: a stick step stores a force whose
+    magnitude it compared with ``tau``, and a slip force is at least ``tau``
+    from zero.
+    """
+    stuck = v == 0.0
+    off_band = np.count_nonzero(stuck & (np.abs(f_d) > tau))
+    return int(off_band + np.count_nonzero(~stuck & (np.sign(f_d) != np.sign(v))))
+
+
+def _turning_positions(x: np.ndarray, v: np.ndarray) -> list[float]:
+    """``x`` at the grid point before each change of direction (the first point moving the new way)."""
+    moving = np.flatnonzero(v != 0.0)
+    turns = np.flatnonzero(np.diff(np.sign(v[moving])) != 0)
+    return [float(x[i]) for i in moving[turns + 1] - 1]
 
 
 def _motion_of(ex: ExactSolution, sampled: Trajectory) -> float:
@@ -131,9 +181,11 @@ def _be_summary(be: Trajectory) -> dict[str, Any]:
         "max_F_d": float(np.max(be.F_d)),
         "stick_fraction": float(np.mean(be.v == 0.0)),
         "reversals": sign_changes(be.v),
+        "first_move_time": float(be.t[np.argmax(be.v != 0.0)]) if np.any(be.v != 0.0) else math.nan,
+        "turning_positions": _turning_positions(be.x, be.v),
         "energy_residual": float(np.max(np.abs(be.energy_balance().residual))),
         "steps": int(be.t.size - 1),
-    }
+    } | _end_forces(be)
 
 
 def paper_run(run: examples.Example) -> dict[str, Any]:
@@ -156,6 +208,44 @@ def eq19(run: examples.Example, dt: float) -> dict[str, float]:
         "eq19_max_v": float(np.max(np.abs(be.v))),
         "eq19_max_F_s": float(np.max(np.abs(be.F_s))),
     }
+
+
+def rest_sweep(run: examples.Example, dt: float, spacing: float = SWEEP_SPACING) -> dict[str, Any]:
+    """Rest positions from releases at rest at ``x0 - j spacing mu_s N_f / k`` (``j = 0 ..`` :data:`SWEEP_POINTS`).
+
+    Only releases outside the band (``|x0| > mu_s N_f / k``, where the mass
+    moves) and of the same sign as ``x0`` are kept; each is run by the exact
+    solution and by Algorithm 1 at ``dt`` to the run's end time.  A smaller
+    release makes no more half-cycles, so each comes to rest no later than the
+    run itself.
+    """
+    band = run.oscillator.static_band
+    releases = [run.x0 - math.copysign(j * spacing * band, run.x0) for j in range(SWEEP_POINTS + 1)]
+    releases = [x0 for x0 in releases if abs(x0) > band and x0 * run.x0 > 0]
+    moved = [dataclasses.replace(run, x0=x0) for x0 in releases]
+    return {
+        "x0": releases,
+        "spacing": spacing * band,
+        "exact": [_rest(r.exact().rest_position) for r in moved],
+        "algorithm1": [_rest(r.algorithm1(dt).rest_position) for r in moved],
+    }
+
+
+def friction_oscillator_ends() -> dict[str, Any]:
+    """Siconos' FrictionOscillator (:data:`~lumped.studies.accuracy.friction_oscillator.FRICTION_OSCILLATOR`):
+    rest time (s), rest position (m) and reversals, exact and by Algorithm 1 and Moreau-Jean at Siconos' step."""
+    p = FRICTION_OSCILLATOR
+    osc = Oscillator.bingham(p["mass"], p["stiffness"], p["bound"], math.inf)
+    ex = solve_exact(osc, p["t_end"], x0=p["x0"], v0=p["v0"])
+    kinds = [e.kind for e in ex.events]
+    out: dict[str, Any] = {"case": dict(p)}
+    out["exact"] = {"rest_time": _rest(ex.rest_time), "rest_position": _rest(ex.rest_position)}
+    out["exact"]["reversals"] = kinds.count("reversal")
+    for name in ("backward-euler", "moreau-jean"):
+        tr = METHODS[name](osc, p["t_end"], p["dt"], p["x0"], p["v0"], None, 1)
+        out[name] = {"rest_time": _rest(tr.rest_time), "rest_position": _rest(tr.rest_position)}
+        out[name]["reversals"] = sign_changes(tr.v)
+    return out
 
 
 # ------------------------------------------------------------------ convergence
