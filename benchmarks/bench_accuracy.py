@@ -17,7 +17,7 @@ Run from the repository root:  python benchmarks/bench_accuracy.py [--quick] [--
    nothing is subtracted.
 2. The paper's free decay (x0 = 0.5 m): event-driven at rtol 1e-10 and 1e-12
    against ``exact``.
-3. The event-capturing scheme's rest-position error on the free decay at
+3. The event-locating scheme's rest-position error on the free decay at
    the original's step, dt = 1e-4, beside Algorithm 1's.
 4. The tanh-regularised textbook model (LSODA) on the free decay: its error
    in "rest position" (its position at 4 s: it never sticks) for each eps
@@ -138,7 +138,7 @@ def bench_free_decay() -> None:
 def bench_event_capturing() -> None:
     ref = A.reference(A.cases()["free-decay"])
     print("3. Free decay at the original's step dt = 1e-4, relative rest-position error")
-    for method in ("backward-euler", "event-capturing"):
+    for method in ("backward-euler", "event-locating"):
         r = A.run("free-decay", method, 1e-4, ref=ref, repeats=3)
         verdict = (
             ""

@@ -23,7 +23,7 @@ Bingham dashpot (threshold 1 N, gamma 1); the last mass is forced by
    close one loop (the compiled step's chord, ``_network_loop.h``), per mass
    and step against the 100-mass chain's (target: at most 2 times);
 5. the methods of order two and the exact one on the 10-mass chain, 2000
-   steps: ``event-capturing`` (trapezoidal steps per mode, in Python) and
+   steps: ``event-locating`` (trapezoidal steps per mode, in Python) and
    ``exact`` (matrix exponentials per phase), per step, beside backward
    Euler's compiled step.
 """
@@ -137,7 +137,7 @@ def bench_ring(n: int, steps: int, repeats: int) -> None:
 
 def bench_accurate(n: int, steps: int, repeats: int) -> None:
     net = chain(n)
-    for method in ("backward-euler", "event-capturing", "exact"):
+    for method in ("backward-euler", "event-locating", "exact"):
         cost = best_of(repeats, lambda m=method: L.solve(L.Problem(net, steps * DT), DT, method=m)) / steps
         print(f"cost per step, {n}-mass chain, {method}: {cost * 1e3:.4f} ms/step (set-up included)")
 

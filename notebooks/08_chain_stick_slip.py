@@ -180,7 +180,8 @@ _ = P.save_figure(fig, "ext06_chain_positions")
 #
 # Backward Euler is of order one, on a chain as on one mass. A network of
 # linear springs, Bingham and Coulomb elements and linear dashpots (this
-# chain is one) also runs with `method="event-capturing"`: within a mode
+# chain is one) also runs with `method="event-locating"`, time stepping with
+# event location (`event-capturing` is its former name, still accepted): within a mode
 # (which elements stick, which way the others slip) the motion obeys a linear
 # ODE, stepped by the trapezoidal rule; when an element stops, breaks away or
 # a load switches, the crossing is located inside the step on the partial
@@ -212,7 +213,7 @@ for method, row in orders.items():
     print(f"{method:18s}" + "".join(f"{f'{two(c[0])} to {two(c[1])}' if c else '-':>16s}" for c in cells))
 
 # %% [markdown]
-# The event-capturing method keeps order two through every kind of event, as
+# The event-locating method keeps order two through every kind of event, as
 # it does for one mass (notebook 9). Backward Euler's largest displacement
 # error falls as $\Delta t$ (slopes just below one). Its events are read off
 # the grid, so each is dated to within a step, and where a network has a

@@ -14,6 +14,8 @@ from the package, so that a test comparing the package with it can fail.
 * :func:`free_decay`: the half-cycle recurrence of the viscous + Coulomb
   oscillator released at rest (Den Hartog);
 * :func:`slope` and :func:`order`: least-squares slopes (convergence orders);
+  :func:`order_fit`, :func:`order_band` and :func:`geometric_steps`: an order with its
+  spread, the band it must lie in, and steps that are not nested;
 * :func:`sign_changes`: direction changes of a sampled velocity;
 * :func:`stick_slip_motion`: event-driven integration of networks of masses,
   linear springs and Bingham/Coulomb elements (chains and trees), from plain
@@ -28,6 +30,7 @@ from collections.abc import Callable, Sequence
 from typing import NamedTuple
 
 import numpy as np
+from scipy import stats
 from scipy.integrate import solve_ivp
 
 #: Section 3 of the paper: "gamma = 1, mu_s N_f = 1, m = 1, k = 100 and
@@ -213,6 +216,48 @@ def slope(x: np.ndarray, y: np.ndarray) -> float:
 def order(steps: np.ndarray, errors: np.ndarray) -> float:
     """Observed order: the slope of ``log(error)`` against ``log(step)``."""
     return slope(np.log(steps), np.log(errors))
+
+
+def order_fit(steps: Sequence[float], errors: Sequence[float], next_term: bool = False) -> tuple[float, float, int]:
+    """Observed order with its spread: the slope of ``log(error)`` against ``log(step)``, its
+    standard error and the fit's degrees of freedom (``scipy.stats.linregress``).
+
+    With ``next_term``, the order is fitted jointly with the next term of the
+    error's expansion, ``e = C dt^p (1 + a dt)``, as ``log e = c + p log dt + a dt``
+    (ordinary least squares, three parameters): on a smooth error the slope is
+    then no longer tilted by ``a dt``.
+    """
+    h, y = np.log(steps), np.log(errors)
+    if not next_term:
+        fit = stats.linregress(h, y)
+        return float(fit.slope), float(fit.stderr), len(steps) - 2
+    design = np.column_stack([np.ones_like(h), h, np.asarray(steps, dtype=float)])
+    beta = np.linalg.lstsq(design, y, rcond=None)[0]
+    residual, dof = y - design @ beta, len(steps) - 3
+    covariance = (residual @ residual / dof) * np.linalg.inv(design.T @ design)
+    return float(beta[1]), math.sqrt(covariance[1, 1]), dof
+
+
+def order_band(stderr: float, dof: int, rate: float, dt_max: float, left_out: int = 1) -> float:
+    """How far a fitted order may lie from the method's, derived rather than tuned.
+
+    Two parts: the scatter of the errors about the fit, as the 99 % two-sided
+    Student quantile of the slope's standard error (an error dated at a grid
+    point is ``O(dt)`` times a factor that jumps with where the switch falls in
+    its step); and the first term of the error's expansion that the fit leaves
+    out, ``e = C dt^p (1 + a dt + ...)``: it moves the local slope by about
+    ``(a dt)^left_out``, with ``|a|`` of the order of the motion's fastest rate
+    (1/s), so by at most about ``(rate * dt_max)^left_out`` over the steps
+    fitted (``left_out = 2`` when :func:`order_fit` fitted the ``a dt`` term).
+    """
+    return float(stats.t.ppf(0.995, dof)) * stderr + (rate * dt_max) ** left_out
+
+
+def geometric_steps(first: float, count: int, ratio: float = 1.37) -> tuple[float, ...]:
+    """``first / ratio^j``, ``j < count``: steps that are not nested (no grid holds another's points
+    but ``t = 0`` and, for ``ratio = 1.37``, multiples of 137 steps), so a switch falls at another place
+    in its step on every grid, unlike halvings, where an error fixed by the grid repeats (issue 32)."""
+    return tuple(first / ratio**j for j in range(count))
 
 
 def sign_changes(v: np.ndarray) -> int:

@@ -10,11 +10,14 @@ typed by hand, where the answer is known without running a solver.
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 
 import numpy as np
 import pytest
+from references import geometric_steps, order_band
+from scipy import stats
 from scipy.integrate import solve_ivp
 
 import lumped as L
@@ -24,9 +27,6 @@ from lumped.drivers.methods import METHODS
 from lumped.studies import accuracy as A
 from lumped.studies.accuracy import methods as M
 from lumped.studies.accuracy.orders import fitted_slope
-
-# Three halvings from 1e-3: enough for a slope, ~1 s for the three schemes on one case.
-STEPS = (1e-3, 5e-4, 2.5e-4)
 
 
 # ---------------------------------------------------------------- the methods, from the registry
@@ -39,7 +39,7 @@ def test_the_study_compares_every_method_of_the_registry_in_one_group():
     assert M.STUDY_METHODS == (*M.SCHEMES, *M.TOLERANCED, *M.CLOSED_FORM, "tanh") == A.STUDY_METHODS
     assert all(any(o.name == "rtol" for o in METHODS[name].options) for name in M.TOLERANCED)
     # the order of the rows of results/accuracy/study.json and of its order table
-    assert M.SCHEMES == ("backward-euler", "event-capturing", "theta", "moreau-jean")
+    assert M.SCHEMES == ("backward-euler", "event-locating", "theta", "moreau-jean")
     assert (M.TOLERANCED, M.CLOSED_FORM) == (("event-driven",), ("exact",))
 
 
@@ -129,7 +129,7 @@ def test_herschel_bulkley_reference_against_an_independent_integration(name, n):
     # Written here: slip phases m v' = -k x - s (tau + K |v|^n) by SciPy's
     # DOP853 with a terminal event at v = 0; stop if |k x| <= tau, else reverse.
     # Its own error (rtol 1e-13) is ~1e-13 m; the errors the study fits are
-    # >= 4e-9 m (event-capturing at 6.25e-5), so 1e-10 m leaves them intact.
+    # >= 4e-9 m (event-locating at 6.25e-5), so 1e-10 m leaves them intact.
     case, m, k, tau = A.cases()[name], 1.0, 100.0, 1.0
     ref = A.reference(case)
     t, x, s = 0.0, case.x0, -1
@@ -149,61 +149,135 @@ def test_herschel_bulkley_reference_against_an_independent_integration(name, n):
 
 # ---------------------------------------------------------------- observed orders
 
+# Seven steps in the ratio 1.37 from 1e-3 s (down to 1.5e-4 s, ~1.5 s for the four schemes on one case):
+# not nested, so each switch falls at another place in its step on every grid (orders.py's Notes), and
+# enough points for a standard error (five degrees of freedom).
+ORDER_STEPS = geometric_steps(1e-3, 7)
+
+
+def band(fit: A.Fit, rate: float, dt_max: float) -> float:
+    """:func:`references.order_band` of a fit (its points less its constants and its slope)."""
+    return order_band(fit.stderr, fit.points - fit.series - 1, rate, dt_max)
+
+
+def fastest_rate(case: A.Case) -> float:
+    """The fastest rate of a case's motion (1/s): natural frequency, forcing frequency, viscous rate 1/(m gamma)."""
+    osc = case.oscillator
+    gamma = getattr(osc.dashpot, "gamma", math.inf)
+    omega_f = 0.0 if case.force is None else case.force.omega
+    return max(math.sqrt(osc.stiffness / osc.mass), omega_f, 1 / (osc.mass * gamma))
+
 
 @pytest.fixture(scope="module")
-def forced_orders() -> dict:
+def forced_fits() -> dict[str, dict[str, A.Fit]]:
+    """``[scheme][quantity]``: the Fit of each fixed-step scheme on eq. (17b) over ORDER_STEPS."""
     case = A.cases()["forced-17b"]
     ref = A.reference(case)
-    results = [A.run(case, m, dt, ref=ref) for m in A.SCHEMES for dt in STEPS]
-    return A.observed_orders(results)["forced-17b"]
+    out: dict[str, dict[str, A.Fit]] = {}
+    for m in A.SCHEMES:
+        rs = [A.run(case, m, dt, ref=ref) for dt in ORDER_STEPS]
+        quantities = {"max_x": [r.max_x_error for r in rs], "position": [r.position_error for r in rs]}
+        quantities |= {k: [r.event_errors.get(k, math.nan) for r in rs] for k in rs[0].event_errors}
+        out[m] = {q: A.fit_order(ORDER_STEPS, e) for q, e in quantities.items()}
+    return out
 
 
-def test_event_capturing_is_second_order_per_event_type(forced_orders):
+FORCED_RATE = fastest_rate(A.cases()["forced-17b"])  # the forcing's 5 pi rad/s
+
+
+def test_the_study_steps_are_not_nested():
+    # The cause of Table 3's slope 0 (issue 32): on steps 1.6e-3 / 2^j every grid holds
+    # t = 0.0064 s, 23 us after the (17b) breakaway, so a scheme dating it at a grid point misses
+    # it by the same 23 us at every step.  No step of the study is a whole multiple of another.
+    for coarse, fine in itertools.combinations(A.STEPS, 2):
+        ratio = coarse / fine
+        assert abs(ratio - round(ratio)) > 1e-3, (coarse, fine)
+    assert max(A.STEPS) / min(A.STEPS) > 10  # a decade at least, for a slope with a spread
+
+
+def test_pooled_order_is_the_least_squares_slope_with_its_standard_error():
+    # Independent reference: scipy.stats.linregress on one series; on two series with their
+    # own constants, the same line fitted to the series shifted onto a common constant.
+    steps = np.array(ORDER_STEPS)
+    wobble = np.array([1.3, 0.7, 1.1, 0.8, 1.25, 0.9, 1.0])  # an irregular factor, as of a grid-dated event
+    errors = 0.4 * steps * wobble
+    ref = stats.linregress(np.log(steps), np.log(errors))
+    fit = A.fit_order(steps, errors)
+    assert (fit.slope, fit.stderr, fit.points, fit.series) == (
+        pytest.approx(ref.slope, rel=1e-12),
+        pytest.approx(ref.stderr, rel=1e-12),
+        7,
+        1,
+    )
+    h, e = np.log(steps), np.log(errors)
+    pooled = A.pooled_order([(h, e), (h[1:], e[1:] + 3.0)])  # the same errors, a constant 20 times larger
+    x, y = np.concatenate([h - h.mean(), h[1:] - h[1:].mean()]), np.concatenate([e - e.mean(), e[1:] - e[1:].mean()])
+    slope = (x @ y) / (x @ x)
+    stderr = math.sqrt(((y - slope * x) @ (y - slope * x)) / (x.size - 3) / (x @ x))  # 13 points, 2 constants, 1 slope
+    assert (pooled.slope, pooled.stderr, pooled.points, pooled.series) == (
+        pytest.approx(slope, rel=1e-12),
+        pytest.approx(stderr, rel=1e-12),
+        13,
+        2,
+    )
+
+
+def test_event_locating_is_second_order_per_event_type(forced_fits):
     # Trapezoidal within modes, switches located to O(h^3) locally: O(dt^2)
     # for the state, the rest and every located event (event_capturing's Notes).
-    # Measured 1.998 to 2.000; the band +-0.1 leaves room for the next term.
-    o = forced_orders["event-capturing"]
-    for q in ("position", "rest_time", "max_x", "stop", "reversal", "forcing-off"):
-        assert 1.9 <= o[q] <= 2.1, q
-    assert math.isnan(o["breakaway"])  # located on the closed-form forcing: error 0 at every step
+    for q in ("position", "max_x", "stop", "reversal", "forcing-off"):
+        fit = forced_fits["event-locating"][q]
+        width = band(fit, FORCED_RATE, ORDER_STEPS[0])
+        assert abs(fit.slope - 2) <= width < 0.5, q  # two, and the band excludes one
+    assert math.isnan(forced_fits["event-locating"]["breakaway"].slope)  # closed form on the sine: error 0
 
 
-def test_algorithm1_is_first_order(forced_orders):
-    # Backward Euler: O(dt) for the state (measured 0.99), and each switch is
-    # seen at the next grid point, an error between 0 and dt whose place in
-    # that interval changes with dt: the event slopes scatter about 1
-    # (measured 1.07 stop, 1.02 reversal, 1.01 forcing-off) and get a band
-    # twice as wide.
-    o = forced_orders["backward-euler"]
-    assert 0.9 <= o["max_x"] <= 1.1
-    for q in ("stop", "reversal", "forcing-off"):
-        assert 0.8 <= o[q] <= 1.3, q
+def test_algorithm1_is_first_order(forced_fits):
+    # Backward Euler: O(dt) for the state, and each switch is seen at the next grid
+    # point, an error between 0 and dt whose factor jumps with where the switch falls:
+    # the spread of those slopes is in their standard errors, and so in the band.
+    for q in ("max_x", "stop", "reversal", "forcing-off"):
+        fit = forced_fits["backward-euler"][q]
+        width = band(fit, FORCED_RATE, ORDER_STEPS[0])
+        assert abs(fit.slope - 1) <= width < 0.5, q  # one, and the band excludes two and zero
 
 
-def test_theta_method_is_not_second_order_through_switches(forced_orders):
-    # theta.theta_method's Notes: a step across a switch averages G over
-    # the jump of F_d, an O(dt) momentum error whose factor depends on where
-    # the switch falls in its step, so the error is not smooth in dt: over
-    # these three steps the slope of max|x - x_ref| measures 0.63 (over five
-    # halvings 1.01; tests/test_schemes.py bands it over four).  What holds
-    # at every step is that it is not two, the order it has without switches.
-    assert 0.3 <= forced_orders["theta"]["max_x"] <= 1.5
+def test_theta_method_is_not_second_order_through_switches(forced_fits):
+    # theta.theta_method's Notes: a step across a switch averages G over the jump
+    # of F_d, an O(dt) momentum error whose factor depends on where the switch
+    # falls in its step.  Its order without switches, two, lies outside the band.
+    fit = forced_fits["theta"]["max_x"]
+    width = band(fit, FORCED_RATE, ORDER_STEPS[0])
+    assert abs(fit.slope - 1) <= width and abs(fit.slope - 2) > width
 
 
-def test_moreau_jean_events_pair_within_a_step(forced_orders):
+def test_moreau_jean_events_pair_at_every_step(forced_fits):
     # Unlike the theta method it makes no one-step stops (the band is implicit at the new
-    # level), so every event pairs with the reference's and an order is fitted for each kind.
-    # Its events are read on the grid, as Algorithm 1's: each is dated at a grid point next to
-    # the scheme's own switch, so at the finest step every error is below that step (measured
-    # 0.7 dt at most), and the slopes scatter with where the switches fall (0.6 to 1.6 here).
-    o = forced_orders["moreau-jean"]
-    assert all(math.isfinite(o[q]) for q in ("breakaway", "stop", "reversal", "forcing-off"))
-    finest = A.run("forced-17b", "moreau-jean", STEPS[-1])
-    assert all(err < STEPS[-1] for kind, err in finest.event_errors.items() if kind != "forcing-off")
+    # level), so every event pairs with the reference's at every step, and an order is fitted
+    # for each kind over all of them.  (Its events are read on the grid, as Algorithm 1's, next
+    # to the scheme's own switches: errors of 0.1 to 1.5 steps here, not below one step as the
+    # nested steps of the old table suggested.)
+    o = forced_fits["moreau-jean"]
+    assert all(o[q].points == len(ORDER_STEPS) for q in ("breakaway", "stop", "reversal", "forcing-off"))
+
+
+def test_moreau_jean_breakaway_order_is_not_the_artefact_of_nested_grids():
+    # Table 3 printed slope 0.00 for Moreau-Jean's breakaway on both (17b) cases: on nested
+    # steps its error was 23 us at every step.  On the study's steps (A.STEPS) the error is
+    # O(dt) and irregular: the slope is one within its band, and zero lies outside it.
+    case = A.cases()["forced-17b"]
+    ref = A.reference(case)
+    errors = [A.run(case, "moreau-jean", dt, ref=ref).event_errors["breakaway"] for dt in A.STEPS]
+    fit = A.fit_order(A.STEPS, errors)
+    width = band(fit, fastest_rate(case), A.STEPS[0])
+    assert abs(fit.slope - 1) <= width and fit.slope > width
+    # O(dt): its stick is exact and the load enters a step at its theta-average, so the breakaway
+    # is dated at a grid point within one step of the exact one.
+    assert all(e < dt for e, dt in zip(errors, A.STEPS))
 
 
 def test_moreau_jean_runs_on_the_bingham_and_coulomb_cases_only():
-    study = A.study(["coulomb-17b", "hb-n2"], steps=(1e-3, 5e-4), rtols=(1e-6,), tanh=[])
+    study = A.study(["coulomb-17b", "hb-n2"], steps=(1e-3, 5e-4), rtols=(1e-6,), tanh=[], original_step=None)
     assert {r.case for r in study.results if r.method == "moreau-jean"} == {"coulomb-17b"}
     assert {r.case for r in study.results if r.method == "theta"} == {"coulomb-17b", "hb-n2"}
 
@@ -212,7 +286,7 @@ def test_friction_oscillator_rests_where_the_half_cycles_say():
     # Coulomb, k = m = 1, bound 1: each half-cycle's amplitude about the friction's centre falls
     # by 2; from (12, 6) the first is sqrt(13^2 + 6^2) = sqrt(205) about -1, the eighth ends
     # inside the band at 15 - sqrt(205) (closed form, independent of the exact solver).
-    fo = A.study(["forced-17b"], steps=(1e-3, 5e-4), rtols=(1e-6,), tanh=[]).friction_oscillator
+    fo = A.study(["forced-17b"], steps=(1e-3, 5e-4), rtols=(1e-6,), tanh=[], original_step=None).friction_oscillator
     assert fo["exact"] == pytest.approx(15 - math.sqrt(205), abs=1e-12)
     s = fo["schemes"]
     # Siconos rests at 0.6820441351954105 m (tests/data/siconos, its last row), to the peer test's 1e-10.
@@ -227,15 +301,38 @@ def test_slope_uses_the_finest_finite_run():
     assert fitted_slope(steps, errors) == pytest.approx(1.0, abs=1e-12)
     assert math.isnan(fitted_slope(steps, [1.0, 1.0, math.nan, 1.0]))  # one point left: no fit
     assert str(fitted_slope(steps, [3e-5] * 4)) == "0.0"  # constant errors: exactly 0, never -0.0 or 1e-17
+    assert A.fit_order(steps, [3e-5] * 4).stderr == 0.0
+
+
+def test_the_original_step_runs_but_is_not_fitted():
+    # The headline quotes the schemes at the original's 1e-4 s, a grid through t = 0.0064 s: it runs,
+    # and the orders are fitted over the study's steps alone.
+    study = A.study(["forced-17b"], steps=ORDER_STEPS[:3], rtols=(1e-6,), tanh=[])
+    assert {r.resolution for r in study.results if r.method == "backward-euler"} == {*ORDER_STEPS[:3], 1e-4}
+    assert study.steps == ORDER_STEPS[:3]
+    fits = study.orders["forced-17b"]["backward-euler"]
+    assert fits["max_x"]["points"] == 3
 
 
 @pytest.mark.slow
 def test_full_study_order_table():
-    # The pipeline's study (~20 s): every case, every scheme.
+    # The pipeline's study (~20 s): every case, every scheme; per scheme and event kind one slope
+    # pooled over the cases, with its standard error.  The band's rate is the fastest of every case.
     study = A.study()
-    table = A.order_table(study.orders)
-    assert all(1.8 <= v <= 2.1 for k in ("stop", "reversal", "forcing-off") for v in table["event-capturing"][k])
-    assert all(0.9 <= v <= 1.3 for k in ("reversal", "forcing-off") for v in table["backward-euler"][k])
+    table = A.order_table(study.results, study.steps)
+    rate = max(fastest_rate(c) for c in A.cases().values())
+
+    def fit(row: dict) -> A.Fit:
+        return A.Fit(row["slope"], row["stderr"], row["points"], row["cases"])
+
+    for k in ("stop", "reversal", "forcing-off"):
+        f = fit(table["event-locating"][k])
+        assert abs(f.slope - 2) <= band(f, rate, A.STEPS[0]) < 0.5, k
+    for method in ("backward-euler", "moreau-jean"):
+        for k in A.KINDS:
+            f = fit(table[method][k])
+            assert abs(f.slope - 1) <= band(f, rate, A.STEPS[0]), (method, k)
+    assert math.isnan(table["event-locating"]["breakaway"]["slope"])
     json.dumps(A.to_json(study), allow_nan=False)
 
 
@@ -252,7 +349,7 @@ def test_event_driven_run_meets_the_target_on_the_free_decay():
 
 
 def test_to_json_is_strict_and_without_wall_time():
-    study = A.study(["forced-17b"], steps=(1e-3, 5e-4, 2.5e-4), rtols=(1e-6,), tanh=[])
+    study = A.study(["forced-17b"], steps=(1e-3, 5e-4, 2.5e-4), rtols=(1e-6,), tanh=[], original_step=None)
     text = json.dumps(A.to_json(study), allow_nan=False)
     assert "wall_time" not in text
     assert "wall_time" in json.dumps(A.to_json(study, wall_time=True))
@@ -261,7 +358,7 @@ def test_to_json_is_strict_and_without_wall_time():
 
 def test_from_json_gives_back_the_study_that_to_json_wrote():
     """Notebook 09 reads results/accuracy/study.json through from_json: the same study, NaN and inf included."""
-    study = A.study(["free-decay"], steps=(1.6e-3, 8e-4, 4e-4), rtols=(1e-6,), tanh=[(1e-2, 1e-6)])
+    study = A.study(["free-decay"], steps=(1.6e-3, 8e-4, 4e-4), rtols=(1e-6,), tanh=[(1e-2, 1e-6)], original_step=None)
     data = json.loads(json.dumps(A.to_json(study), allow_nan=False))
     back = A.from_json(data)
     assert A.to_json(back) == data

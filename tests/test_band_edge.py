@@ -22,7 +22,7 @@ path exposes is set.  One ulp outside the band (``x0 = nextafter(0.25, 1)``:
 ``k x0 = 1 + 2^-52``, exact) every path must slip at the first step: the band
 is closed, not widened.
 
-The event-locating methods (exact, event-driven, event-capturing) follow at
+The methods that locate events (exact, event-driven, event-locating) follow at
 the end: released on the edge, held there by a force that switches off, and
 (the exact solution) stopping on the edge after a slip.
 """
@@ -146,7 +146,7 @@ def test_a_band_of_zero_width_is_never_rigid(solver: str, law: str) -> None:
     assert np.all(tr.v == 0) and not tr.rigid.any()
 
 
-# ---- the event-locating methods: exact, event-driven, event-capturing ------------------------------------
+# ---- the methods that locate events: exact, event-driven, event-locating ----------------------------
 #
 # Their stick test at a release, a breakaway check and a forcing switch-off is the same closed band
 # (:meth:`EventMarch.mode`, :func:`lumped.laws.sticks`), and at a zero of ``v`` after a slip in direction
@@ -156,7 +156,7 @@ def test_a_band_of_zero_width_is_never_rigid(solver: str, law: str) -> None:
 # is ``-+tau`` again, exactly, once the force is off), the mass never moves: no event but the forcing's
 # switch-off and the rest, dated at ``t = 0``.
 
-EVENT_METHODS = ("exact", "event-driven", "event-capturing")
+EVENT_METHODS = ("exact", "event-driven", "event-locating")
 T_OFF = 0.5
 HOLDING = {"unforced": None, "forcing-off": T_OFF}
 
@@ -164,7 +164,7 @@ HOLDING = {"unforced": None, "forcing-off": T_OFF}
 def located(method: str, osc: L.Oscillator, x0: float, force: L.SwitchedSine | None):  # noqa: ANN201
     """``(events, trajectory)`` of an event-locating method on the grid ``DT`` to ``t = 2`` (past the stop at ``pi/2``)."""
     kw = dict(x0=x0, force=force)
-    if method == "event-capturing":
+    if method == "event-locating":
         run = L.event_capturing(osc, 2.0, DT, **kw)
         return run.events, run.trajectory
     sol = L.METHODS[method].solution(osc, 2.0, **kw)
@@ -198,7 +198,7 @@ def test_a_stop_exactly_on_the_edge_is_a_stop(start: str) -> None:
     ``math.pi``, halved (exact) and doubled back (exact), and ``cos(math.pi)`` is ``-1`` in every libm (the
     true value is ``-1 + 7.5e-33``; ``scripts/perturb`` leaves ``+-1`` alone for that reason).  So ``x_stop
     = c - (x0 - c) = -+0.25`` and the net force ``-k x_stop = +-tau`` exactly: the strict rule stops it.
-    (The event-driven and event-capturing methods reach the stop with their integration error, ``2e-11``
+    (The event-driven and event-locating methods reach the stop with their integration error, ``2e-11``
     and ``1e-14`` m off the edge, so only the exact method meets the edge itself after a slip.)
     """
     x0 = STOPS[start]

@@ -76,17 +76,18 @@ def test_simulate_help_lists_every_method_with_what_it_runs_and_its_options() ->
     blocks = _blocks(text, "methods (--method NAME):")
     assert list(blocks) == list(METHODS)
     for name, m in METHODS.items():
-        assert blocks[name] == f"{m.description}. Runs {m.runs}. Options: {'; '.join(m.option_texts) or 'none'}."
+        alias = f" Alias: {', '.join(m.aliases)} (a former name; it selects this method)." if m.aliases else ""
+        assert blocks[name] == f"{m.description}. Runs {m.runs}.{alias} Options: {'; '.join(m.option_texts) or 'none'}."
     for option, users in OPTIONS.values():  # each option's help names the methods that take it
         assert f"{option.flag} {option.name.upper()} {option.help} of --method {', '.join(users)}" in _flat(text)
 
 
 def test_no_help_says_a_network_needs_backward_euler() -> None:
-    """``exact`` and ``event-capturing`` run networks: no help may say that another method needs one mass."""
+    """``exact`` and ``event-locating`` run networks: no help may say that another method needs one mass."""
     text = _flat(_help("simulate"))
     assert "needs one mass" not in text
     networks = [n for n, m in METHODS.items() if m.runs_networks or m.piecewise_networks is not None]
-    assert networks == ["backward-euler", "exact", "event-capturing"]
+    assert networks == ["backward-euler", "exact", "event-locating"]
     for name in networks:
         assert re.search(rf" {name} .*?Runs one mass [^.]*; (any network|networks of )", text), name
 

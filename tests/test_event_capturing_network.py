@@ -1,9 +1,9 @@
-"""``event-capturing`` on networks (issue 21): order two through events, against independent solutions.
+"""``event-locating`` on networks (issue 21): order two through events, against independent solutions.
 
 :func:`lumped.solvers.event_capturing_network.solve_capturing_network` is
 checked against the independent stick-slip reference of ``tests/references.py``
 (DOP853 at ``rtol = 1e-12`` per mode, modes by enumeration; no code shared),
-against the one-mass ``event-capturing`` solver (a separate implementation:
+against the one-mass ``event-locating`` solver (a separate implementation:
 the dashpot's resolvent in scalar arithmetic), against closed forms (the
 Coulomb oscillator under a constant load and under a constant ground
 acceleration), and for its refusals and its routing.
@@ -27,7 +27,7 @@ from lumped.solvers.event_capturing_network import solve_capturing_network
 
 
 def capture(net: Network, t_end: float, dt: float) -> L.Trajectory:
-    return L.solve(L.Problem(net, t_end), dt, method="event-capturing")
+    return L.solve(L.Problem(net, t_end), dt, method="event-locating")
 
 
 def slope(errors: list[float], steps: list[float]) -> float:
@@ -72,7 +72,7 @@ def test_a_table_load_with_its_end_as_a_jump_keeps_order_two() -> None:
     assert 1.8 <= slope(errors, steps) <= 2.2, errors
 
 
-# -- against the one-mass event-capturing solver ----------------------------------------
+# -- against the one-mass event-locating solver ----------------------------------------
 @pytest.mark.parametrize(("gamma", "force"), [(1.0, None), (math.inf, None), (1.0, FORCE), (math.inf, FORCE)])
 def test_one_mass_is_the_one_mass_event_capturing_solver(gamma: float, force: L.SwitchedSine | None) -> None:
     """The paper's system run by the network solver (called directly: ``solve`` sends it to the
@@ -137,7 +137,7 @@ def test_a_constant_ground_acceleration_from_a_system_file_rests_at_the_closed_f
     )
     dt = 1e-3
     tr = capture(L.load_system(tmp_path / "sys.toml"), 1.0, dt)
-    assert tr.solver == "event-capturing" and np.all(tr.applied == p)
+    assert tr.solver == "event-locating" and np.all(tr.applied == p)
     np.testing.assert_allclose(tr.final_rest[1], 2 * (p - tau) / k, rtol=0, atol=1e-12)
     assert abs(tr.final_rest[0][0] - math.pi / 10.0) <= _rest_bound(10.0, dt)
 
@@ -152,7 +152,7 @@ def test_a_one_mass_table_load_runs_through_the_network_solver() -> None:
     table = Network([Mass("m", 1.0)], base, [Load("m", L.Table(ts, FORCE(ts)))])
     sine = Network([Mass("m", 1.0)], base, [Load("m", FORCE)])
     a, b = capture(table, 1.5, 1e-3), capture(sine, 1.5, 1e-3)
-    assert a.solver == "event-capturing" and a.events
+    assert a.solver == "event-locating" and a.events
     assert np.max(np.abs(a.positions - b.positions)) <= 1e-8
 
 
@@ -166,7 +166,7 @@ def test_a_one_mass_table_load_runs_through_the_network_solver() -> None:
 )
 def test_refuses_an_element_without_linear_phases_in_one_line(element: L.Element, kind: str) -> None:
     net = Network([Mass("a", 1.0, 0.1), Mass("b", 1.0)], [Spring("k", ("ground", "a"), 10.0), element])
-    message = f"^method 'event-capturing' cannot run element 's' of kind '{kind}': its linear steps per phase need"
+    message = f"^method 'event-locating' cannot run element 's' of kind '{kind}': its linear steps per phase need"
     with pytest.raises(ValueError, match=message):
         capture(net, 0.1, 1e-3)
 
@@ -180,13 +180,13 @@ def test_refuses_a_loop_of_friction_elements_in_one_line() -> None:
             Bingham("p2", ("ground", "m"), 1.0, math.inf),
         ],
     )
-    with pytest.raises(ValueError, match="^method 'event-capturing' cannot run elements 'p1', 'p2': they close a loop"):
+    with pytest.raises(ValueError, match="^method 'event-locating' cannot run elements 'p1', 'p2': they close a loop"):
         capture(net, 0.1, 1e-3)
 
 
 def test_the_command_line_runs_a_chain_file_and_refuses_a_maxwell_element(tmp_path) -> None:  # noqa: ANN001
     out = tmp_path / "chain.csv"
-    run = ["simulate", "--method", "event-capturing", "--t-end", "2.5"]
+    run = ["simulate", "--method", "event-locating", "--t-end", "2.5"]
     ok = run_lumped(*run, "--system", "examples/chain.toml", "--output", out)
     assert ok.returncode == 0, ok.stderr
     header = out.read_text().splitlines()[0].split(",")
@@ -203,7 +203,7 @@ def test_the_command_line_runs_a_chain_file_and_refuses_a_maxwell_element(tmp_pa
 def test_the_oscillator_api_runs_a_table_load_as_the_network_solver_does() -> None:
     osc = L.Oscillator.bingham(1.0, 100.0, 1.0, 1.0)
     pull = L.Table([0.0, 1.0, 2.0], [0.0, 3.0, 0.0])
-    tr = L.simulate(osc, 2.0, 1e-3, x0=0.1, force=pull, method="event-capturing")
+    tr = L.simulate(osc, 2.0, 1e-3, x0=0.1, force=pull, method="event-locating")
     net = L.Problem.oscillator(osc, 2.0, x0=0.1, force=pull).system
     same = solve_capturing_network(net, 2.0, 1e-3)
     assert np.array_equal(tr.x, same.positions[:, 0]) and np.array_equal(tr.F, pull(tr.t))

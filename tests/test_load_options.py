@@ -121,7 +121,7 @@ def test_a_method_that_needs_a_sine_refuses_a_table_naming_the_entry(folder, cap
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and not any(folder.glob("out.csv*"))
     assert err.startswith(f"lumped simulate: error: system file {str(path)!r}: the loads on 'm': method {method!r}")
-    assert "not a table; backward-euler, event-capturing, theta and moreau-jean run any load" in err
+    assert "not a table; backward-euler, event-locating, theta and moreau-jean run any load" in err
 
 
 def test_a_table_file_is_read_relative_to_the_system_file(folder, monkeypatch):

@@ -77,7 +77,7 @@ def test_help_lists_every_registered_method(capsys):
     text = " ".join(capsys.readouterr().out.split())
     for name, m in methods.METHODS.items():  # tests/test_cli_reference.py checks the whole table
         assert f"{name} {m.description}. Runs {m.runs}." in text
-    assert "needs one mass" not in text  # exact and event-capturing run networks too
+    assert "needs one mass" not in text  # exact and event-locating run networks too
     assert main(["sweep", "--help"]) == 0
     text = " ".join(capsys.readouterr().out.split())
     assert "--method {" + ",".join(methods.SWEEP_METHODS) + "}" in text

@@ -1,4 +1,4 @@
-"""The θ-method and the event-capturing scheme against the exact solution and Algorithm 1.
+"""The θ-method and the event-locating scheme against the exact solution and Algorithm 1.
 
 Orders are slopes of log(error) against log(dt) over a halving sequence
 (``references.order``), as in ``test_convergence.py``.  The references are
@@ -14,7 +14,7 @@ scheme                 dt = 1e-3  dt = 1e-4
 =====================  =========  =========
 Algorithm 1            3.4 [*]    0.376
 θ-method, θ = 1/2      1.2e-3     1.2e-5
-event-capturing        6.3e-4     6.3e-6
+event-locating        6.3e-4     6.3e-6
 =====================  =========  =========
 
 [*] at dt = 1e-3 Algorithm 1 stops one half-cycle early, on the other side.
@@ -126,7 +126,7 @@ def test_theta_half_stops_spuriously_at_reversals():
     # band, which happens at some reversals: one-point "stick" intervals that
     # the exact solution does not have.  Whether a reversal is hit depends on
     # where it falls in its step: measured 1, 0, 2, 1 such points at these dt.
-    # The event-capturing scheme reverses there, as the exact solution does.
+    # The event-locating scheme reverses there, as the exact solution does.
     gamma, kwargs, t_end = CASES["coulomb-17b"]
     osc = _oscillator(gamma)
     spurious = []
@@ -194,7 +194,7 @@ def test_driver_and_cli_registry_run_both_schemes():
     gamma, kwargs, t_end = CASES["fig6-17b"]
     osc = _oscillator(gamma)
     for name, direct in (
-        ("event-capturing", event_capturing(osc, t_end, 1e-3, **kwargs).trajectory),
+        ("event-locating", event_capturing(osc, t_end, 1e-3, **kwargs).trajectory),
         ("theta", theta_method(osc, t_end, 1e-3, **kwargs)),
     ):
         via = L.simulate(osc, t_end, 1e-3, method=name, **kwargs)
@@ -206,7 +206,7 @@ def test_driver_and_cli_registry_run_both_schemes():
     [
         (lambda o: theta_method(o, 1.0, 1e-3, theta=0.3), "theta must lie in"),
         (lambda o: theta_method(o, 1.0, 1e-3, theta=math.nan), "theta"),
-        (lambda o: event_capturing(o, 1.0, 1e-3, force=lambda t: 0 * t), "force: the event-capturing"),
+        (lambda o: event_capturing(o, 1.0, 1e-3, force=lambda t: 0 * t), "force: the event-locating"),
         (lambda o: event_capturing(o, 1.0, -1.0), "dt"),
         (lambda o: event_capturing("o", 1.0, 1e-3), "oscillator"),
     ],
@@ -285,7 +285,7 @@ def test_herschel_bulkley_orders(n):
     assert (1.8 if n < 1 else 1.9) <= times <= 2.1
 
 
-@pytest.mark.parametrize("scheme", ["event-capturing", "theta"])
+@pytest.mark.parametrize("scheme", ["event-locating", "theta"])
 def test_save_every_keeps_the_same_points(scheme):
     # Saving is bookkeeping only: the kept rows are the full run's rows, bit for bit,
     # and the final rest does not depend on the stride.
@@ -306,3 +306,32 @@ def test_event_capturing_stops_at_once_when_the_band_kills_the_speed():
     exact = L.solve_exact(osc, 2.0, v0=1.0)
     assert run.rest_position == exact.rest_position == 0.0
     assert abs(run.rest_time - exact.rest_time) <= EPS * 2e-3  # the stop's resolution: an ulp of the step
+
+
+def test_event_capturing_is_an_alias_of_event_locating(tmp_path):
+    # Issue 32: the scheme locates every switch inside its step (event-driven on a fixed grid, in
+    # Acary and Brogliato's words), so the registry names it event-locating; the former name still
+    # selects it, in the API and on the command line, and says which method it is.
+    from cli_run import run_lumped
+
+    from lumped.drivers.methods import ALIASES, METHODS
+
+    assert ALIASES == {"event-capturing": "event-locating"} and METHODS["event-capturing"] is METHODS["event-locating"]
+    assert "event-capturing" in METHODS and "event-capturing" not in list(METHODS)  # listed once, by its name
+    gamma, kwargs, t_end = CASES["fig6-17b"]
+    osc = _oscillator(gamma)
+    old, new = (L.simulate(osc, t_end, 1e-3, method=name, **kwargs) for name in ("event-capturing", "event-locating"))
+    assert old.method == "event-locating" and all(np.array_equal(getattr(old, c), getattr(new, c)) for c in L.COLUMNS)
+    out = tmp_path / "run.csv"
+    cli = run_lumped("simulate", "--method", "event-capturing", "--t-end", "0.5", "--output", out)
+    note = "note: --method event-capturing is an alias of event-locating"
+    assert cli.returncode == 0 and cli.stderr.splitlines()[0] == note and cli.stderr.count("alias") == 1
+    plain = run_lumped("simulate", "--method", "event-locating", "--t-end", "0.5", "--output", out)
+    assert plain.returncode == 0 and "alias" not in plain.stderr
+    assert "Alias: event-capturing (a former name; it selects this method)." in " ".join(
+        run_lumped("simulate", "--help").stdout.split()
+    )
+    sweep = run_lumped("sweep", "--method", "event-capturing", "--vary", "x0=0:1:3", "--output", out)
+    assert (
+        sweep.returncode == 2 and "'event-capturing' (an alias of 'event-locating') cannot run a sweep" in sweep.stderr
+    )

@@ -11,12 +11,13 @@ refused (:func:`refuse_repeats`).
 from __future__ import annotations
 
 import argparse
+import sys
 from collections.abc import Sequence
 
 from lumped.cli.loads import FLAGS as LOAD_FLAGS
 from lumped.cli.messages import API_TO_OPTION
 from lumped.cli.reference import sweep_option_names
-from lumped.drivers.methods import METHODS, OPTIONS, SWEEP_METHODS
+from lumped.drivers.methods import ALIASES, METHODS, OPTIONS, SWEEP_METHODS
 from lumped.model.parameters import PARAMETERS, PER_ROW
 from lumped.numerics import validate
 
@@ -45,7 +46,7 @@ class Parser(argparse.ArgumentParser):
 
 
 class HelpFormatter(argparse.HelpFormatter):
-    """Wraps option help at spaces only: "event-capturing" is never split at its hyphen.  The description
+    """Wraps option help at spaces only: "event-locating" is never split at its hyphen.  The description
     and the epilog are filled paragraph by paragraph; a paragraph with indented lines (the methods' table of
     :func:`lumped.cli.reference.methods_help`) is kept as it is."""
 
@@ -102,9 +103,12 @@ def method_options(args: argparse.Namespace) -> dict[str, object]:
 
 
 def check_method(name: str) -> None:
-    """Refuse a ``--method`` that is not in the registry (:data:`lumped.drivers.methods.METHODS`)."""
+    """Refuse a ``--method`` that is not in the registry (:data:`lumped.drivers.methods.METHODS`);
+    for a former name (:data:`~lumped.drivers.methods.ALIASES`), say on stderr which method it selects."""
     if name not in METHODS:
         raise ValueError(f"--method must be one of {', '.join(METHODS)}; got {name!r}")
+    if name in ALIASES:
+        print(f"note: --method {name} is an alias of {ALIASES[name]}", file=sys.stderr)
 
 
 def _is_option(item: str) -> bool:

@@ -36,6 +36,11 @@ def sweep_option_names() -> tuple[str, ...]:
     return tuple(dict.fromkeys(o.name for n in SWEEP_METHODS for o in METHODS[n].options))
 
 
+def _alias_text(aliases: tuple[str, ...]) -> list[str]:
+    """``["Alias: event-capturing (a former name; ...)."]`` for a method with former names, else nothing."""
+    return [f"Alias: {', '.join(aliases)} (a former name; it selects this method)."] if aliases else []
+
+
 def methods_help(sweep: bool = False) -> str:
     """The ``--method`` table of ``--help``: each method's name, description, what it runs and its options.
 
@@ -44,7 +49,7 @@ def methods_help(sweep: bool = False) -> str:
     lines = ["methods a sweep runs (--method NAME):" if sweep else "methods (--method NAME):"]
     for name in _names(sweep):
         m = METHODS[name]
-        texts = [f"{m.description}.", *([] if sweep else [f"Runs {m.runs}."])]
+        texts = [f"{m.description}.", *([] if sweep else [f"Runs {m.runs}."]), *_alias_text(m.aliases)]
         texts.append(f"Options: {'; '.join(m.option_texts) or 'none'}.")
         lines.append(f"  {name}")
         for text in texts:
@@ -60,5 +65,6 @@ def methods_markdown() -> str:
     ]
     for name, m in METHODS.items():
         opts = "; ".join(f"`{t.split(':', 1)[0]}`:{t.split(':', 1)[1]}" for t in m.option_texts) or "none"
-        rows.append(f"| `{name}` | {m.description} | {m.runs} | {opts} | {'yes' if m.batch else 'no'} |")
+        what = " ".join([m.description + ".", *_alias_text(m.aliases)])
+        rows.append(f"| `{name}` | {what} | {m.runs} | {opts} | {'yes' if m.batch else 'no'} |")
     return "\n".join([BEGIN, "", *rows, "", END])

@@ -35,7 +35,7 @@ the same fields (:attr:`Method.runs`, :attr:`Method.option_texts`,
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from types import MappingProxyType
 
@@ -56,7 +56,7 @@ from lumped.solvers.network_phase import _TAKES as PIECEWISE_TAKES  # the one wo
 from lumped.solvers.network_phase import refusal
 from lumped.solvers.theta import theta_method
 
-__all__ = ["METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", "NETWORK_SOLVERS", "OPTIONS"]
+__all__ = ["ALIASES", "METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", "NETWORK_SOLVERS", "OPTIONS"]
 
 Force = SwitchedSine | Callable[[np.ndarray], np.ndarray] | None
 #: A one-mass solver: ``(osc, t_end, dt, x0, v0, force, save_every, **options) -> Trajectory``.
@@ -129,6 +129,8 @@ class Method:
     #: and constants (its closed forms carry them).  A one-mass system whose load the one-mass solver
     #: refuses then runs through it.
     piecewise_any_load: bool = False
+    #: Former names that still select it (``METHODS[alias]`` is this method; ``--help`` and a note on use say so).
+    aliases: tuple[str, ...] = ()
 
     def __call__(self, *args: object, **options: object) -> Trajectory:
         return self.run(*args, **options)
@@ -265,8 +267,27 @@ _STUDY_ONLY = "a scheme of the accuracy study, for which a sweep has no cost est
 _RTOL = Option("rtol", validate_rtol, DEFAULT_RTOL, "relative tolerance", "in [2.2e-14, 1e-2]")
 _THETA = Option("theta", validate_theta, DEFAULT_THETA, "weight of the new level of the smooth forces", "in (0, 1]")
 
+
+class _Registry(Mapping[str, Method]):
+    """The methods by name, read-only; a method's alias (:attr:`Method.aliases`) finds it too,
+    but iteration, ``len`` and ``--help``'s list give each method once, by its name."""
+
+    def __init__(self, methods: Mapping[str, Method]) -> None:
+        self._methods = MappingProxyType(dict(methods))
+        self._aliases = {a: m.name for m in methods.values() for a in m.aliases}
+
+    def __getitem__(self, name: str) -> Method:
+        return self._methods[self._aliases.get(name, name)]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._methods)
+
+    def __len__(self) -> int:
+        return len(self._methods)
+
+
 #: The registry, in the order ``--help`` lists it.
-METHODS: Mapping[str, Method] = MappingProxyType(
+METHODS: Mapping[str, Method] = _Registry(
     {
         m.name: m
         for m in (
@@ -298,13 +319,15 @@ METHODS: Mapping[str, Method] = MappingProxyType(
                 sine_forcing=True,
             ),
             Method(
-                "event-capturing",
+                "event-locating",
                 _event_capturing,
-                "Event-capturing trapezoidal scheme, order 2 through the switches",
+                "Time stepping with event location: trapezoidal steps within each mode, every switch located "
+                "inside its step (event-driven on a fixed grid), order 2 through the switches",
                 not_batch=_STUDY_ONLY,
                 sine_forcing=True,
                 piecewise_networks=solve_capturing_network,
                 piecewise_any_load=True,
+                aliases=("event-capturing",),
             ),
             Method(
                 "theta",
@@ -325,6 +348,8 @@ METHODS: Mapping[str, Method] = MappingProxyType(
         )
     }
 )
+#: Former names of methods -> their names (``METHODS`` finds a method by either).
+ALIASES: Mapping[str, str] = MappingProxyType({a: m.name for m in METHODS.values() for a in m.aliases})
 #: Views of the registry.  The methods a sweep runs (``batch``; backward Euler in the batched kernel):
 SWEEP_METHODS = tuple(name for name, m in METHODS.items() if m.batch)
 #: The step solvers of a network run (``simulate_network``'s ``solver``), of the method that runs any network:
@@ -347,7 +372,6 @@ def refuse_sweep(method: object) -> None:
     if not isinstance(method, str) or method not in METHODS:
         raise ValueError(f"method: a sweep runs {', '.join(SWEEP_METHODS)}; got {method!r}")
     m = METHODS[method]
+    named = repr(m.name) if method == m.name else f"{method!r} (an alias of {m.name!r})"
     if not m.batch:
-        raise ValueError(
-            f"method: {m.name!r} cannot run a sweep: {m.not_batch} (a sweep runs {', '.join(SWEEP_METHODS)})"
-        )
+        raise ValueError(f"method: {named} cannot run a sweep: {m.not_batch} (a sweep runs {', '.join(SWEEP_METHODS)})")

@@ -66,7 +66,7 @@ def simulate(
     (:func:`~lumped.solvers.exact.solve_exact`) on the same grid;
     ``"event-driven"`` integrates the slip phases of any dashpot law
     (:func:`~lumped.solvers.event_driven.solve_event_driven`) and takes the
-    option ``rtol``; ``"event-capturing"`` and ``"theta"`` are the schemes of
+    option ``rtol``; ``"event-locating"`` and ``"theta"`` are the schemes of
     :mod:`lumped.solvers.event_capturing` and :mod:`lumped.solvers.theta` (the latter at ``theta = 1/2``).  ``method`` is a
     key of :data:`METHODS`; ``options`` are the method's own
     (:func:`method_options` checks them and refuses any other).  A method
@@ -135,7 +135,7 @@ def solve(
     solver of piecewise-linear networks
     (:attr:`~lumped.drivers.methods.Method.piecewise_networks`:
     ``exact``'s :func:`~lumped.solvers.exact_network.solve_exact_network`,
-    ``event-capturing``'s
+    ``event-locating``'s
     :func:`~lumped.solvers.event_capturing_network.solve_capturing_network`),
     which also runs a one-mass system whose load the one-mass solver does
     not take (a table, ground motion) when it takes any load.

@@ -140,7 +140,7 @@ class Dashpot(ABC):
        subtracts from :meth:`slip_force`.
     8. ``band_free_resolvent()``: the resolvent ``(u, v)`` of the graph with
        its band cut out, ``psi(u) = phi(u + sgn(u) tau)``, as a function of
-       ``(predictor, eta)`` (the event-capturing scheme's slip step).  The
+       ``(predictor, eta)`` (the event-locating scheme's slip step).  The
        default is the bracketed root of :class:`~lumped.laws.MonotoneDashpot` on ``psi``.
     9. ``step_bound(force, speed, eta)``: a :class:`StepBound` on the
        magnitudes the law's resolvent forms for predictors ``|F~| <= force``

@@ -4,7 +4,7 @@ Remark 2.3 of the paper: "for more complicated models, one may have to employ
 a Newton-Raphson scheme to solve the nonlinear equation, which can be written
 just in terms of ``F_d^(n+1)``".  This file is such a model, added through the
 :class:`~lumped.laws.Dashpot` contract alone: no solver knows it.  It runs
-through backward Euler (the generic loop), the θ-method, the event-capturing
+through backward Euler (the generic loop), the θ-method, the event-locating
 scheme and the event-driven integrator; it is not the Bingham graph, so the
 closed forms (Algorithm 1's compiled loop, the exact solution) refuse it
 (contract point 6).

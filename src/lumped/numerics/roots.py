@@ -5,7 +5,7 @@ the form of SciPy's ``scipy/optimize/Zeros/brentq.c`` (C. Harris): inverse
 quadratic extrapolation or secant steps, safeguarded by bisection.  It is the
 package's one root finder: the laws' resolvents and inverses and every
 solver's events (the stops of ``exact`` and ``event-driven``, the switches of
-``event-capturing``) use it, with the tolerances below unless they say
+``event-locating``) use it, with the tolerances below unless they say
 otherwise; importing ``scipy.optimize`` for it would cost more than a whole
 solve.
 """

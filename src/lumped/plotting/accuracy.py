@@ -26,7 +26,7 @@ __all__ = ["METHOD_STYLE", "accuracy_convergence", "legend_entries", "work_preci
 METHOD_STYLE = {
     "backward-euler": ("Algorithm 1 (backward Euler)", "o", "C0"),
     "theta": (r"$\theta$-method, $\theta = 1/2$", "s", "C1"),
-    "event-capturing": ("event-capturing", "^", "C2"),
+    "event-locating": ("event-locating", "^", "C2"),
     "moreau-jean": (r"Moreau-Jean, $\theta = 1/2$", "P", "C5"),
     "event-driven": ("event-driven (rtol)", "D", "C3"),
     "tanh": (r"$\tanh$ model, LSODA", "v", "C4"),
@@ -55,12 +55,12 @@ def _reference_slope(ax: Axes, h: np.ndarray, e: np.ndarray, p: int, ls: str) ->
 
 def _convergence_panel(ax: Axes, data: Mapping[str, Any], case: str, error: str) -> None:
     """Each fixed-step scheme's ``error`` against ``dt``, with slopes 1 and 2."""
-    for method in ("backward-euler", "theta", "event-capturing", "moreau-jean"):
+    for method in ("backward-euler", "theta", "event-locating", "moreau-jean"):
         rows = _rows(data, case, method)
         h, e = error_points([r["resolution"] for r in rows], [r[error] for r in rows])
         label, marker, colour = METHOD_STYLE[method]
         ax.plot(h, e, marker=marker, color=colour, ms=4, lw=1.0, label=label)
-    for method, p, ls in (("backward-euler", 1, "--"), ("event-capturing", 2, ":")):
+    for method, p, ls in (("backward-euler", 1, "--"), ("event-locating", 2, ":")):
         rows = _rows(data, case, method)
         _reference_slope(ax, *error_points([r["resolution"] for r in rows], [r[error] for r in rows]), p, ls)
     ax.set_xscale("log")
@@ -92,7 +92,7 @@ def accuracy_convergence(
     Notes
     -----
     The reference lines pass a factor 3 below the finest point of
-    Algorithm 1 (slope 1, dashed, its order) and of the event-capturing
+    Algorithm 1 (slope 1, dashed, its order) and of the event-locating
     scheme (slope 2, dotted).  With ``axes`` given, no legend is drawn (the
     caller places one); otherwise one above the panels.  Points that cannot be drawn on log axes (zero, or ``None``
     in the JSON) are left out.

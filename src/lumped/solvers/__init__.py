@@ -3,7 +3,7 @@
 * :mod:`~lumped.solvers.backward_euler`: Algorithm 1 (the ``backward-euler``
   method) and the generic backward-Euler loop for any law;
 * :mod:`~lumped.solvers.theta`: the ``theta`` method (the θ-method);
-* :mod:`~lumped.solvers.event_capturing`: the ``event-capturing`` scheme;
+* :mod:`~lumped.solvers.event_capturing`: the ``event-locating`` scheme;
 * :mod:`~lumped.solvers.grid`: what those two fixed-step schemes share (the
   grid's checks);
 * :mod:`~lumped.solvers.exact`: the ``exact`` piecewise solution, with its

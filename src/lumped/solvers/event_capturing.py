@@ -1,4 +1,15 @@
-"""The ``event-capturing`` method: trapezoidal steps within modes, switching at located events.
+"""The ``event-locating`` method: trapezoidal steps within modes, switching at located events.
+
+What it is, in the vocabulary of nonsmooth dynamics (Acary and Brogliato,
+*Numerical Methods for Nonsmooth Dynamical Systems*, 2008): an *event-driven*
+scheme on a fixed grid, that is, time stepping *with event location*.  It
+integrates each smooth mode and locates every switch inside its step, so it is
+not an event-capturing (time-stepping) scheme such as Algorithm 1 or
+``moreau-jean``, which write the step as a set-valued problem and see a switch
+only at a grid point, at most first order through it.  The module and the
+function keep their first name, ``event_capturing``; the registry's method is
+``event-locating``, with ``event-capturing`` as its alias
+(:data:`lumped.drivers.methods.ALIASES`).
 
 :func:`event_capturing` marches on the grid ``t_n = n*dt`` of Algorithm 1
 (:mod:`lumped.solvers.grid`) and returns a
@@ -20,9 +31,8 @@ law, which Herschel-Bulkley laws lack at ``v = 0``.  It is A-stable, so a
 stiff viscous branch (small ``gamma``) does not limit the step.  Order two is
 what the issue asks for: with the switches located to third order locally,
 the global error is ``O(dt^2)``, which at ``dt = 1e-4`` is far below the
-first-order error of Algorithm 1 (Acary and Brogliato, *Numerical Methods
-for Nonsmooth Dynamical Systems*, 2008, chapter 9, on event-capturing and
-event-driven schemes; the switching rule is that of
+first-order error of Algorithm 1 (Acary and Brogliato 2008, chapter 9, on
+event-capturing and event-driven schemes; the switching rule is that of
 :mod:`lumped.solvers.exact`).
 """
 
@@ -86,7 +96,7 @@ class _State(NamedTuple):
 
 
 class _Capture(EventMarch):
-    """The event-capturing march over the time grid; :func:`event_capturing` is its only user.
+    """The event-locating march over the time grid; :func:`event_capturing` is its only user.
 
     The events, forcing pieces and switching rules are those of
     :class:`~lumped.solvers.events.EventMarch`; the forcing is the switched
@@ -186,7 +196,7 @@ class _Capture(EventMarch):
             end = min(t_next, p.end)
             st = self.stick(st, end, p) if st.mode == STICK else self.slip(st, end, p)
         raise ValueError(
-            f"the event-capturing scheme found more than {MAX_SWITCHES_PER_STEP} switches "
+            f"the event-locating scheme found more than {MAX_SWITCHES_PER_STEP} switches "
             f"in the step ending at t = {t_next:.6g} s (stick-slip chatter); lower dt"
         )
 
@@ -220,13 +230,13 @@ def _row(st: _State, k: float, run: _Capture) -> tuple[float, ...]:
 
 
 def _capture_rows(run: _Capture, st: _State, dt: float, n_steps: int, stride: int, out: np.ndarray) -> _State:
-    """March the event-capturing scheme from ``st`` over the grid, filling ``out``; return the last state."""
+    """March the event-locating scheme from ``st`` over the grid, filling ``out``; return the last state."""
     k = run.k
     out[0], row = _row(st, k, run), 1
     for n in range(1, n_steps + 1):
         st = run.advance(st, n * dt)
         if not (math.isfinite(st.x) and math.isfinite(st.v) and math.isfinite(st.f_d)):
-            raise ValueError(f"the event-capturing scheme overflowed at t = {n * dt:.6g} s (step {n})")
+            raise ValueError(f"the event-locating scheme overflowed at t = {n * dt:.6g} s (step {n})")
         if n % stride == 0 or n == n_steps:
             out[row], row = _row(st, k, run), row + 1
     return st
@@ -256,7 +266,7 @@ def event_capturing(
     Returns
     -------
     CapturedRun
-        The trajectory on ``t_n = n*dt`` (``method = "event-capturing"``,
+        The trajectory on ``t_n = n*dt`` (``method = "event-locating"``,
         ``final_rest`` dated at the located stop) and the events.
 
     Notes
@@ -285,10 +295,10 @@ def event_capturing(
     position and 1.92 for the event times.
     """
     t_end, dt, x0, v0, save_every, n_steps = start_run(
-        oscillator, t_end, dt, x0, v0, save_every, "event-capturing", force
+        oscillator, t_end, dt, x0, v0, save_every, "event-locating", force
     )
     if force is not None and not isinstance(force, SwitchedSine):
-        raise ValueError("force: the event-capturing scheme needs a SwitchedSine or None")
+        raise ValueError("force: the event-locating scheme needs a SwitchedSine or None")
     force = force or SwitchedSine()
     check_magnitudes(oscillator, t_end, dt, x0, v0, force.amplitude)
     run = _Capture(oscillator, force)
@@ -298,6 +308,6 @@ def event_capturing(
     final = (run.stick_since, st.x) if st.mode == STICK else (math.nan, math.nan)
     events = tuple(sorted(run.events, key=lambda e: e.time))
     traj = Trajectory.from_array(
-        out, oscillator, method="event-capturing", dt=dt, save_every=save_every, final_rest=final, events=events
+        out, oscillator, method="event-locating", dt=dt, save_every=save_every, final_rest=final, events=events
     )
     return CapturedRun(traj, events)

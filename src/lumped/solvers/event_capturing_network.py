@@ -1,4 +1,4 @@
-"""The ``event-capturing`` method for networks: trapezoidal steps within a mode, switching at located events.
+"""The ``event-locating`` method for networks: trapezoidal steps within a mode, switching at located events.
 
 A network of linear springs, Bingham and Coulomb elements and linear
 dashpots is linear while its mode is fixed (which friction elements stick,
@@ -180,7 +180,7 @@ class _March:
 
 
 def solve_capturing_network(network: Network, t_end: float, dt: float, *, save_every: int = 1) -> Trajectory:
-    """The event-capturing motion of ``network`` on the grid ``t_n = n*dt`` (every ``save_every``-th row kept).
+    """The event-locating motion of ``network`` on the grid ``t_n = n*dt`` (every ``save_every``-th row kept).
 
     Raises
     ------
@@ -188,7 +188,7 @@ def solve_capturing_network(network: Network, t_end: float, dt: float, *, save_e
         For a bad argument, or a network with a mode that is not linear
         (one line naming the element that blocks it).
     """
-    index, dt, save_every = grid_rows(network, "event-capturing", t_end, dt, save_every, any_load=True)
+    index, dt, save_every = grid_rows(network, "event-locating", t_end, dt, save_every, any_load=True)
     n = int(index[-1])
     p = parts(network)._replace(loads=(), omegas=())  # the loads are stepped as functions of time
     march = _March(network, p, dt, n * dt)
@@ -199,4 +199,4 @@ def solve_capturing_network(network: Network, t_end: float, dt: float, *, save_e
         if step in kept:
             samples.append(march.sample())
     rows = tuple(np.array(r) for r in zip(*samples))
-    return trajectory(network, p, index, dt, save_every, rows, march.phases, march.events, "event-capturing")
+    return trajectory(network, p, index, dt, save_every, rows, march.phases, march.events, "event-locating")

@@ -24,7 +24,7 @@ Every method that locates events uses this module:
   :mod:`lumped.solvers.closed_form`, or the integrator of
   :mod:`lumped.solvers.event_driven`).
 
-The ``event-capturing`` scheme (:mod:`lumped.solvers.event_capturing`) is an
+The ``event-locating`` scheme (:mod:`lumped.solvers.event_capturing`) is an
 :class:`EventMarch` that walks the time grid instead, step by step.
 """
 

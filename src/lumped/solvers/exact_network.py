@@ -18,7 +18,7 @@ marches from phase to phase:
    phase too (a *switch*);
 3. at an event the new mode is chosen among the elements at zero rate
    (:func:`lumped.solvers.network_modes.select`, shared with the
-   ``event-capturing`` method).
+   ``event-locating`` method).
 
 Each mass's final rest is the start of the last run of phases in which a
 path of sticking elements holds it to the ground (as the independent

@@ -1,4 +1,4 @@
-"""The time grid ``t_n = n*dt`` that the fixed-step schemes ``theta``, ``moreau-jean`` and ``event-capturing`` share.
+"""The time grid ``t_n = n*dt`` that the fixed-step schemes ``theta``, ``moreau-jean`` and ``event-locating`` share.
 
 They march on Algorithm 1's grid and return a
 :class:`~lumped.model.trajectory.Trajectory` there; before they march,
@@ -27,7 +27,7 @@ __all__ = ["Step", "march", "start_run"]
 Step = Callable[[float, float, float, float, float], tuple[float, float, float]]
 
 #: Cost of one step relative to Algorithm 1's Python loop, for the run-time
-#: bound: measured 2.6 (theta) and 3.0 (event-capturing) on the free decay
+#: bound: measured 2.6 (theta) and 3.0 (event-locating) on the free decay
 #: (measured with benchmarks/bench_accuracy.py --table), with a margin.
 _COST_OVER_PYTHON_BE = 5.0
 

@@ -1,4 +1,4 @@
-"""The modes of a piecewise-linear network and their switches, shared by its ``exact`` and ``event-capturing`` methods.
+"""The modes of a piecewise-linear network and their switches, shared by its ``exact`` and ``event-locating`` methods.
 
 A friction element (one that can stick: Bingham, Coulomb) is in one of
 three modes: sticking (0) or slipping one way (+-1); the mode of the network

@@ -158,7 +158,7 @@ class Phase(NamedTuple):
 
     A further load ``F`` (n,) on the masses, beyond the parts' own, enters
     linearly: ``z' = a z + gin F`` and ``(x, v, acceleration, forces) = out z
-    + feed F`` (the event-capturing method steps its loads this way).
+    + feed F`` (the event-locating method steps its loads this way).
     """
 
     start: float

@@ -8,7 +8,7 @@
 rule) it is of order two on smooth motions but not through the switches: it
 crosses them blindly, and in stick its dashpot force alternates about the
 reaction instead of settling (measured in ``tests/test_schemes.py``).  The
-``event-capturing`` scheme (:mod:`lumped.solvers.event_capturing`) takes the
+``event-locating`` scheme (:mod:`lumped.solvers.event_capturing`) takes the
 same trapezoidal steps within modes and locates the switches.
 """
 

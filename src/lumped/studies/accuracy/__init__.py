@@ -19,7 +19,8 @@ section share, in modules named after what they hold:
 * :mod:`~lumped.studies.accuracy.runs`: :func:`run`, one method on one case
   at one resolution, a :class:`Result` with the four errors and the work;
 * :mod:`~lumped.studies.accuracy.orders`: :func:`observed_orders` and
-  :func:`order_table`, fitted orders per event type;
+  :func:`order_table`, orders per event type fitted on steps that are not
+  nested, each slope with its standard error (:func:`fit_order`, :func:`pooled_order`);
 * :mod:`~lumped.studies.accuracy.work_precision`: :func:`study`,
   :func:`to_json` and :func:`from_json`, the whole table as strict JSON, and
   :func:`headline`, the numbers the article quotes.
@@ -56,7 +57,7 @@ from __future__ import annotations
 from lumped.studies.accuracy.cases import CASE_NAMES, Case, Reference, cases, reference
 from lumped.studies.accuracy.events import KINDS, grid_events, match_events
 from lumped.studies.accuracy.methods import SCHEMES, STUDY_METHODS
-from lumped.studies.accuracy.orders import observed_orders, order_table
+from lumped.studies.accuracy.orders import Fit, fit_order, observed_orders, order_table, pooled_order
 from lumped.studies.accuracy.runs import Result, run
 from lumped.studies.accuracy.work_precision import (
     RTOLS,
@@ -80,16 +81,19 @@ __all__ = [
     "TANH_EPS",
     "TANH_RTOLS",
     "Case",
+    "Fit",
     "Reference",
     "Result",
     "Study",
     "cases",
+    "fit_order",
     "from_json",
     "grid_events",
     "headline",
     "match_events",
     "observed_orders",
     "order_table",
+    "pooled_order",
     "reference",
     "run",
     "study",

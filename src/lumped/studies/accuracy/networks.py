@@ -2,7 +2,7 @@
 
 The one-mass study (:mod:`lumped.studies.accuracy`) has a network
 counterpart here: the two fixed-step methods that run networks, backward
-Euler (:func:`lumped.simulate_network`) and ``event-capturing``
+Euler (:func:`lumped.simulate_network`) and ``event-locating``
 (:mod:`lumped.solvers.event_capturing_network`), on three networks
 (:data:`NETWORK_CASES`), at the steps :data:`NETWORK_STEPS`, against the
 ``exact`` network solver (closed forms per phase, which agree with the
@@ -55,7 +55,7 @@ __all__ = [
 #: The steps (s), coarse to fine.
 NETWORK_STEPS = (2e-3, 1e-3, 5e-4, 2.5e-4)
 #: The fixed-step methods that run networks.
-NETWORK_METHODS = ("backward-euler", "event-capturing")
+NETWORK_METHODS = ("backward-euler", "event-locating")
 #: The event kinds, then the displacement error over the grid.
 NETWORK_KINDS = ("slip to stick", "reversal", "stick to slip", "switch")
 #: The one-mass study's event names (:data:`lumped.studies.accuracy.events.KINDS`) as named here.

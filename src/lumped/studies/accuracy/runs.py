@@ -105,7 +105,7 @@ def _t_off(case: Case) -> float | None:
 def _scheme(case: Case, ref: Reference, method: str, dt: float) -> _Outcome:
     """A fixed-step scheme on the grid ``n dt``; events located by the scheme or read from the grid.
 
-    A scheme that locates its events (event-capturing dates its switches
+    A scheme that locates its events (event-locating dates its switches
     between grid points; its trajectory carries them) is compared on those;
     the others' events are read from the grid velocities.
     """

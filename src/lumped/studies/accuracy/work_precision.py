@@ -17,6 +17,7 @@ from dataclasses import asdict, dataclass, field
 from typing import Any
 
 from lumped.drivers.methods import METHODS
+from lumped.numerics import validate
 from lumped.studies import examples
 from lumped.studies.accuracy.cases import CASE_NAMES, Case, Reference, cases, reference
 from lumped.studies.accuracy.events import KINDS
@@ -43,7 +44,12 @@ __all__ = [
 
 #: Resolutions of the pipeline's study: steps (s) of the fixed-step schemes,
 #: ``rtol`` of the event-driven method, ``(eps, rtol)`` of the tanh model.
-STEPS = (1.6e-3, 8e-4, 4e-4, 2e-4, 1e-4)
+#: The steps are ``1.6e-3 / 1.37^j``, ``j = 1 ... 10`` (1.2e-3 down to 6.9e-5 s), not
+#: nested: halving ``1.6e-3`` puts ``t = 0.0064 s``, 23 us after the (17b) cases'
+#: breakaway, on every grid, and a scheme dating it at a grid point then makes the
+#: same error at every step (slope 0, an artefact; :mod:`~lumped.studies.accuracy.orders`).
+#: Ten steps over a factor 17 give each fitted slope a standard error.
+STEPS = tuple(1.6e-3 / 1.37**j for j in range(1, 11))
 RTOLS = (1e-4, 1e-6, 1e-8, 1e-10, 1e-12)
 TANH_EPS = (1e-2, 1e-3, 1e-4, 1e-5)
 TANH_RTOLS = (1e-6, 1e-9)
@@ -58,8 +64,10 @@ class Study:
 
     results: tuple[Result, ...]
     references: dict[str, dict[str, Any]]
-    orders: dict[str, dict[str, dict[str, float]]] = field(default_factory=dict)
+    orders: dict[str, dict[str, dict[str, dict[str, float]]]] = field(default_factory=dict)
     friction_oscillator: dict[str, Any] = field(default_factory=dict)
+    #: The steps the orders are fitted over (the fixed-step schemes also run at the original's step, not fitted).
+    steps: tuple[float, ...] = ()
 
     def select(self, case: str, method: str) -> list[Result]:
         """The results of one method on one case, coarsest first."""
@@ -70,7 +78,9 @@ def _runs(case: Case, steps: Sequence[float], rtols: Sequence[float], tanh: Sequ
     """``(method, resolution, eps)`` of every run on ``case``, method group by group.
 
     A scheme that needs the law's Bingham form (``moreau-jean``) runs on the Bingham and Coulomb cases only.
+    ``steps`` may hold one step twice (the original's, when it is also a fitted one): it runs once.
     """
+    steps = sorted(set(steps), reverse=True)
     out = [(m, dt, None) for m in SCHEMES if case.closed_form or not METHODS[m].bingham_only for dt in steps]
     out += [(m, r, None) for m in TOLERANCED for r in rtols]
     if case.closed_form:
@@ -94,6 +104,7 @@ def study(
     tanh: Sequence[tuple[float, float]] | None = None,
     repeats: int = 0,
     cfg: dict[str, Any] | None = None,
+    original_step: float | None = examples.ORIGINAL_DT,
 ) -> Study:
     """Run every method at every resolution on the named cases.
 
@@ -102,8 +113,13 @@ def study(
     names : sequence of str
         Cases of :data:`~lumped.studies.accuracy.cases.CASE_NAMES`.
     steps, rtols : sequence of float
-        Steps (s) of the fixed-step schemes, from coarse to fine; tolerances
+        Steps (s) of the fixed-step schemes, from coarse to fine, over which
+        their orders are fitted (:func:`~lumped.studies.accuracy.orders.observed_orders`;
+        not nested, as :data:`STEPS`, for the orders to mean anything); tolerances
         of the event-driven method.
+    original_step : float, s, optional
+        One more step at which the fixed-step schemes run, for :func:`headline`,
+        and not fitted (the original's, :data:`ORIGINAL_DT`, by default; ``None``: none).
     tanh : sequence of (eps, rtol), optional
         Settings of the tanh model on :data:`TANH_CASES`; by default every
         pair of :data:`TANH_EPS` and :data:`TANH_RTOLS`.
@@ -116,6 +132,7 @@ def study(
     tanh = [(e, r) for e in TANH_EPS for r in TANH_RTOLS] if tanh is None else list(tanh)
     if not steps or list(steps) != sorted(steps, reverse=True):
         raise ValueError(f"steps must be a non-empty sequence from coarse to fine, got {list(steps)}")
+    runs_at = (*steps, *(() if original_step is None else (validate.positive("original_step", original_step),)))
     table = cases(cfg)
     unknown = [n for n in names if n not in table]
     if unknown or not names:
@@ -125,9 +142,10 @@ def study(
         case = table[name]
         ref = reference(case)
         refs[name] = _reference_summary(case, ref)
-        for method, res, eps in _runs(case, steps, rtols, tanh):
+        for method, res, eps in _runs(case, runs_at, rtols, tanh):
             results.append(run(case, method, res, eps=eps, ref=ref, repeats=repeats))
-    return Study(tuple(results), refs, observed_orders(results), friction_oscillator())
+    orders = observed_orders(results, steps)
+    return Study(tuple(results), refs, orders, friction_oscillator(), tuple(float(dt) for dt in steps))
 
 
 def to_json(result: Study, *, wall_time: bool = False) -> dict[str, Any]:
@@ -136,8 +154,9 @@ def to_json(result: Study, *, wall_time: bool = False) -> dict[str, Any]:
     Layout: ``references`` (per case: the reference method, final position
     and rest time, event counts), ``results`` (one object per run, the
     fields of :class:`Result`; ``wall_time`` only when asked, since it
-    changes from run to run), ``orders`` (:func:`observed_orders`) and
-    ``order_table`` (:func:`order_table`), ``kinds`` (:data:`KINDS`),
+    changes from run to run), ``steps`` (those the orders are fitted over),
+    ``orders`` (:func:`observed_orders`) and ``order_table``
+    (:func:`order_table`, a slope and its standard error per scheme and event kind), ``kinds`` (:data:`KINDS`),
     ``headline`` (:func:`headline`) and ``friction_oscillator`` (Siconos'
     example, :mod:`~lumped.studies.accuracy.friction_oscillator`).
     """
@@ -147,8 +166,9 @@ def to_json(result: Study, *, wall_time: bool = False) -> dict[str, Any]:
         if not wall_time:
             del row["wall_time"]
         rows.append(row)
-    out = {"references": result.references, "results": rows, "orders": result.orders}
-    out |= {"order_table": order_table(result.orders), "kinds": dict(KINDS), "headline": headline(result)}
+    out = {"references": result.references, "results": rows, "orders": result.orders, "steps": list(result.steps)}
+    table = order_table(result.results, result.steps)
+    out |= {"order_table": table, "kinds": dict(KINDS), "headline": headline(result)}
     out["friction_oscillator"] = result.friction_oscillator
     return clean(out)
 
@@ -159,8 +179,10 @@ def _float(value: Any) -> float:
 
 
 def _floats(tree: Any) -> Any:
-    """:func:`_float` on every leaf of nested dictionaries of numbers."""
-    return {k: _floats(v) for k, v in tree.items()} if isinstance(tree, dict) else _float(tree)
+    """:func:`_float` on every leaf of nested dictionaries of numbers but the integers (counts), kept."""
+    if isinstance(tree, dict):
+        return {k: _floats(v) for k, v in tree.items()}
+    return tree if isinstance(tree, int) else _float(tree)
 
 
 def from_json(data: Mapping[str, Any]) -> Study:
@@ -177,7 +199,8 @@ def from_json(data: Mapping[str, Any]) -> Study:
     refs = {}
     for name, ref in data["references"].items():
         refs[name] = dict(ref) | {"position": _float(ref["position"]), "rest_time": _float(ref["rest_time"])}
-    return Study(tuple(results), refs, _floats(data["orders"]), _floats(data["friction_oscillator"]))
+    orders, steps = _floats(data["orders"]), tuple(float(dt) for dt in data["steps"])
+    return Study(tuple(results), refs, orders, _floats(data["friction_oscillator"]), steps)
 
 
 # ------------------------------------------------------------------ the article's numbers
@@ -192,16 +215,18 @@ def _at(rows: Sequence[Result], resolution: float) -> Result | None:
 
 
 def _herschel_bulkley(result: Study, name: str) -> dict[str, Any]:
-    """On case ``name``: the largest ``rtol`` meeting :data:`HB_TARGET`, and backward Euler at its finest step."""
+    """On case ``name``: the largest ``rtol`` meeting :data:`HB_TARGET`, and backward Euler at the
+    original's step (at its finest step if it did not run there)."""
     good = [r for r in result.select(name, "event-driven") if r.relative_position_error <= HB_TARGET]
-    be = result.select(name, "backward-euler")
+    rows = result.select(name, "backward-euler")
+    be = _at(rows, ORIGINAL_DT) or (rows[-1] if rows else None)
     return {
         "rtol": good[0].resolution if good else math.nan,
         "steps": good[0].work if good else 0,
         "error": good[0].relative_position_error if good else math.nan,
-        "be_dt": be[-1].resolution if be else math.nan,
-        "be_steps": be[-1].work if be else 0,
-        "be_error": be[-1].relative_position_error if be else math.nan,
+        "be_dt": be.resolution if be else math.nan,
+        "be_steps": be.work if be else 0,
+        "be_error": be.relative_position_error if be else math.nan,
     }
 
 
@@ -214,7 +239,7 @@ def headline(result: Study) -> dict[str, Any]:
     rest-position and absolute rest-time difference from ``exact``;
     ``herschel_bulkley``: per case, the largest ``rtol`` whose relative error
     is at most :data:`HB_TARGET`, its steps, and backward Euler's steps and
-    relative error at the finest step; ``tanh``: the cheapest setting (fewest
+    relative error at the original's step (:data:`ORIGINAL_DT`); ``tanh``: the cheapest setting (fewest
     steps) with relative error at most :data:`TANH_TARGET`, or ``None``.
     """
     free = {m: result.select("free-decay", m) for m in (*SCHEMES, "event-driven", TANH)}
