@@ -23,6 +23,13 @@ amplitude grows without bound at ``omega = omega_n``: the branch is cut where
 it passes :data:`~lumped.drivers.response.continuation.MAX_AMPLITUDE` and
 taken up again as far above ``omega_n`` as it stopped below, from the linear
 oscillator's motion there (Newton then finds the friction's).
+
+A linear system (no friction) with an undamped mode is not continued: its
+periodic motion is not unique at ``omega = omega_n/j``, and a continuation
+there follows the family of motions instead of the curve.  Its table is the
+closed form on the grid of ``points`` values from ``start`` to ``stop``, the
+values whose motion is not unique left out and named in the summary, and
+``ValueError`` when no value is left (:mod:`~lumped.drivers.response.linear`).
 """
 
 from __future__ import annotations
@@ -33,9 +40,16 @@ from typing import NamedTuple
 
 import numpy as np
 
+from lumped.drivers.response import linear
 from lumped.drivers.response.continuation import Branch, ResponsePoint, continue_orbits
 from lumped.drivers.response.shooting import Orbit, find_orbit
-from lumped.drivers.response.systems import Family, LoadedNetwork, parameter_family, response_system
+from lumped.drivers.response.systems import (
+    Family,
+    LoadedNetwork,
+    omega_family,
+    parameter_family,
+    response_system,
+)
 from lumped.model.network import Network
 from lumped.model.oscillator import Oscillator
 from lumped.numerics import validate
@@ -135,9 +149,59 @@ def response_curve(
     if not start < stop:
         raise ValueError(f"{vary or 'omega'}: START must be below STOP, got {start!r}:{stop!r}")
     family = None if vary is None else parameter_family(network, mass, amplitude, omega, vary, start, stop)
+    if _undamped(family or omega_family(system, amplitude), start, stop):
+        return _linear_curve(family or omega_family(system, amplitude), start, stop, points, network.mass_names, vary)
     branches = _branches(system, amplitude, start, stop, points, progress, family)
     rows = [p for b in branches for p in b.points]
     return Curve(_table(rows, network.mass_names, vary), _summary(branches, rows, vary or "omega"))
+
+
+def _undamped(family: Family, start: float, stop: float) -> bool:
+    """True when the members at ``start`` and ``stop`` are linear and one has an undamped mode: the closed form
+    (:func:`~lumped.drivers.response.linear.linear_rows`) then takes the family."""
+    forms = [linear.linear_form(family.member(value)[0]) for value in (start, stop)]
+    return None not in forms and any(linear.undamped_frequencies(f).size for f in forms)  # type: ignore[arg-type]
+
+
+def _linear_curve(
+    family: Family, start: float, stop: float, points: int, masses: list[str], vary: str | None
+) -> Curve:
+    """The closed-form table of a linear family with an undamped mode, its left-out values named; ``ValueError``
+    when every value of the grid is left out (the motion not unique at any)."""
+    rows = linear.linear_rows(family.member, start, stop, points)
+    system, _, omega = family.member(start)
+    frequencies = linear.undamped_frequencies(linear.linear_form(system))  # type: ignore[arg-type]
+    modes = ", ".join(f"{w:.6g}" for w in frequencies)
+    if not rows.points:
+        where = f"omega = {omega:g} rad/s" if vary else f"every omega of the grid from {start:g} to {stop:g} rad/s"
+        raise ValueError(
+            f"force_omega: the periodic motion at {where} is not unique: omega_n/j of an undamped mode "
+            f"(omega_n = {modes} rad/s; monodromy - I is singular)"
+        )
+    count = len(rows.points)
+    table = {
+        **({} if vary is None else {vary: np.array(rows.values)}),
+        "omega": np.array([p.omega for p in rows.points]),
+        **{f"amplitude_{name}": np.array([p.amplitudes[i] for p in rows.points]) for i, name in enumerate(masses)},
+        "stops_per_period": np.zeros(count),
+        "stable": np.array([p.max_multiplier < 1.0 for p in rows.points]),
+        "max_multiplier": np.array([p.max_multiplier for p in rows.points]),
+        "kind": np.array(["regular"] * count),
+    }
+    if vary is None:
+        named = linear.non_unique_points(frequencies, start, stop)
+        where = f"omega = {named} rad/s" if named else ""
+    else:
+        where = f"{vary} = {', '.join(f'{v:.6g}' for v in rows.skipped[:4])}{', ...' * (len(rows.skipped) > 4)}"
+    left = len(rows.skipped)
+    gaps = f"not unique at {where}, {left} of the {points} grid points left out" if where and left else (
+        f"not unique at {where}, none on the grid" if where else "unique throughout"
+    )
+    return Curve(
+        table,
+        f"{count} points (closed form: a linear system with an undamped mode, omega_n = {modes} rad/s; "
+        f"its periodic motion {gaps}; changes: none)",
+    )
 
 
 def _table(rows: list[ResponsePoint], masses: list[str], vary: str | None = None) -> dict[str, np.ndarray]:
