@@ -30,7 +30,15 @@ neutral multiplier (exactly 1) is left out of stable and max_multiplier.
 With --vary NAME=START:STOP the branch is followed in NAME instead, at the
 fixed frequency --omega W: NAME is amplitude (the force's, N) or a numeric
 parameter of the file written element.key or mass.key (dashpot.threshold,
-spring.stiffness, m.mass); its column comes first."""
+spring.stiffness, m.mass); its column comes first.
+A system without friction that has an undamped mode (springs alone, or
+dashpots that leave a mode free) is not continued: its periodic motion is
+unique only where omega is not omega_n/j (j = 1, 2, ...; monodromy - I
+singular there).  The command writes the closed form X = (K - omega^2 M +
+i omega C)^-1 F (amplitude |X|, max_multiplier 1, stable false) at --points
+values evenly spaced from START to STOP, leaves out those where the motion is
+not unique, and names the points omega_n/j of the range in its summary; a
+--vary run at such an --omega is refused."""
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

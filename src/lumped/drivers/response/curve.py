@@ -163,9 +163,7 @@ def _undamped(family: Family, start: float, stop: float) -> bool:
     return None not in forms and any(linear.undamped_frequencies(f).size for f in forms)  # type: ignore[arg-type]
 
 
-def _linear_curve(
-    family: Family, start: float, stop: float, points: int, masses: list[str], vary: str | None
-) -> Curve:
+def _linear_curve(family: Family, start: float, stop: float, points: int, masses: list[str], vary: str | None) -> Curve:
     """The closed-form table of a linear family with an undamped mode, its left-out values named; ``ValueError``
     when every value of the grid is left out (the motion not unique at any)."""
     rows = linear.linear_rows(family.member, start, stop, points)
@@ -173,10 +171,10 @@ def _linear_curve(
     frequencies = linear.undamped_frequencies(linear.linear_form(system))  # type: ignore[arg-type]
     modes = ", ".join(f"{w:.6g}" for w in frequencies)
     if not rows.points:
-        where = f"omega = {omega:g} rad/s" if vary else f"every omega of the grid from {start:g} to {stop:g} rad/s"
+        where = f"at omega = {omega:g} rad/s" if vary else f"at every omega of the grid from {start:g} to {stop:g}"
+        why = linear.nearest_mode(frequencies, omega) if vary else f"omega_n/j of an undamped mode ({modes} rad/s)"
         raise ValueError(
-            f"force_omega: the periodic motion at {where} is not unique: omega_n/j of an undamped mode "
-            f"(omega_n = {modes} rad/s; monodromy - I is singular)"
+            f"force_omega: the periodic motion {where} is not unique: it is {why}, where monodromy - I is singular"
         )
     count = len(rows.points)
     table = {
@@ -194,13 +192,12 @@ def _linear_curve(
     else:
         where = f"{vary} = {', '.join(f'{v:.6g}' for v in rows.skipped[:4])}{', ...' * (len(rows.skipped) > 4)}"
     left = len(rows.skipped)
-    gaps = f"not unique at {where}, {left} of the {points} grid points left out" if where and left else (
-        f"not unique at {where}, none on the grid" if where else "unique throughout"
-    )
+    gaps = "is unique throughout"
+    if where:
+        gaps = f"is not unique at {where}: {f'{left} of the {points}' if left else 'none of the'} grid points left out"
+    modes = "" if vary else f", omega_n = {modes} rad/s"
     return Curve(
-        table,
-        f"{count} points (closed form: a linear system with an undamped mode, omega_n = {modes} rad/s; "
-        f"its periodic motion {gaps}; changes: none)",
+        table, f"{count} points (closed form: a linear system with an undamped mode{modes}; its periodic motion {gaps})"
     )
 
 

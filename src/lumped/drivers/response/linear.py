@@ -101,9 +101,7 @@ def linear_form(system: Oscillator | LoadedNetwork) -> LinearSystem | None:
         form = system.dashpot.bingham_form()
         if form is None or form.threshold > 0:
             return None
-        return LinearSystem(
-            np.array([system.mass]), np.array([[system.stiffness]]), np.array([[form.viscosity]]), 0
-        )
+        return LinearSystem(np.array([system.mass]), np.array([[system.stiffness]]), np.array([[form.viscosity]]), 0)
     p = system.parts
     if p.friction.any():
         return None
@@ -116,6 +114,13 @@ def undamped_frequencies(ls: LinearSystem) -> np.ndarray:
     tol = MULTIPLIER_ULPS * np.finfo(float).eps
     wn = np.sort(lam.imag[(np.abs(lam.real) <= tol * np.abs(lam)) & (lam.imag > 0)])
     return wn[np.append(True, np.diff(wn) > tol * wn[1:])] if wn.size else wn
+
+
+def nearest_mode(frequencies: np.ndarray, omega: float) -> str:
+    """The ``omega_n/j`` nearest ``omega`` among the undamped ``frequencies``, in words."""
+    j = np.maximum(np.rint(frequencies / omega), 1.0)
+    i = int(np.argmin(np.abs(frequencies / j - omega)))
+    return f"omega_n/{int(j[i])} of the undamped mode omega_n = {frequencies[i]:.6g} rad/s"
 
 
 def has_undamped_mode(system: Oscillator | LoadedNetwork) -> bool:
@@ -164,8 +169,11 @@ def linear_rows(members, start: float, stop: float, points: int) -> LinearRows:
 
 def non_unique_points(frequencies: np.ndarray, start: float, stop: float) -> str:
     """The points ``omega_n/j`` (``j >= 1``) in ``[start, stop]`` of each undamped ``omega_n``, in words: each
-    one (up to four of an ``omega_n``), else the first two and the last with the range of ``j``; ``""`` if none."""
-    parts = []
+    one (up to four of an ``omega_n``), else the first two and the last with the range of ``j``; ``""`` if none.
+    The ends count within ``MULTIPLIER_ULPS eps`` relative: :func:`periodic_response` leaves out a point that
+    near ``omega_n/j`` (``|omega_n T - 2 pi j|`` within the monodromy's error, ``MULTIPLIER_ULPS eps omega_n T``)."""
+    tol = MULTIPLIER_ULPS * np.finfo(float).eps  # as near as periodic_response leaves a point out
+    start, stop, parts = start * (1 - tol), stop * (1 + tol), []
     for wn in frequencies:
         first = max(1, math.ceil(wn / stop))
         while first > 1 and wn / (first - 1) <= stop:  # round-off in wn/stop, either way
