@@ -128,7 +128,15 @@ def response_curve(
     Curve
         Columns ``omega``, ``amplitude_<mass>`` for each mass (half of max x
         minus min x over the period, m), then :data:`COLUMNS`; with ``vary``,
-        its column first.
+        its column first.  A linear system with an undamped mode: the closed form at ``points`` values evenly
+        spaced from ``start`` to ``stop``, without those where the periodic motion is not unique (module
+        docstring).
+
+    Raises
+    ------
+    ValueError
+        One line naming the argument; ``force_omega: ...`` where no value of a linear system with an undamped
+        mode has a unique periodic motion (``omega = omega_n/j``).
     """
     amplitude = validate.positive("force_amplitude", amplitude)
     points = validate.positive_int("points", points)

@@ -25,7 +25,6 @@ from typing import NamedTuple
 import math
 
 import numpy as np
-import scipy.linalg
 
 from lumped.drivers.response.systems import LoadedNetwork, Scales, period_map
 from lumped.model.oscillator import Oscillator
@@ -104,6 +103,8 @@ def monodromy_error(monodromy: np.ndarray, work: float) -> tuple[np.ndarray, flo
     """The balanced monodromy ``D^-1 M D`` (a similarity: the same multipliers, ``M - I`` singular with it) and
     the bound of its computed error's 2-norm: ``MULTIPLIER_ULPS eps`` times ``work`` (the phases' ``sum max(1,
     rho(B) h)``) times its norm.  By Weyl's inequality no singular value of ``D^-1 M D - I`` moves by more."""
+    import scipy.linalg  # here, not at import: importing lumped loads no SciPy solver (tests/test_imports.py)
+
     balanced = scipy.linalg.matrix_balance(monodromy, permute=False)[0]
     return balanced, float(MULTIPLIER_ULPS * np.finfo(float).eps * work * np.linalg.norm(balanced, 2))
 
