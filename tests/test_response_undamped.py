@@ -232,3 +232,30 @@ def test_shooting_refuses_a_singular_monodromy_minus_identity(tmp_path):
         find_orbit(system, 1.0, 10.0, np.array([0.0, 0.1]))
     with pytest.raises(ValueError, match=r"^force_omega: no periodic motion found .* \(a state not finite\)"):
         period_map(system, 1.0, 3.0, np.array([math.nan, 0.0]))
+
+
+def test_high_omega_is_resolved(tmp_path):
+    """Far above omega_n the period is short and ``expm(B T) - I`` subtracted would keep no digit (``|B T|`` below
+    the error of the ones on its diagonal): every point would be left out as not unique.  From ``B T phi1(B T)``
+    it keeps its digits, and the rows are ``P/(m omega^2 - k)`` to the bound of :func:`_one_mass_bound`."""
+    curve = response_curve(_network(tmp_path, SPRING), "m", 1.0, 1e18, 2e18, 5)
+    omega = curve.columns["omega"]
+    assert omega.tolist() == np.linspace(1e18, 2e18, 5).tolist()
+    bound = np.array([_one_mass_bound(w) for w in omega])
+    assert np.all(np.abs(curve.columns["amplitude_m"] * (M * omega**2 - K) - 1) <= bound)
+
+
+@pytest.mark.parametrize(
+    ("omega", "words"),
+    [
+        ("1e-12:2e-12", "--omega: omega = 1e-12 rad/s is too low for this system"),
+        ("1e200:1e201", "--omega: omega = 1e+200 rad/s is too high: m omega^2 overflows"),
+        ("1e154:1.1e154", "--omega: omega = 1e+154 rad/s is too high: the amplitude underflows"),
+    ],
+)
+def test_command_refuses_an_omega_the_closed_form_cannot_vouch_for(tmp_path, omega, words):
+    """Below omega_n by 1e13 the monodromy's error bound passes 1 (nothing known of ``M - I``); above about 1e154
+    ``m omega^2`` overflows or the amplitude leaves the normal numbers: one line each, status 2, nothing written."""
+    done = _command(tmp_path, SPRING, "--omega", omega)
+    assert done.returncode == 2 and "\n" not in done.stderr.strip() and words in done.stderr, done.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["system.toml"]

@@ -17,8 +17,8 @@ motion, which a continuation would follow instead of the curve.  So a system
 with an undamped mode (:func:`linear_form`, :func:`undamped_frequencies`) is not
 continued (:mod:`~lumped.drivers.response.continuation`) but evaluated on the
 grid of the values asked for (:func:`linear_rows`): where ``Phi - I`` is
-nonsingular by more than the computed monodromy's error
-(:func:`~lumped.drivers.response.shooting.monodromy_error`), the motion is the
+nonsingular by more than its computed error (:func:`periodic_response`, from
+the bound of :func:`~lumped.drivers.response.shooting.monodromy_error`), the motion is the
 forced harmonic one,
 
     x(t) = Im(X e^{i omega t}),    X = (K - omega^2 M + i omega C)^-1 F,
@@ -44,7 +44,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.drivers.response.shooting import MULTIPLIER_ULPS, monodromy_error, multiplier_margin
+from lumped.drivers.response.shooting import MULTIPLIER_ULPS, balance, multiplier_margin
 from lumped.drivers.response.systems import LoadedNetwork
 from lumped.model.oscillator import Oscillator
 from lumped.numerics.expm import expm
@@ -131,24 +131,47 @@ def has_undamped_mode(system: Oscillator | LoadedNetwork) -> bool:
 
 def periodic_response(ls: LinearSystem, amplitude: float, omega: float) -> LinearPoint | None:
     """The periodic motion under ``amplitude sin(omega t)`` on the loaded mass, or ``None`` where it is not
-    unique: where the smallest singular value of the balanced ``Phi - I`` is within the computed monodromy's
-    error bound (:func:`~lumped.drivers.response.shooting.monodromy_error`; Weyl: no singular value moves by
-    more), so that no computation could vouch that it is nonzero.  ``ValueError`` (``force_omega``) where
-    ``B T`` overflows."""
-    b = ls.flow
-    bt = b * (2 * math.pi / omega)
-    if not np.all(np.isfinite(bt)):
-        raise ValueError(f"force_omega: omega = {omega:g} rad/s is too small: B T overflows in the monodromy")
-    monodromy = expm(bt)
-    work = max(1.0, float(np.max(np.abs(np.linalg.eigvals(bt)))))
-    balanced, error = monodromy_error(monodromy, work)
-    if np.linalg.svd(balanced - np.eye(b.shape[0]), compute_uv=False)[-1] <= error:
+    unique: where the smallest singular value of the balanced ``Phi - I`` (:func:`_monodromy`) is within its
+    computed error's bound (that of :func:`~lumped.drivers.response.shooting.monodromy_error`, times ``|B T|``;
+    Weyl: no singular value moves by more), so that no computation could vouch that it is nonzero.
+
+    ``ValueError`` (``force_omega``) where that error bound, ``MULTIPLIER_ULPS eps rho(B) T``, reaches 1 (``B T``
+    not finite included: before ``expm``), where ``m omega^2`` overflows, or where the amplitude falls below the
+    normal numbers: numbers no computation here can vouch for."""
+    if not omega < math.sqrt(np.finfo(float).max / float(ls.mass.max())):
+        raise ValueError(f"force_omega: omega = {omega:g} rad/s is too high: m omega^2 overflows")
+    bt = ls.flow * (2 * math.pi / omega)
+    work = max(1.0, float(np.max(np.abs(np.linalg.eigvals(bt))))) if np.all(np.isfinite(bt)) else math.inf
+    if not MULTIPLIER_ULPS * np.finfo(float).eps * work < 1:  # the monodromy's error bound: not one digit known
+        raise ValueError(
+            f"force_omega: omega = {omega:g} rad/s is too low for this system: over one period (rho(B) T = "
+            f"{work:.3g}) the monodromy's computed error exceeds its size, so no periodic motion can be vouched for"
+        )
+    a = balance(bt)
+    monodromy, minus, size = _monodromy(a)
+    error = MULTIPLIER_ULPS * np.finfo(float).eps * work * size * float(np.linalg.norm(a, 2))
+    if np.linalg.svd(minus, compute_uv=False)[-1] <= error:
         return None
     force = np.zeros(ls.mass.size, dtype=complex)
     force[ls.load] = amplitude
     x = np.linalg.solve(ls.stiffness - omega**2 * np.diag(ls.mass) + 1j * omega * ls.damping, force)
+    if not np.abs(x).max() >= np.finfo(float).tiny:  # P/(m omega^2) below the normal numbers: not a number to print
+        raise ValueError(f"force_omega: omega = {omega:g} rad/s is too high: the amplitude underflows")
     mu = float(np.max(np.abs(np.linalg.eigvals(monodromy))))
     return LinearPoint(omega, np.abs(x), 1.0 if abs(mu - 1.0) <= multiplier_margin(monodromy, work) else mu)
+
+
+def _monodromy(a: np.ndarray) -> tuple[np.ndarray, np.ndarray, float]:
+    """``expm(a)``, ``expm(a) - I`` and the 2-norm of the exponential computed, from ``expm([[a, I], [0, 0]]) =
+    [[expm(a), phi1(a)], [0, I]]`` (``phi1(a) = sum a^k/(k + 1)!``, Higham, *Functions of Matrices*, 10.7.4):
+    ``expm(a) - I = a phi1(a)`` keeps its digits however small ``a`` (a high omega), where ``expm(a) - I``
+    subtracted keeps none once ``|a|`` is below an ulp of 1.  Its error is ``|a|`` times ``phi1``'s, which is
+    within the monodromy's bound (``MULTIPLIER_ULPS eps`` per unit of work, times the exponential's norm)."""
+    n = a.shape[0]
+    augmented = np.zeros((2 * n, 2 * n))
+    augmented[:n, :n], augmented[:n, n:] = a, np.eye(n)
+    e = expm(augmented)
+    return e[:n, :n], a @ e[:n, n:], float(np.linalg.norm(e, 2))
 
 
 def linear_rows(members, start: float, stop: float, points: int) -> LinearRows:

@@ -31,7 +31,16 @@ from lumped.model.oscillator import Oscillator
 from lumped.solvers.monodromy import RESOLUTION, PeriodMap
 from lumped.solvers.network_monodromy import NetworkPeriodMap
 
-__all__ = ["NEWTON_TOL", "Orbit", "Scales", "find_orbit", "monodromy_error", "multiplier_margin", "newton_step"]
+__all__ = [
+    "NEWTON_TOL",
+    "Orbit",
+    "Scales",
+    "balance",
+    "find_orbit",
+    "monodromy_error",
+    "multiplier_margin",
+    "newton_step",
+]
 
 #: Newton stops when ``|Pi(z) - z|`` (largest component, in :class:`Scales` units) is below this:
 #: the map's :data:`~lumped.solvers.monodromy.RESOLUTION`, some 1e5 ulps of unit amplitude, above the
@@ -99,13 +108,19 @@ class Orbit(NamedTuple):
         return self.period.stops
 
 
+def balance(matrix: np.ndarray) -> np.ndarray:
+    """``D^-1 A D`` with ``D`` diagonal (powers of 2, no permutation) that evens out the rows' and columns' norms
+    (:func:`scipy.linalg.matrix_balance`): exact, and a similarity."""
+    import scipy.linalg  # here, not at import: importing lumped loads no SciPy solver (tests/test_imports.py)
+
+    return scipy.linalg.matrix_balance(matrix, permute=False)[0]
+
+
 def monodromy_error(monodromy: np.ndarray, work: float) -> tuple[np.ndarray, float]:
     """The balanced monodromy ``D^-1 M D`` (a similarity: the same multipliers, ``M - I`` singular with it) and
     the bound of its computed error's 2-norm: ``MULTIPLIER_ULPS eps`` times ``work`` (the phases' ``sum max(1,
     rho(B) h)``) times its norm.  By Weyl's inequality no singular value of ``D^-1 M D - I`` moves by more."""
-    import scipy.linalg  # here, not at import: importing lumped loads no SciPy solver (tests/test_imports.py)
-
-    balanced = scipy.linalg.matrix_balance(monodromy, permute=False)[0]
+    balanced = balance(monodromy)
     return balanced, float(MULTIPLIER_ULPS * np.finfo(float).eps * work * np.linalg.norm(balanced, 2))
 
 
