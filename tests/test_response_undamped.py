@@ -235,9 +235,10 @@ def test_shooting_refuses_a_singular_monodromy_minus_identity(tmp_path):
 
 
 def test_high_omega_is_resolved(tmp_path):
-    """Far above omega_n the period is short and ``expm(B T) - I`` subtracted would keep no digit (``|B T|`` below
-    the error of the ones on its diagonal): every point would be left out as not unique.  From ``B T phi1(B T)``
-    it keeps its digits, and the rows are ``P/(m omega^2 - k)`` to the bound of :func:`_one_mass_bound`."""
+    """Far above omega_n the period is short and ``|B T|`` (6e-17 here) is below an ulp of 1: ``expm(B T) - I``
+    subtracted is known only to ulps of 1, more than its own size, and every point would be left out as not
+    unique.  As ``B T phi1(B T)`` its error is relative to ``|B T|``, and the rows are ``P/(m omega^2 - k)`` to
+    the bound of :func:`_one_mass_bound`."""
     curve = response_curve(_network(tmp_path, SPRING), "m", 1.0, 1e18, 2e18, 5)
     omega = curve.columns["omega"]
     assert omega.tolist() == np.linspace(1e18, 2e18, 5).tolist()
