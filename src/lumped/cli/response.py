@@ -37,7 +37,17 @@ oscillation (a period of thousands of phases below it) to 100 times its
 slowest natural frequency (above it the amplitude, (P/k)(omega_n/omega)^2, is
 below what Newton's tolerance on the period map resolves); the fastest decay
 rate at most 1e11 omega; a range at least 1e-6 of its largest value wide;
---points from 2 to 10000.  With --vary, the omega bounds hold at both ends."""
+--points from 2 to 10000.  With --vary, the omega bounds hold at both ends
+(not for the undamped linear systems below, whose closed form has its own).
+
+A system without friction that has an undamped mode (springs alone, or
+dashpots that leave a mode free) is not continued: its periodic motion is
+unique only where omega is not omega_n/j (j = 1, 2, ...; monodromy - I
+singular there).  The command writes the closed form X = (K - omega^2 M +
+i omega C)^-1 F (amplitude |X|, max_multiplier 1, stable false) at --points
+values evenly spaced from START to STOP, leaves out those where the motion is
+not unique, and names the points omega_n/j of the range in its summary; a
+--vary run at such an --omega is refused."""
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:

@@ -5,7 +5,9 @@
 * :mod:`~lumped.drivers.response.continuation`: pseudo-arclength continuation
   in omega with the changes along the branch located (:func:`continue_orbits`);
 * :mod:`~lumped.drivers.response.curve`: :func:`response_curve`, the API of
-  ``python -m lumped response``: a one-mass system with a sine load, its table.
+  ``python -m lumped response``: a one-mass system with a sine load, its table;
+* :mod:`~lumped.drivers.response.linear`: a linear system with an undamped
+  mode, in closed form where its periodic motion is unique (issue 31).
 
 The period map and its monodromy matrix are those of the exact solver's
 phases (:mod:`lumped.solvers.monodromy`).

@@ -23,6 +23,13 @@ amplitude grows without bound at ``omega = omega_n``: the branch is cut where
 it passes :data:`~lumped.drivers.response.continuation.MAX_AMPLITUDE` and
 taken up again as far above ``omega_n`` as it stopped below, from the linear
 oscillator's motion there (Newton then finds the friction's).
+
+A linear system (no friction) with an undamped mode is not continued: its
+periodic motion is not unique at ``omega = omega_n/j``, and a continuation
+there follows the family of motions instead of the curve.  Its table is the
+closed form on the grid of ``points`` values from ``start`` to ``stop``, the
+values whose motion is not unique left out and named in the summary, and
+``ValueError`` when no value is left (:mod:`~lumped.drivers.response.linear`).
 """
 
 from __future__ import annotations
@@ -33,9 +40,17 @@ from typing import NamedTuple
 
 import numpy as np
 
+from lumped.drivers.response import linear
 from lumped.drivers.response.continuation import Branch, ResponsePoint, continue_orbits
 from lumped.drivers.response.shooting import Orbit, find_orbit
-from lumped.drivers.response.systems import Family, LoadedNetwork, check_omega, parameter_family, response_system
+from lumped.drivers.response.systems import (
+    Family,
+    LoadedNetwork,
+    check_omega,
+    omega_family,
+    parameter_family,
+    response_system,
+)
 from lumped.model.network import Network
 from lumped.model.oscillator import Oscillator
 from lumped.numerics import validate
@@ -109,7 +124,9 @@ def request(
     argument and its limit: ``points`` in ``[2, MAX_POINTS]``, a finite range at least :data:`MIN_WIDTH` wide,
     every forcing frequency within :data:`~lumped.drivers.response.systems.OMEGA_RATIO` of the system's time
     scales (:func:`~lumped.drivers.response.systems.check_omega`: in omega at both ends; with ``vary``, the
-    fixed ``omega`` for the systems at both ends of the range, between which the time scales are monotone)."""
+    fixed ``omega`` for the systems at both ends of the range, between which the time scales are monotone).
+    A linear system with an undamped mode skips those bounds: its closed form
+    (:mod:`~lumped.drivers.response.linear`) refuses the omegas it cannot vouch for itself."""
     amplitude = validate.positive("force_amplitude", amplitude)
     points = validate.positive_int("points", points)
     if not 2 <= points <= MAX_POINTS:
@@ -126,10 +143,13 @@ def request(
         omega = validate.positive("force_omega", omega)
     start, stop = _range("omega" if vary is None else "vary", axis, start, stop)
     if vary is None:
-        for value in (start, stop):
-            check_omega(system, value, "omega")
+        if not _undamped(omega_family(system, amplitude), start, stop):  # the closed form vouches for itself
+            for value in (start, stop):
+                check_omega(system, value, "omega")
         return Request(system, amplitude, start, stop, points, None)
     family = parameter_family(network, mass, amplitude, omega, vary, start, stop)  # type: ignore[arg-type]
+    if _undamped(family, start, stop):
+        return Request(system, amplitude, start, stop, points, family)
     for value in (start, stop):
         check_omega(family.member(value)[0], omega, f"vary: at {vary} = {value:g}")  # type: ignore[arg-type]
     return Request(system, amplitude, start, stop, points, family)
@@ -196,12 +216,68 @@ def response_curve(
     Curve
         Columns ``omega``, ``amplitude_<mass>`` for each mass (half of max x
         minus min x over the period, m), then :data:`COLUMNS`; with ``vary``,
-        its column first.
+        its column first.  A linear system with an undamped mode: the closed form at ``points`` values evenly
+        spaced from ``start`` to ``stop``, without those where the periodic motion is not unique (module
+        docstring).
+
+    Raises
+    ------
+    ValueError
+        One line naming the argument; ``force_omega: ...`` where no value of a linear system with an undamped
+        mode has a unique periodic motion (``omega = omega_n/j``).
     """
     req = request(network, mass, amplitude, start, stop, points, vary, omega)
+    family = req.family or omega_family(req.system, req.amplitude)
+    if _undamped(family, req.start, req.stop):
+        return _linear_curve(family, req.start, req.stop, req.points, network.mass_names, vary)
     branches = _branches(req.system, req.amplitude, req.start, req.stop, req.points, progress, req.family)
     rows = [p for b in branches for p in b.points]
     return Curve(_table(rows, network.mass_names, vary), _summary(branches, rows, vary or "omega"))
+
+
+def _undamped(family: Family, start: float, stop: float) -> bool:
+    """True when the members at ``start`` and ``stop`` are linear and one has an undamped mode: the closed form
+    (:func:`~lumped.drivers.response.linear.linear_rows`) then takes the family."""
+    forms = [linear.linear_form(family.member(value)[0]) for value in (start, stop)]
+    return None not in forms and any(linear.undamped_frequencies(f).size for f in forms)  # type: ignore[arg-type]
+
+
+def _linear_curve(family: Family, start: float, stop: float, points: int, masses: list[str], vary: str | None) -> Curve:
+    """The closed-form table of a linear family with an undamped mode, its left-out values named; ``ValueError``
+    when every value of the grid is left out (the motion not unique at any)."""
+    rows = linear.linear_rows(family.member, start, stop, points)
+    system, _, omega = family.member(start)
+    frequencies = linear.undamped_frequencies(linear.linear_form(system))  # type: ignore[arg-type]
+    modes = ", ".join(f"{w:.6g}" for w in frequencies)
+    if not rows.points:
+        where = f"at omega = {omega:g} rad/s" if vary else f"at every omega of the grid from {start:g} to {stop:g}"
+        why = linear.nearest_mode(frequencies, omega) if vary else f"omega_n/j of an undamped mode ({modes} rad/s)"
+        raise ValueError(
+            f"force_omega: the periodic motion {where} is not unique: it is {why}, where monodromy - I is singular"
+        )
+    count = len(rows.points)
+    table = {
+        **({} if vary is None else {vary: np.array(rows.values)}),
+        "omega": np.array([p.omega for p in rows.points]),
+        **{f"amplitude_{name}": np.array([p.amplitudes[i] for p in rows.points]) for i, name in enumerate(masses)},
+        "stops_per_period": np.zeros(count),
+        "stable": np.array([p.max_multiplier < 1.0 for p in rows.points]),
+        "max_multiplier": np.array([p.max_multiplier for p in rows.points]),
+        "kind": np.array(["regular"] * count),
+    }
+    if vary is None:
+        named = linear.non_unique_points(frequencies, start, stop)
+        where = f"omega = {named} rad/s" if named else ""
+    else:
+        where = f"{vary} = {', '.join(f'{v:.6g}' for v in rows.skipped[:4])}{', ...' * (len(rows.skipped) > 4)}"
+    left = len(rows.skipped)
+    gaps = "is unique throughout"
+    if where:
+        gaps = f"is not unique at {where}: {f'{left} of the {points}' if left else 'none of the'} grid points left out"
+    modes = "" if vary else f", omega_n = {modes} rad/s"
+    return Curve(
+        table, f"{count} points (closed form: a linear system with an undamped mode{modes}; its periodic motion {gaps})"
+    )
 
 
 def _table(rows: list[ResponsePoint], masses: list[str], vary: str | None = None) -> dict[str, np.ndarray]:

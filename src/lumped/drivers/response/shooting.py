@@ -25,14 +25,22 @@ from typing import NamedTuple
 import math
 
 import numpy as np
-import scipy.linalg
 
 from lumped.drivers.response.systems import LoadedNetwork, Scales, period_map
 from lumped.model.oscillator import Oscillator
 from lumped.solvers.monodromy import RESOLUTION, PeriodMap
 from lumped.solvers.network_monodromy import NetworkPeriodMap
 
-__all__ = ["NEWTON_TOL", "Orbit", "Scales", "find_orbit", "newton_step"]
+__all__ = [
+    "NEWTON_TOL",
+    "Orbit",
+    "Scales",
+    "balance",
+    "find_orbit",
+    "monodromy_error",
+    "multiplier_margin",
+    "newton_step",
+]
 
 #: Newton stops when ``|Pi(z) - z|`` (largest component, in :class:`Scales` units) is below this:
 #: the map's :data:`~lumped.solvers.monodromy.RESOLUTION`, some 1e5 ulps of unit amplitude, above the
@@ -66,18 +74,10 @@ class Orbit(NamedTuple):
 
     @property
     def margin(self) -> float:
-        """The error bound of the multipliers' moduli: ``MULTIPLIER_ULPS eps`` times the work of the phases
-        composed (``sum max(1, rho(B) h)``), times the norm of the balanced ``W^T M W`` and the condition of its
-        eigenvectors (Bauer-Fike: an eigenvalue moves by at most ``cond(V) |E|`` for an error ``E``)."""
+        """The error bound of the multipliers' moduli (:func:`multiplier_margin` of ``W^T M W``, the neutral
+        directions of held elements left out, and of the work of the phases composed)."""
         w = self.period.free_basis
-        m = w.T @ self.period.monodromy @ w
-        if not m.size:
-            return 0.0
-        balanced = scipy.linalg.matrix_balance(m, permute=False)[0]
-        _, v = np.linalg.eig(balanced)
-        v = v / np.linalg.norm(v, axis=0)
-        work = _work(self.period)
-        return float(MULTIPLIER_ULPS * np.finfo(float).eps * work * np.linalg.norm(balanced, 2) * np.linalg.cond(v))
+        return multiplier_margin(w.T @ self.period.monodromy @ w, _work(self.period))
 
     @property
     def max_multiplier(self) -> float:
@@ -108,6 +108,34 @@ class Orbit(NamedTuple):
         return self.period.stops
 
 
+def balance(matrix: np.ndarray) -> np.ndarray:
+    """``D^-1 A D`` with ``D`` diagonal (powers of 2, no permutation) that evens out the rows' and columns' norms
+    (:func:`scipy.linalg.matrix_balance`): exact, and a similarity."""
+    import scipy.linalg  # here, not at import: importing lumped loads no SciPy solver (tests/test_imports.py)
+
+    return scipy.linalg.matrix_balance(matrix, permute=False)[0]
+
+
+def monodromy_error(monodromy: np.ndarray, work: float) -> tuple[np.ndarray, float]:
+    """The balanced monodromy ``D^-1 M D`` (a similarity: the same multipliers, ``M - I`` singular with it) and
+    the bound of its computed error's 2-norm: ``MULTIPLIER_ULPS eps`` times ``work`` (the phases' ``sum max(1,
+    rho(B) h)``) times its norm.  By Weyl's inequality no singular value of ``D^-1 M D - I`` moves by more."""
+    balanced = balance(monodromy)
+    return balanced, float(MULTIPLIER_ULPS * np.finfo(float).eps * work * np.linalg.norm(balanced, 2))
+
+
+def multiplier_margin(monodromy: np.ndarray, work: float) -> float:
+    """The error bound of the moduli of the eigenvalues of a computed monodromy matrix: :func:`monodromy_error`
+    times the condition of the balanced matrix's eigenvectors (Bauer-Fike: an eigenvalue moves by at most
+    ``cond(V) |E|`` for an error ``E``); 0 for an empty matrix."""
+    if not monodromy.size:
+        return 0.0
+    balanced, error = monodromy_error(monodromy, work)
+    _, v = np.linalg.eig(balanced)
+    v = v / np.linalg.norm(v, axis=0)
+    return error * float(np.linalg.cond(v))
+
+
 def _work(period: PeriodMap | NetworkPeriodMap) -> float:
     """``sum max(1, rho(B) h)`` over the phases of the period: the work of composing its monodromy matrix."""
     if isinstance(period, PeriodMap):
@@ -131,6 +159,19 @@ def _settle(system: Oscillator | LoadedNetwork, amplitude: float, omega: float, 
             return nxt
         z = nxt
     return z
+
+
+def _singular(pm: PeriodMap | NetworkPeriodMap) -> bool:
+    """True when ``W^T (M - I) W`` (the neutral directions of held elements left out) is singular within the
+    computed monodromy's error (:func:`monodromy_error`): Newton's step is then not defined by the map."""
+    w = pm.free_basis
+    m = w.T @ pm.monodromy @ w
+    if not m.size:
+        return False
+    if not np.all(np.isfinite(m)):
+        return True
+    balanced, error = monodromy_error(m, _work(pm))
+    return bool(np.linalg.svd(balanced - np.eye(m.shape[0]), compute_uv=False)[-1] <= error)
 
 
 def newton_step(pm: PeriodMap | NetworkPeriodMap, z: np.ndarray) -> np.ndarray:
@@ -169,7 +210,9 @@ def find_orbit(
     Raises
     ------
     ValueError
-        ``force_omega: ...`` when Newton does not converge in :data:`MAX_NEWTON` steps.
+        ``force_omega: ...`` when Newton does not converge in :data:`MAX_NEWTON` steps, or meets a state where
+        ``M - I`` is singular within its computed error (:func:`monodromy_error`: an undamped system at
+        ``omega = omega_n/j``, whose periodic motion is not unique, or a fold).
     """
     scales = Scales.of(system, amplitude)
     z = _settle(system, amplitude, omega, scales) if guess is None else np.asarray(guess, dtype=float)
@@ -177,5 +220,10 @@ def find_orbit(
         pm = period_map(system, amplitude, omega, z)
         if np.max(np.abs(scales.state(pm.end - z))) <= tol:
             return Orbit(omega, z, pm)
+        if _singular(pm):
+            raise ValueError(
+                f"force_omega: the periodic motion at omega = {omega:.6g} rad/s is not isolated: monodromy - I is "
+                "singular within its computed error (omega = omega_n/j of an undamped mode, or a fold)"
+            )
         z = z + newton_step(pm, z)
     raise ValueError(f"force_omega: Newton found no periodic motion at omega = {omega:.6g} rad/s in {MAX_NEWTON} steps")

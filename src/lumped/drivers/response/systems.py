@@ -102,7 +102,10 @@ class Scales(NamedTuple):
 def period_map(
     system: Oscillator | LoadedNetwork, amplitude: float, omega: float, z: np.ndarray
 ) -> PeriodMap | NetworkPeriodMap:
-    """One forcing period of exact motion from the state ``z`` at ``t = 0``, with its monodromy matrix."""
+    """One forcing period of exact motion from the state ``z`` at ``t = 0``, with its monodromy matrix;
+    ``ValueError`` for a state that is not finite (a diverged iterate), before any phase is computed."""
+    if not np.all(np.isfinite(z)):
+        raise ValueError(f"force_omega: no periodic motion found at omega = {omega:.6g} rad/s (a state not finite)")
     if isinstance(system, Oscillator):
         return one_mass_map(system, amplitude, omega, *z)
     return network_period_map(system.parts, system.mass, amplitude, omega, z, list(system.elements))
