@@ -58,7 +58,9 @@ from lumped.solvers.loop_forces import CoreForces, core_forces
 from lumped.solvers.merged_system import assemble, solve_merged
 from lumped.solvers.rigid_clusters import Clusters, Merged, loop_merge
 
-__all__ = ["StepError", "StepSolution", "solve_step", "SIGMA_SCALES", "default_bound", "unsettled"]
+__all__ = ["StepError", "StepSolution", "solve_step", "SIGMA_SCALES", "default_bound", "unsettled", "on_pieces"]
+
+_EPS = 2.0**-52  # numpy.finfo(float).eps
 
 #: Scales of ``sigma`` tried in turn when the active-set iteration cycles.
 SIGMA_SCALES = (1.0, 0.25, 4.0, 1 / 16, 16.0)
@@ -208,8 +210,14 @@ def _iterate(
     clash: list[tuple[int, ...]],
 ) -> tuple[StepSolution, _Linear] | None:
     """The active-set loop at one scale; ``None`` if it cycles or hits the bound
-    (``clash[0]``: the elements of a last loop whose rates disagree)."""
+    (``clash[0]``: the elements of a last loop whose rates disagree).
+
+    A cycle is gone round once, and its first iterate whose ``(w, f)`` lies on
+    its pieces up to the rounding of the linear solve (:func:`on_pieces`) is
+    the solution: a corner, see the module docstring.
+    """
     seen: set[tuple] = set()
+    tried: set[tuple] = set()
     piecewise = all(g.is_piecewise for g in graphs)
     for it in range(1, bound + 1):
         pieces = [g.piece(m, s) for g, m, s in zip(graphs, modes, sigma)]
@@ -223,11 +231,44 @@ def _iterate(
         if settled:
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
         key = tuple(m if g.is_piecewise else None for m, g in zip(new, graphs))
-        if key in seen and piecewise:
-            return None  # a cycle: this scale will never settle
+        if piecewise and (key in seen or tried):  # a cycle: go round it once
+            if on_pieces(pieces, v, w, f, inertia, rhs):
+                f = np.array([min(max(fe, p.lo), p.hi) if p.rigid else fe for fe, p in zip(f, pieces)])
+                return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin._replace(f=f)
+            here = tuple(modes)
+            if here in tried:
+                return None  # round the cycle and no iterate on its pieces: this scale will never settle
+            tried.add(here)
         seen.add(key)
         modes = new
     return None
+
+
+def on_pieces(
+    pieces: Sequence[Piece], v: np.ndarray, w: np.ndarray, f: np.ndarray, inertia: np.ndarray, rhs: np.ndarray
+) -> bool:
+    """True if every ``(w_e, f_e)`` lies on its piece up to the rounding of the linear solve.
+
+    A rigid piece asks ``lo - df <= f <= hi + df`` and ``|w - a| <= dw``; a
+    free one ``lo - dw <= w <= hi + dw``.  Every velocity and force of the
+    solve is a sum (the merged system's elimination, the momentum balances
+    peeled leaf to root) of at most ``n = masses + elements + 1`` terms, each
+    a velocity, a rate, a momentum ``d_i v_i``, a right-hand side or a force
+    of this solve; a sum of ``n`` terms is off by at most ``n eps`` times the
+    sum of their magnitudes (Higham, *Accuracy and Stability*, eq. 4.4).  So
+    ``df = n eps (sum |r_i| + sum d_i |v_i| + sum |f_e|)`` and ``dw = n eps
+    (sum |v_i| + sum |w_e|)``.  The solve then is the exact solution of the
+    step with each piece's edges moved by at most ``df`` or ``dw``.
+    """
+    n = inertia.size + len(pieces) + 1
+    df = n * _EPS * (np.abs(rhs).sum() + (inertia * np.abs(v)).sum() + np.abs(f).sum())
+    dw = n * _EPS * (np.abs(v).sum() + np.abs(w).sum())
+    for p, we, fe in zip(pieces, w, f):
+        if p.rigid and not (p.lo - df <= fe <= p.hi + df and abs(we - p.a) <= dw):
+            return False
+        if not p.rigid and not p.lo - dw <= we <= p.hi + dw:
+            return False
+    return True
 
 
 def _dual_sweeps(
