@@ -54,6 +54,7 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.laws.step_graph import Piece, StepGraph, as_step_graph
+from lumped.solvers import parallel_elements as parallel
 from lumped.solvers.loop_forces import CoreForces, core_forces
 from lumped.solvers.merged_system import assemble, solve_merged
 from lumped.solvers.rigid_clusters import Clusters, Merged, loop_merge
@@ -153,8 +154,11 @@ def solve_step(
         If no scale settles within the bound; with ``elements`` set if the
         last failure was a loop of rigid pieces whose rates disagree.
     """
-    topo = _Topology(list(first), list(second), inertia.size)
     graphs = [as_step_graph(g) for g in graphs]
+    reduced = parallel.reduce(first, second, graphs, sigma, modes)
+    if reduced is not None:
+        return _solve_reduced(reduced, first, second, inertia, rhs, graphs, max_iterations, ranges)
+    topo = _Topology(list(first), list(second), inertia.size)
     guess = [g.initial_mode() for g in graphs] if modes is None else list(modes)
     bound = default_bound(len(graphs)) if max_iterations is None else max_iterations
     clash: list[tuple[int, ...]] = [()]
@@ -170,6 +174,29 @@ def solve_step(
     if clash[0]:
         raise StepError(DISAGREE, clash[0])
     raise StepError(unsettled(bound))
+
+
+def _solve_reduced(
+    red: parallel.Reduced,
+    first: Sequence[int],
+    second: Sequence[int],
+    inertia: np.ndarray,
+    rhs: np.ndarray,
+    graphs: Sequence[StepGraph],
+    max_iterations: int | None,
+    ranges: bool,
+) -> StepSolution:
+    """The step with each group of parallel rigid-capable elements as one
+    (:mod:`lumped.solvers.parallel_elements`), then each element's share."""
+    try:
+        sol = solve_step(red.first, red.second, inertia, rhs, red.graphs, red.sigma, red.modes, max_iterations, ranges)
+    except StepError as err:
+        names = [k for e in err.elements for k in (red.groups[e].elements if red.groups[e] else (red.index[e],))]
+        raise StepError(str(err), sorted(names)) from None
+    low, high = (sol.low, sol.high) if sol.low is not None else (None, None)
+    out = parallel.expand(red, len(graphs), graphs, first, second, inertia.size, (sol.modes, sol.w, sol.f, sol.rigid, low, high))
+    kept = ranges and not np.array_equal(out.low, out.high)
+    return StepSolution(sol.v, out.w, out.f, out.modes, out.rigid, sol.iterations, out.low if kept else None, out.high if kept else None)
 
 
 #: Why a step with a loop of rigid pieces whose rates disagree has no solution.
