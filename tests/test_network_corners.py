@@ -25,6 +25,7 @@ step that does not settle is not blamed on ``--dt``.
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -33,13 +34,16 @@ from references import order
 
 import lumped as L
 from lumped import Bingham, Mass, Network, Spring, SpringString, simulate_network
+from lumped.laws.element import Element
 from lumped.solvers import network_compiled as kernel
 from lumped.solvers import network_step
 
 EPS = float(np.finfo(float).eps)
 
 
-def two_masses(pads: tuple[float, ...], x0: float = 0.1, gamma: float = math.inf, beside=None) -> Network:  # noqa: ANN001
+def two_masses(
+    pads: tuple[float, ...], x0: float = 0.1, gamma: float = math.inf, beside: Element | None = None
+) -> Network:
     """``a`` and ``b`` on springs of 100 N/m to the ground, joined by Bingham pads of thresholds
     ``pads`` (the second one reversed, ``b`` to ``a``) and the element ``beside`` if given."""
     elements = [Spring("sa", ("ground", "a"), 100.0), Spring("sb", ("ground", "b"), 100.0)]
@@ -230,7 +234,7 @@ def test_the_sigma_scales_settle_a_step_that_cycles_at_scale_one(monkeypatch: py
         assert compiled.modes == sol.modes and compiled.iterations == sol.iterations
 
 
-def test_a_step_that_does_not_settle_is_not_blamed_on_dt(monkeypatch: pytest.MonkeyPatch, tmp_path) -> None:  # noqa: ANN001
+def test_a_step_that_does_not_settle_is_not_blamed_on_dt(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
     """If the iteration ever fails, the command says the step solver failed, in one line, status 2,
     naming no option: ``--dt`` is not the cause (every step problem has a solution)."""
     system = tmp_path / "pads.toml"
@@ -254,3 +258,27 @@ def test_a_step_that_does_not_settle_is_not_blamed_on_dt(monkeypatch: pytest.Mon
     assert out.returncode == 2 and len(out.stderr.strip().splitlines()) == 1
     assert "the step solver failed at the step to t = 0.0001 s" in out.stderr and "--dt" not in out.stderr
     assert not (tmp_path / "o.csv").exists()
+
+
+@pytest.mark.skipif(kernel.KERNEL != "compiled", reason="the compiled network kernel was not built")
+def test_the_compiled_step_reads_the_scales_from_the_python_step() -> None:
+    """``SIGMA_SCALES`` and ``DUAL_SWEEPS`` are written once, in :mod:`lumped.solvers.network_step`:
+    with the scales cut to ``(1.0,)`` the compiled step no longer settles the scaled step by its
+    scales (it reaches the sweeps' modes, settled in one iteration), and with no sweeps at all it
+    fails, as the Python step does."""
+    net, first, second, inertia, rhs, graphs, sigma = scaled_step()
+    kept = network_step.SIGMA_SCALES, network_step.DUAL_SWEEPS
+    try:
+        network_step.SIGMA_SCALES = (1.0,)
+        kernel.settings()
+        assert kernel.solve_graphs(kernel.plan(net), inertia, sigma, graphs, rhs).iterations == 1
+        network_step.DUAL_SWEEPS = ()
+        kernel.settings()
+        with pytest.raises(network_step.StepError):
+            kernel.solve_graphs(kernel.plan(net), inertia, sigma, graphs, rhs)
+        with pytest.raises(network_step.StepError):
+            network_step.solve_step(first, second, inertia, rhs, graphs, sigma)
+    finally:
+        network_step.SIGMA_SCALES, network_step.DUAL_SWEEPS = kept
+        kernel.settings()
+    assert kernel.solve_graphs(kernel.plan(net), inertia, sigma, graphs, rhs).iterations == 3

@@ -29,8 +29,14 @@
 
 #include "_network_elements.h" /* piece, MAX_PIECES, mode_of */
 
-static const double SCALES[] = {1.0, 0.25, 4.0, 1.0 / 16, 16.0}; /* step.SIGMA_SCALES */
-static const int SWEEPS[] = {10, 100, 1000};
+/* step.SIGMA_SCALES and step.DUAL_SWEEPS: set from Python when the module is imported
+ * (network_settings in _network_kernel.c, called by lumped.solvers.network_compiled), so
+ * that the two steps read one definition; until then one scale and no sweeps. */
+#define MAX_SETTINGS 16
+static double SCALES[MAX_SETTINGS] = {1.0};
+static int N_SCALES = 1;
+static int SWEEPS[MAX_SETTINGS] = {0};
+static int N_SWEEPS = 0;
 
 /* The network: topology (read only), then the work arrays of one solve. */
 typedef struct {
@@ -265,11 +271,11 @@ static void dual_sweeps(net_t *q, int sweeps) {
 /* step.solve_step from the warm start in q->mode: 1 if settled. */
 static int solve(net_t *q, int *iterations) {
     memcpy(q->guess, q->mode, q->n_el * sizeof(int));
-    for (int s = 0; s < 5; s++) {
+    for (int s = 0; s < N_SCALES; s++) {
         memcpy(q->mode, q->guess, q->n_el * sizeof(int));
         if (iterate(q, SCALES[s], iterations)) return 1;
     }
-    for (int s = 0; s < 3; s++) {
+    for (int s = 0; s < N_SWEEPS; s++) {
         dual_sweeps(q, SWEEPS[s]);
         memcpy(q->mode, q->guess, q->n_el * sizeof(int));
         if (iterate(q, 1.0, iterations)) return 1;

@@ -30,9 +30,20 @@ new mode is the piece that contains ``z = f + sigma w``, its resolvent with
 a scale ``sigma > 0`` of the stiffness its points see; the iteration stops
 when no mode changes, and then every ``(w, f)`` lies on its graph: the
 problem is solved exactly, up to the rounding of one linear solve.  A mode
-vector that comes back is a cycle: the iteration is restarted with other
-scales ``sigma``; if none settles, or the bound on iterations is reached, a
-``StepError`` says so.  (For one mass with a spring and a Bingham dashpot,
+vector that comes back is a cycle.  At a *corner* of a graph (a pad sticking
+at exactly its threshold, where its sticking piece meets a slipping one)
+both pieces give the same solution, and in floating point each one's solve
+lands a few ulps on the other's side (a force of ``tau + 2 ulp``, a rate of
+``-6e-21``): the modes alternate.  So a cycle is gone round once and its
+first iterate on its pieces up to the linear solve's rounding
+(:func:`on_pieces`) is the solution, its rigid forces clipped to their
+bands.  A cycle without one (the iteration can cycle in exact arithmetic)
+is restarted with other scales ``sigma`` (``SIGMA_SCALES``), then from the
+modes of Gauss-Seidel sweeps on the dual (``DUAL_SWEEPS``); if none settles,
+or the bound on iterations is reached, a ``StepError`` says so.  Parallel
+elements that can be rigid and whose graphs break at the same rates (pads)
+are stepped as one element of the summed graph
+(:mod:`lumped.solvers.parallel_elements`).  (For one mass with a spring and a Bingham dashpot,
 ``sigma = m/dt + k dt`` makes ``z`` the predictor ``F~`` of eq. 15b and the
 mode test Algorithm 1's ``|F~| <= mu_s N_f``.)
 
@@ -59,12 +70,24 @@ from lumped.solvers.loop_forces import CoreForces, core_forces
 from lumped.solvers.merged_system import assemble, solve_merged
 from lumped.solvers.rigid_clusters import Clusters, Merged, loop_merge
 
-__all__ = ["StepError", "StepSolution", "solve_step", "SIGMA_SCALES", "default_bound", "unsettled", "on_pieces"]
+__all__ = [
+    "DUAL_SWEEPS",
+    "SIGMA_SCALES",
+    "StepError",
+    "StepSolution",
+    "default_bound",
+    "on_pieces",
+    "solve_step",
+    "unsettled",
+]
 
 _EPS = 2.0**-52  # numpy.finfo(float).eps
 
 #: Scales of ``sigma`` tried in turn when the active-set iteration cycles.
 SIGMA_SCALES = (1.0, 0.25, 4.0, 1 / 16, 16.0)
+#: Gauss-Seidel sweeps on the dual tried in turn when no scale settles (:func:`_dual_sweeps`).
+#: Both are handed to the compiled step when it is imported (``network_settings``).
+DUAL_SWEEPS = (10, 100, 1000)
 
 Graph = Sequence[Piece] | StepGraph
 
@@ -166,7 +189,7 @@ def solve_step(
         out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound, clash)
         if out is not None:
             return _with_ranges(out, topo, ranges)
-    for sweeps in (10, 100, 1000):  # the guaranteed way in, then the exact finish
+    for sweeps in DUAL_SWEEPS:  # the guaranteed way in, then the exact finish
         guess = _dual_sweeps(topo, inertia, rhs, graphs, sweeps)
         out = _iterate(topo, inertia, rhs, graphs, sigma, guess, bound, clash)
         if out is not None:
@@ -194,9 +217,13 @@ def _solve_reduced(
         names = [k for e in err.elements for k in (red.groups[e].elements if red.groups[e] else (red.index[e],))]
         raise StepError(str(err), sorted(names)) from None
     low, high = (sol.low, sol.high) if sol.low is not None else (None, None)
-    out = parallel.expand(red, len(graphs), graphs, first, second, inertia.size, (sol.modes, sol.w, sol.f, sol.rigid, low, high))
+    out = parallel.expand(
+        red, len(graphs), graphs, first, second, inertia.size, (sol.modes, sol.w, sol.f, sol.rigid, low, high)
+    )
     kept = ranges and not np.array_equal(out.low, out.high)
-    return StepSolution(sol.v, out.w, out.f, out.modes, out.rigid, sol.iterations, out.low if kept else None, out.high if kept else None)
+    return StepSolution(
+        sol.v, out.w, out.f, out.modes, out.rigid, sol.iterations, out.low if kept else None, out.high if kept else None
+    )
 
 
 #: Why a step with a loop of rigid pieces whose rates disagree has no solution.

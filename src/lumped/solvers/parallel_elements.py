@@ -30,10 +30,9 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.laws.step_graph import Piece, Pieces, StepGraph, free_piece, rigid_piece
-from lumped.solvers.loop_forces import core_forces
+from lumped.solvers.loop_forces import CoreForces, core_forces
 
-__all__ = ["Group", "Reduced", "reduce", "expand"]
-
+__all__ = ["Expanded", "Group", "Reduced", "expand", "reduce", "summed"]
 
 
 class Group(NamedTuple):
@@ -185,42 +184,48 @@ def expand(
                 continue
             f[k] = low[k] = high[k] = p.a + p.b * w[k]
             carried -= -f[k] if flip else f[k]
-        if held:
-            _share(held, graphs, group, part, first, second, ground, (carried, span[0] - f_r[r] + carried, span[1] - f_r[r] + carried), f, low, high)
+        if held:  # the group's interval, less what its free elements carry
+            bounds = (carried, span[0] - f_r[r] + carried, span[1] - f_r[r] + carried)
+            _share(
+                held,
+                graphs,
+                dict(zip(group.elements, part)),
+                group.elements[0],
+                (first, second, ground),
+                bounds,
+                (f, low, high),
+            )
     return Expanded(modes, w, f, rigid, low, high)
 
 
 def _share(
     held: list[int],
     graphs: Sequence[StepGraph],
-    group: Group,
-    part: tuple[int, ...],
-    first: Sequence[int],
-    second: Sequence[int],
-    ground: int,
+    pick: dict[int, int],
+    lead: int,
+    points: tuple[Sequence[int], Sequence[int], int],
     carried: tuple[float, float, float],
-    f: np.ndarray,
-    low: np.ndarray,
-    high: np.ndarray,
+    out: tuple[np.ndarray, np.ndarray, np.ndarray],
 ) -> None:
-    """Split what the group's rigid elements ``held`` carry (``carried``: the force, and its
-    least and greatest admissible values) as a loop of rigid elements: the least-norm
-    split and each one's interval (in place)."""
-    pick = dict(zip(group.elements, part))
+    """Split what the group's rigid elements ``held`` (on pieces ``pick``) carry along the
+    element ``lead`` (``carried``: the force, and its least and greatest admissible values) as a
+    loop of rigid elements: the least-norm split and each one's interval, into ``out = (f, low,
+    high)``."""
+    first, second, ground = points
+    f, low, high = out
     bands = {k: (graphs[k][pick[k]].lo, graphs[k][pick[k]].hi) for k in held}  # type: ignore[index]
-    lead = group.elements[0]
-    points = max(max(first), max(second)) + 1
+    size = max(max(first), max(second), ground) + 1
 
-    def split(force: float, ranges: bool):  # noqa: ANN202
-        gap = [0.0] * points
+    def split(force: float) -> CoreForces:
+        gap = [0.0] * size
         gap[second[lead]] += force
         gap[first[lead]] -= force
-        return core_forces(held, first, second, bands, gap, ground, ranges=ranges)
+        return core_forces(held, first, second, bands, gap, ground, ranges=True)
 
-    one = split(carried[0], True)
+    one = split(carried[0])
     for k, value, lo, hi in zip(one.elements, one.force, one.low, one.high):  # type: ignore[arg-type]
         f[k], low[k], high[k] = min(max(value, bands[k][0]), bands[k][1]), lo, hi
     if carried[1] != carried[0] or carried[2] != carried[0]:  # the group's own force is not unique
-        least, most = split(carried[1], True), split(carried[2], True)
+        least, most = split(carried[1]), split(carried[2])
         for k, a, b, c, d in zip(held, least.low, least.high, most.low, most.high):  # type: ignore[arg-type]
             low[k], high[k] = min(a, c, low[k]), max(b, d, high[k])
