@@ -115,11 +115,11 @@ def test_the_thousand_block_chain_runs_as_its_blocks_come_to_rest() -> None:
 ORDER = {
     "one-pad": (two_masses((5.0,)), two_masses((5.0,)), 1.0),
     "one-pad-slipping": (two_masses((5.0,), x0=0.2), two_masses((5.0,), x0=0.2), 1.0),
-    "two-pads": (two_masses((3.0, 2.0)), two_masses((5.0,)), 0.5),
+    "two-pads": (two_masses((3.0, 2.0)), two_masses((5.0,)), 0.3),
     "string-beside": (
         two_masses((7.5,), beside=SpringString("s", ("a", "b"), 25.0, 1.0)),
         two_masses((7.5,), beside=Spring("s", ("a", "b"), 25.0)),
-        0.5,
+        0.3,
     ),
     "chain-3": (chain(3), chain(3), 1.0),
 }
