@@ -259,7 +259,9 @@ def _march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, pa
 
 
 def _unsettled(n: int, dt: float, elements: int) -> ValueError:
-    return ValueError(f"dt: the step to t = {n * dt:.6g} s failed: {unsettled(default_bound(elements))}")
+    """The message of a step whose iteration did not settle: the step solver's failure, named as
+    such (the step problem has a solution, unique in its velocities, at every ``dt``)."""
+    return ValueError(f"the step solver failed at the step to t = {n * dt:.6g} s: {unsettled(default_bound(elements))}")
 
 
 def _failed(net: Network, n: int, dt: float, err: StepError) -> ValueError:

@@ -29,8 +29,14 @@
 
 #include "_network_elements.h" /* piece, MAX_PIECES, mode_of */
 
-static const double SCALES[] = {1.0, 0.25, 4.0, 1.0 / 16, 16.0}; /* step.SIGMA_SCALES */
-static const int SWEEPS[] = {10, 100, 1000};
+/* step.SIGMA_SCALES and step.DUAL_SWEEPS: set from Python when the module is imported
+ * (network_settings in _network_kernel.c, called by lumped.solvers.network_compiled), so
+ * that the two steps read one definition; until then one scale and no sweeps. */
+#define MAX_SETTINGS 16
+static double SCALES[MAX_SETTINGS] = {1.0};
+static int N_SCALES = 1;
+static int SWEEPS[MAX_SETTINGS] = {0};
+static int N_SWEEPS = 0;
 
 /* The network: topology (read only), then the work arrays of one solve. */
 typedef struct {
@@ -174,11 +180,34 @@ static uint64_t hash_modes(const int *m, Py_ssize_t n) {
     return h;
 }
 
+/* step.on_pieces: 1 if every element's (w, f) lies on its piece up to the
+ * rounding of the linear solve (the bounds df, dw derived there). */
+static int on_pieces(const net_t *q, const int *mode) {
+    const double eps = 2.220446049250313e-16, n = (double)(q->n_mass + q->n_el + 1);
+    double forces = 0.0, rates = 0.0;
+    for (Py_ssize_t i = 0; i < q->n_mass; i++) {
+        forces += fabs(q->rhs[i]) + q->inertia[i] * fabs(q->vall[i]);
+        rates += fabs(q->vall[i]);
+    }
+    for (Py_ssize_t e = 0; e < q->n_el; e++) forces += fabs(q->f[e]), rates += fabs(q->w[e]);
+    const double df = n * eps * forces, dw = n * eps * rates;
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        const piece *p = chosen(q, e, mode);
+        if (p->rigid ? !(p->lo - df <= q->f[e] && q->f[e] <= p->hi + df && fabs(q->w[e] - p->a) <= dw)
+                     : !(p->lo - dw <= q->w[e] && q->w[e] <= p->hi + dw))
+            return 0;
+    }
+    return 1;
+}
+
 /* step._iterate at one scale: 1 if settled (mode holds the modes), 0 if it
  * cycles or reaches the bound.  A cycle is a repeated hash of the mode
- * vector: a collision (odds 2^-64) only costs a restart at the next scale. */
+ * vector (a collision, odds 2^-64, only costs a restart at the next scale);
+ * it is gone round once, and its first iterate on its pieces up to rounding
+ * (on_pieces: a corner) is the solution, its rigid forces clipped to their bands. */
 static int iterate(net_t *q, double scale, int *iterations) {
-    int seen = 0;
+    int seen = 0, cycling = 0, round = 0;
+    uint64_t first = 0;
     for (int it = 1; it <= q->bound; it++) {
         eliminate(q, q->mode);
         substitute(q, q->mode);
@@ -193,9 +222,22 @@ static int iterate(net_t *q, double scale, int *iterations) {
             return 1;
         }
         const uint64_t h = hash_modes(q->next, q->n_el);
-        for (int j = 0; j < seen; j++)
-            if (q->seen[j] == h) return 0;
-        q->seen[seen++] = h;
+        for (int j = 0; j < seen && !cycling; j++) cycling = q->seen[j] == h;
+        if (cycling) {
+            if (on_pieces(q, q->mode)) {
+                for (Py_ssize_t e = 0; e < q->n_el; e++) {
+                    const piece *p = chosen(q, e, q->mode);
+                    if (p->rigid) q->f[e] = q->f[e] < p->lo ? p->lo : q->f[e] > p->hi ? p->hi : q->f[e];
+                }
+                *iterations = it;
+                return 1;
+            }
+            const uint64_t here = hash_modes(q->mode, q->n_el);
+            if (round && first == here) return 0; /* round the cycle, no iterate on its pieces */
+            if (!round) first = here, round = 1;
+        } else {
+            q->seen[seen++] = h;
+        }
         memcpy(q->mode, q->next, q->n_el * sizeof(int));
     }
     return 0;
@@ -229,11 +271,11 @@ static void dual_sweeps(net_t *q, int sweeps) {
 /* step.solve_step from the warm start in q->mode: 1 if settled. */
 static int solve(net_t *q, int *iterations) {
     memcpy(q->guess, q->mode, q->n_el * sizeof(int));
-    for (int s = 0; s < 5; s++) {
+    for (int s = 0; s < N_SCALES; s++) {
         memcpy(q->mode, q->guess, q->n_el * sizeof(int));
         if (iterate(q, SCALES[s], iterations)) return 1;
     }
-    for (int s = 0; s < 3; s++) {
+    for (int s = 0; s < N_SWEEPS; s++) {
         dual_sweeps(q, SWEEPS[s]);
         memcpy(q->mode, q->guess, q->n_el * sizeof(int));
         if (iterate(q, 1.0, iterations)) return 1;

@@ -338,7 +338,42 @@ fail:
     return NULL;
 }
 
+/* network_settings(scales, sweeps): the iteration's sigma scales (floats > 0) and dual sweep
+ * counts (ints > 0), at most MAX_SETTINGS each: step.SIGMA_SCALES and step.DUAL_SWEEPS. */
+static PyObject *network_settings(PyObject *self, PyObject *args) {
+    PyObject *scales, *sweeps;
+    if (!PyArg_ParseTuple(args, "O!O!", &PyTuple_Type, &scales, &PyTuple_Type, &sweeps)) return NULL;
+    const Py_ssize_t ns = PyTuple_GET_SIZE(scales), nw = PyTuple_GET_SIZE(sweeps);
+    if (ns < 1 || ns > MAX_SETTINGS || nw > MAX_SETTINGS) {
+        PyErr_Format(PyExc_ValueError, "scales must hold 1 to %d values and sweeps at most %d", MAX_SETTINGS, MAX_SETTINGS);
+        return NULL;
+    }
+    double s[MAX_SETTINGS];
+    long w[MAX_SETTINGS];
+    for (Py_ssize_t i = 0; i < ns; i++) {
+        s[i] = PyFloat_AsDouble(PyTuple_GET_ITEM(scales, i));
+        if (PyErr_Occurred()) return NULL;
+        if (!(s[i] > 0.0) || !isfinite(s[i])) {
+            PyErr_Format(PyExc_ValueError, "scales[%zd] must be > 0 and finite", i);
+            return NULL;
+        }
+    }
+    for (Py_ssize_t i = 0; i < nw; i++) {
+        w[i] = PyLong_AsLong(PyTuple_GET_ITEM(sweeps, i));
+        if (PyErr_Occurred()) return NULL;
+        if (w[i] < 1 || w[i] > 1000000) {
+            PyErr_Format(PyExc_ValueError, "sweeps[%zd] must be in 1..1000000", i);
+            return NULL;
+        }
+    }
+    for (Py_ssize_t i = 0; i < ns; i++) SCALES[i] = s[i];
+    for (Py_ssize_t i = 0; i < nw; i++) SWEEPS[i] = (int)w[i];
+    N_SCALES = (int)ns, N_SWEEPS = (int)nw;
+    Py_RETURN_NONE;
+}
+
 static PyMethodDef methods[] = {
+    {"network_settings", network_settings, METH_VARARGS, "The iteration's sigma scales and dual sweep counts."},
     {"network_block", network_block, METH_VARARGS, "Backward Euler for a forest network, one block of steps."},
     {"network_solve", network_solve, METH_VARARGS, "One step problem of a forest network with given graphs."},
     {NULL, NULL, 0, NULL}};

@@ -37,9 +37,10 @@ import numpy as np
 
 from lumped.laws.step_graph import Piece
 from lumped.model.network import Network, listed, rigid_loop
+from lumped.solvers import network_step as step
 from lumped.solvers.network_step import StepError, StepSolution, default_bound, unsettled
 
-__all__ = ["KERNEL", "Plan", "ineligible", "plan", "has_chord", "solve_graphs", "march_block"]
+__all__ = ["KERNEL", "Plan", "ineligible", "plan", "has_chord", "solve_graphs", "march_block", "settings"]
 
 #: ``"compiled"`` when ``_network_kernel.c`` was built (and ``LUMPED_PURE_PYTHON``
 #: is unset), else ``"python"``: the Python step then runs every network.
@@ -47,11 +48,22 @@ KERNEL = "python"
 if os.environ.get("LUMPED_PURE_PYTHON", "") in ("", "0"):
     try:
         from lumped.kernels._network_kernel import network_block as _network_block  # type: ignore[import-not-found]
+        from lumped.kernels._network_kernel import network_settings as _network_settings  # type: ignore[import-not-found]
         from lumped.kernels._network_kernel import network_solve as _network_solve  # type: ignore[import-not-found]
 
         KERNEL = "compiled"
     except ImportError:  # no C compiler at install: the Python step, as before
         pass
+
+
+def settings() -> None:
+    """Hand the iteration's ``SIGMA_SCALES`` and ``DUAL_SWEEPS`` (:mod:`lumped.solvers.network_step`)
+    to the compiled step: one definition for both (done at import; again after changing them)."""
+    if KERNEL == "compiled":
+        _network_settings(tuple(float(s) for s in step.SIGMA_SCALES), tuple(int(n) for n in step.DUAL_SWEEPS))
+
+
+settings()
 
 
 class Plan(NamedTuple):

@@ -30,9 +30,20 @@ new mode is the piece that contains ``z = f + sigma w``, its resolvent with
 a scale ``sigma > 0`` of the stiffness its points see; the iteration stops
 when no mode changes, and then every ``(w, f)`` lies on its graph: the
 problem is solved exactly, up to the rounding of one linear solve.  A mode
-vector that comes back is a cycle: the iteration is restarted with other
-scales ``sigma``; if none settles, or the bound on iterations is reached, a
-``StepError`` says so.  (For one mass with a spring and a Bingham dashpot,
+vector that comes back is a cycle.  At a *corner* of a graph (a pad sticking
+at exactly its threshold, where its sticking piece meets a slipping one)
+both pieces give the same solution, and in floating point each one's solve
+lands a few ulps on the other's side (a force of ``tau + 2 ulp``, a rate of
+``-6e-21``): the modes alternate.  So a cycle is gone round once and its
+first iterate on its pieces up to the linear solve's rounding
+(:func:`on_pieces`) is the solution, its rigid forces clipped to their
+bands.  A cycle without one (the iteration can cycle in exact arithmetic)
+is restarted with other scales ``sigma`` (``SIGMA_SCALES``), then from the
+modes of Gauss-Seidel sweeps on the dual (``DUAL_SWEEPS``); if none settles,
+or the bound on iterations is reached, a ``StepError`` says so.  Parallel
+elements that can be rigid and whose graphs break at the same rates (pads)
+are stepped as one element of the summed graph
+(:mod:`lumped.solvers.parallel_elements`).  (For one mass with a spring and a Bingham dashpot,
 ``sigma = m/dt + k dt`` makes ``z`` the predictor ``F~`` of eq. 15b and the
 mode test Algorithm 1's ``|F~| <= mu_s N_f``.)
 
@@ -54,14 +65,29 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.laws.step_graph import Piece, StepGraph, as_step_graph
+from lumped.solvers import parallel_elements as parallel
 from lumped.solvers.loop_forces import CoreForces, core_forces
 from lumped.solvers.merged_system import assemble, solve_merged
 from lumped.solvers.rigid_clusters import Clusters, Merged, loop_merge
 
-__all__ = ["StepError", "StepSolution", "solve_step", "SIGMA_SCALES", "default_bound", "unsettled"]
+__all__ = [
+    "DUAL_SWEEPS",
+    "SIGMA_SCALES",
+    "StepError",
+    "StepSolution",
+    "default_bound",
+    "on_pieces",
+    "solve_step",
+    "unsettled",
+]
+
+_EPS = 2.0**-52  # numpy.finfo(float).eps
 
 #: Scales of ``sigma`` tried in turn when the active-set iteration cycles.
 SIGMA_SCALES = (1.0, 0.25, 4.0, 1 / 16, 16.0)
+#: Gauss-Seidel sweeps on the dual tried in turn when no scale settles (:func:`_dual_sweeps`).
+#: Both are handed to the compiled step when it is imported (``network_settings``).
+DUAL_SWEEPS = (10, 100, 1000)
 
 Graph = Sequence[Piece] | StepGraph
 
@@ -151,8 +177,11 @@ def solve_step(
         If no scale settles within the bound; with ``elements`` set if the
         last failure was a loop of rigid pieces whose rates disagree.
     """
-    topo = _Topology(list(first), list(second), inertia.size)
     graphs = [as_step_graph(g) for g in graphs]
+    reduced = parallel.reduce(first, second, graphs, sigma, modes)
+    if reduced is not None:
+        return _solve_reduced(reduced, first, second, inertia, rhs, graphs, max_iterations, ranges)
+    topo = _Topology(list(first), list(second), inertia.size)
     guess = [g.initial_mode() for g in graphs] if modes is None else list(modes)
     bound = default_bound(len(graphs)) if max_iterations is None else max_iterations
     clash: list[tuple[int, ...]] = [()]
@@ -160,7 +189,7 @@ def solve_step(
         out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound, clash)
         if out is not None:
             return _with_ranges(out, topo, ranges)
-    for sweeps in (10, 100, 1000):  # the guaranteed way in, then the exact finish
+    for sweeps in DUAL_SWEEPS:  # the guaranteed way in, then the exact finish
         guess = _dual_sweeps(topo, inertia, rhs, graphs, sweeps)
         out = _iterate(topo, inertia, rhs, graphs, sigma, guess, bound, clash)
         if out is not None:
@@ -168,6 +197,33 @@ def solve_step(
     if clash[0]:
         raise StepError(DISAGREE, clash[0])
     raise StepError(unsettled(bound))
+
+
+def _solve_reduced(
+    red: parallel.Reduced,
+    first: Sequence[int],
+    second: Sequence[int],
+    inertia: np.ndarray,
+    rhs: np.ndarray,
+    graphs: Sequence[StepGraph],
+    max_iterations: int | None,
+    ranges: bool,
+) -> StepSolution:
+    """The step with each group of parallel rigid-capable elements as one
+    (:mod:`lumped.solvers.parallel_elements`), then each element's share."""
+    try:
+        sol = solve_step(red.first, red.second, inertia, rhs, red.graphs, red.sigma, red.modes, max_iterations, ranges)
+    except StepError as err:
+        names = [k for e in err.elements for k in (red.groups[e].elements if red.groups[e] else (red.index[e],))]
+        raise StepError(str(err), sorted(names)) from None
+    low, high = (sol.low, sol.high) if sol.low is not None else (None, None)
+    out = parallel.expand(
+        red, len(graphs), graphs, first, second, inertia.size, (sol.modes, sol.w, sol.f, sol.rigid, low, high)
+    )
+    kept = ranges and not np.array_equal(out.low, out.high)
+    return StepSolution(
+        sol.v, out.w, out.f, out.modes, out.rigid, sol.iterations, out.low if kept else None, out.high if kept else None
+    )
 
 
 #: Why a step with a loop of rigid pieces whose rates disagree has no solution.
@@ -208,8 +264,14 @@ def _iterate(
     clash: list[tuple[int, ...]],
 ) -> tuple[StepSolution, _Linear] | None:
     """The active-set loop at one scale; ``None`` if it cycles or hits the bound
-    (``clash[0]``: the elements of a last loop whose rates disagree)."""
+    (``clash[0]``: the elements of a last loop whose rates disagree).
+
+    A cycle is gone round once, and its first iterate whose ``(w, f)`` lies on
+    its pieces up to the rounding of the linear solve (:func:`on_pieces`) is
+    the solution: a corner, see the module docstring.
+    """
     seen: set[tuple] = set()
+    tried: set[tuple] = set()
     piecewise = all(g.is_piecewise for g in graphs)
     for it in range(1, bound + 1):
         pieces = [g.piece(m, s) for g, m, s in zip(graphs, modes, sigma)]
@@ -223,11 +285,44 @@ def _iterate(
         if settled:
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
         key = tuple(m if g.is_piecewise else None for m, g in zip(new, graphs))
-        if key in seen and piecewise:
-            return None  # a cycle: this scale will never settle
+        if piecewise and (key in seen or tried):  # a cycle: go round it once
+            if on_pieces(pieces, v, w, f, inertia, rhs):
+                f = np.array([min(max(fe, p.lo), p.hi) if p.rigid else fe for fe, p in zip(f, pieces)])
+                return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin._replace(f=f)
+            here = tuple(modes)
+            if here in tried:
+                return None  # round the cycle and no iterate on its pieces: this scale will never settle
+            tried.add(here)
         seen.add(key)
         modes = new
     return None
+
+
+def on_pieces(
+    pieces: Sequence[Piece], v: np.ndarray, w: np.ndarray, f: np.ndarray, inertia: np.ndarray, rhs: np.ndarray
+) -> bool:
+    """True if every ``(w_e, f_e)`` lies on its piece up to the rounding of the linear solve.
+
+    A rigid piece asks ``lo - df <= f <= hi + df`` and ``|w - a| <= dw``; a
+    free one ``lo - dw <= w <= hi + dw``.  Every velocity and force of the
+    solve is a sum (the merged system's elimination, the momentum balances
+    peeled leaf to root) of at most ``n = masses + elements + 1`` terms, each
+    a velocity, a rate, a momentum ``d_i v_i``, a right-hand side or a force
+    of this solve; a sum of ``n`` terms is off by at most ``n eps`` times the
+    sum of their magnitudes (Higham, *Accuracy and Stability*, eq. 4.4).  So
+    ``df = n eps (sum |r_i| + sum d_i |v_i| + sum |f_e|)`` and ``dw = n eps
+    (sum |v_i| + sum |w_e|)``.  The solve then is the exact solution of the
+    step with each piece's edges moved by at most ``df`` or ``dw``.
+    """
+    n = inertia.size + len(pieces) + 1
+    df = n * _EPS * (np.abs(rhs).sum() + (inertia * np.abs(v)).sum() + np.abs(f).sum())
+    dw = n * _EPS * (np.abs(v).sum() + np.abs(w).sum())
+    for p, we, fe in zip(pieces, w, f):
+        if p.rigid and not (p.lo - df <= fe <= p.hi + df and abs(we - p.a) <= dw):
+            return False
+        if not p.rigid and not p.lo - dw <= we <= p.hi + dw:
+            return False
+    return True
 
 
 def _dual_sweeps(
