@@ -222,7 +222,10 @@ _ = P.save_figure(fig, "rc01_response_curves")
 # one, which no run from rest can reach; and it places the start of motion
 # without stops to the bisection's precision instead of the grid's. At these
 # friction ratios the answer is that there is none: over $r \in [0.2, 3]$ each
-# branch is a single stable motion, so the long runs lost nothing but time.
+# point of a branch is stable and, being isolated ($M - I$ invertible there),
+# the only $T$-periodic motion at its frequency (step 7 says why), so the long
+# runs lost nothing but time. Motions of period $nT$ are another matter, which
+# neither the branch nor the runs from rest rule out (step 7).
 
 # %% [markdown]
 # ## Step 4: following the branch in another parameter
@@ -379,15 +382,32 @@ _ = P.save_figure(fig, "rc02_two_mass_response")
 # Take two motions under the same load and their difference $(\delta x, \delta v)$,
 # with the energy $E = \tfrac12\delta v^T m\,\delta v + \tfrac12\delta x^T K\delta x$.
 # It changes at the rate $-\delta v^T C\,\delta v - \sum_e \delta w_e\,\delta f_e$, where $w_e$
-# is element $e$'s rate and $f_e$ its force. Each friction element's force is a
-# monotone function of its rate (its graph, sticking included), so every term
-# is at most zero: $E$ never grows. Written with $L$, $E = \tfrac12|L\,\delta y|^2$, the period map is
-# non-expansive, $|LML^{-1}|_2 \le 1$: no multiplier leaves the unit circle,
-# so there is no fold with an unstable branch and no period doubling. And the
-# periodic motions at one frequency form a convex set (for a non-expansive map
-# in a Euclidean norm, the midpoint of two fixed points is one): two motions
-# coexist only with the whole segment between them, as the neutral families of
-# a contact that sticks through the period do. Along the two-mass branch:
+# is element $e$'s rate and $f_e$ its force. Each friction element's law is a
+# monotone *graph* between rate and force (set-valued at zero rate, where the
+# contact sticks: the force is no function of the rate, the original's point), and
+# monotone is all the argument needs: $\delta w_e\,\delta f_e \ge 0$ for any two
+# points of the graph, so every term is at most zero and $E$ never grows.
+# Written with $L$, $E = \tfrac12|L\,\delta y|^2$, the period map is
+# non-expansive in this energy norm, $|LML^{-1}|_2 \le 1$ (the convergence
+# argument of Leine and van de Wouw, *Stability and Convergence of Mechanical
+# Systems with Unilateral Constraints*, Springer 2008, for monotone set-valued
+# friction). What that proves, and no more:
+#
+# * no Floquet multiplier of a $T$-periodic motion lies outside the unit
+#   circle, so no branch of them loses stability through a fold or a
+#   period-doubling bifurcation;
+# * the $T$-periodic motions at one frequency form a convex set (for a
+#   non-expansive map in a Euclidean norm the midpoint of two fixed points is
+#   one): two of them coexist only with the whole segment between them, as the
+#   neutral families of a contact that sticks through the period do.
+#
+# It does not exclude motions of period $nT$ (a non-expansive map may have
+# points of period $n$; a rotation is one), nor decide whether the convex set
+# is a single motion. For the forced oscillator with dry friction, Csernák and
+# Stépán (2006, *J. Sound Vib.* 295, 649-658) and Csernák, Stépán and Shaw
+# (2007, *Nonlinear Dyn.* 50, 93-109) report such motions: subharmonic and
+# marginally stable families (notebook 12 meets the latter at $r = 1/2n$); we
+# know their results from their abstracts. Along the two-mass branch:
 
 # %%
 energy = np.block([[np.linalg.cholesky(system.stiffness).T, np.zeros((2, 2))], [np.zeros((2, 2)), np.diag(np.sqrt(system.parts.m))]])
@@ -398,7 +418,9 @@ print(f"largest |L M L^-1| on the branch: {max(norms):.3f}; largest multiplier {
 # (Any $L$ with $L^TL$ the energy's matrix gives the same norm; here the
 # Cholesky factor of $K$.) `tests/test_response_network.py` checks the bound on
 # orbits of one mass, of this chain, of the block with a light block on a
-# Coulomb contact and of the two oscillators joined by a pad. A fold needs what this class lacks: an elastic element that is not
-# linear (a gap, a hardening spring) or a friction force that falls as the
-# rate grows. Within the class, the response curve is a single stable motion
-# at each frequency, up to the positions a stuck contact may hold.
+# Coulomb contact and of the two oscillators joined by a pad. An unstable
+# $T$-periodic motion needs what this class lacks: an elastic element that is
+# not linear (a gap, a hardening spring) or a friction force that falls as the
+# rate grows. Within the class, the $T$-periodic motions at each frequency
+# form one convex set, none of them unstable; the curves above follow it, and
+# the long runs of notebook 11 land on it.
