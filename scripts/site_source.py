@@ -24,7 +24,8 @@ The folder holds
 * ``guide/index.md`` and the pages it lists: the guide and reference pages,
   written by hand in ``book/guide/`` (the README names each) and copied with
   the rest of ``book/``;
-* a copy of ``book/`` (``conf.py``, ``_static/`` with the icon and a script) and ``_static/mathjax/``: MathJax 3
+* a copy of ``book/`` (``conf.py``, ``_static/`` with the icon, a script and
+  the code's style sheet, ``_templates/``) and ``_static/mathjax/``: MathJax 3
   from the ``django-static-mathjax`` package, so the pages render mathematics
   with no network.
 """

@@ -17,8 +17,15 @@ process and opened once in Debian's ``chromium`` through ``chromedriver``
 * mathematics: every element Sphinx marks as math holds MathJax's output
   (``mjx-container``), the pages that carry math have some, and no TeX
   delimiter (``$...$``, ``$$``, ``\\(``, ``\\[``) is left in the text outside code;
+* code: at the window's 1280 px no ``pre`` of a page (a notebook's cells,
+  input and output, and the other pages' code) is wider than its box, so none
+  is clipped or scrolls sideways (book/_static/code.css wraps long lines),
+  and what a reader copies from each is its text as written;
 * the search page, asked for "Algorithm 1", lists the tutorial's notebook 01,
-  the notebook that states Algorithm 1.
+  the notebook that states Algorithm 1;
+* one way to search on each page at 1280 px and at 600 px: the sidebar's field
+  on a wide window, the header's icon on a narrow one, the search page's own
+  form on that page.
 
 A screenshot of each page goes to ``results/site-check/<page>.png``.
 
@@ -59,7 +66,7 @@ RAW_TEX = re.compile(r"\$\$|\$[^\s$][^$\n]*\$|\\\(|\\\[")
 
 # Run in the page after it has loaded: wait for MathJax (when the page loads it),
 # scroll through the page (no image is left unloaded below the fold), then report.
-INSPECT = """
+INSPECT = r"""
 const done = arguments[arguments.length - 1];
 const typeset = (window.MathJax && MathJax.startup && MathJax.startup.promise) || Promise.resolve();
 typeset.then(async () => {
@@ -73,6 +80,16 @@ typeset.then(async () => {
   const text = document.body.cloneNode(true);
   text.querySelectorAll("pre, code, script, style, textarea, mjx-container").forEach(e => e.remove());
   const math = Array.from(document.querySelectorAll(".math"));
+  const code = Array.from(document.querySelectorAll(".bd-article pre"));
+  const selection = window.getSelection();
+  const copied = code.map(pre => {
+    const range = document.createRange();
+    range.selectNodeContents(pre);
+    selection.removeAllRanges();
+    selection.addRange(range);
+    return selection.toString();
+  });
+  selection.removeAllRanges();
   done({
     images: images.map(i => [i.currentSrc || i.src, i.naturalWidth]),
     links: Array.from(document.querySelectorAll("a[href]")).map(a => a.href),
@@ -81,6 +98,10 @@ typeset.then(async () => {
     rendered: document.querySelectorAll("mjx-container").length,
     text: text.textContent,
     mathjax: Boolean(window.MathJax && MathJax.startup),
+    width: window.innerWidth,
+    cells: document.querySelectorAll("div.cell pre").length,
+    clipped: code.filter(p => p.scrollWidth > p.clientWidth).map(p => p.textContent.split("\n")[0].slice(0, 60)),
+    miscopied: code.filter((p, i) => copied[i] !== p.textContent.replace(/\n$/, "")).map(p => p.textContent.slice(0, 60)),
   });
 }).catch(e => done({error: String(e)}));
 """
@@ -239,7 +260,7 @@ def test_every_image_loaded(visits):
     broken = {v.page: [src for src, width in v.report["images"] if width <= 0] for v in visits.values()}
     assert {p: b for p, b in broken.items() if b} == {}
     for page, v in visits.items():
-        if page.startswith("figures/fig") or page.startswith("figures/ext"):
+        if page.startswith(("figures/fig", "figures/ext")):
             assert any(src.endswith(".png") for src, _ in v.report["images"]), page
 
 
@@ -295,6 +316,55 @@ def test_mathematics_is_rendered(visits):
     for page in ("tutorial/01_governing_equations.html", "tutorial/02_sgn_zero_failure.html"):
         assert visits[page].report["mathjax"], f"{page}: MathJax did not load"
         assert visits[page].report["rendered"] >= visits[page].report["math"] > 0, page
+
+
+def test_no_code_is_clipped_at_1280_px(visits):
+    """No ``pre`` of any page (notebook cells, input and output, and the other pages' code) overflows its box.
+
+    A ``pre`` whose text is wider than its box (``scrollWidth > clientWidth``)
+    is clipped and scrolls sideways; at 1280 px the notebooks' cells had 220
+    such blocks before book/_static/code.css wrapped long lines.
+    """
+    assert {v.report["width"] for v in visits.values()} == {1280}
+    notebooks = [v for page, v in visits.items() if page.startswith("tutorial/")]
+    assert notebooks and all(v.report["cells"] > 0 for v in notebooks), "no code cell found on a notebook page"
+    clipped = {v.page: v.report["clipped"] for v in visits.values() if v.report["clipped"]}
+    print(f"pre clipped at 1280 px: {sum(map(len, clipped.values()))} on {len(clipped)} pages")
+    assert clipped == {}
+
+
+def test_code_copies_as_written(visits):
+    """Selecting a whole ``pre`` gives its text as written: the wrapping adds no line break and drops none."""
+    assert {v.page: v.report["miscopied"] for v in visits.values() if v.report["miscopied"]} == {}
+
+
+#: A control that searches: the sidebar's field and the header's icon (buttons that open the
+#: search dialog), or a search form in the page (the search page's own).
+SEARCH_CONTROLS = """
+return Array.from(document.querySelectorAll(".search-button__button, form.bd-search"))
+  .filter(e => e.checkVisibility({checkOpacity: true, checkVisibilityCSS: true}))
+  .filter(e => { const r = e.getBoundingClientRect(); return r.width > 0 && r.height > 0 && r.right > 0 && r.left < innerWidth; })
+  .map(e => e.matches("form") ? "form" : e.closest(".bd-sidebar-primary") ? "sidebar field" : "header icon");
+"""
+
+
+@pytest.mark.parametrize("width", [1280, 600])
+@pytest.mark.parametrize("page", ["index.html", "tutorial/01_governing_equations.html", "search.html?q=spring"])
+def test_one_way_to_search(browser, server, page, width):
+    """Each page shows exactly one search control at a wide and at a narrow window (a screenshot of each is saved)."""
+    size = browser.get_window_size()
+    try:
+        browser.set_window_size(width, size["height"])
+        browser.get(server + page)
+        assert browser.execute_script("return window.innerWidth") == width
+        controls = browser.execute_script(SEARCH_CONTROLS)
+        CHECK.mkdir(parents=True, exist_ok=True)
+        name = page.partition(".html")[0].replace("/", "__")
+        browser.save_screenshot(str(CHECK / f"search_controls_{width}px_{name}.png"))
+    finally:
+        browser.set_window_size(size["width"], size["height"])
+    print(f"{page} at {width} px: {controls}")
+    assert len(controls) == 1, controls
 
 
 def test_search_finds_algorithm_1(browser, server):

@@ -166,3 +166,36 @@ def test_a_guide_page_links_only_to_pages_of_the_site(page):
     written = {"../figures/index.md", "../article.md"}
     relative = [link.split("#")[0] for link in links if ":" not in link and not link.startswith("#")]
     assert [link for link in relative if link not in written and not (page.parent / link).is_file()] == []
+
+
+def load_book_conf():
+    """book/conf.py as a module (Sphinx reads it as a file; it holds the site's code formatter)."""
+    spec = importlib.util.spec_from_file_location("book_conf", ROOT / "book" / "conf.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+CODE = 'def f(x):\n    return "<a & b>"  # a comment\n\n        # deeper\nprint(f(1))\n'
+
+
+@pytest.mark.parametrize("lexer", ["python", "text"])
+def test_code_is_written_a_span_per_line_with_its_indent(lexer):
+    """Each line of highlighted code is one ``<span class="line">`` holding that line, with its leading spaces as
+    ``--indent`` (book/_static/code.css hangs a wrapped line's continuation from it); the newlines lie outside the
+    spans, and the text of the block, tags removed, is the code as written (so what a reader copies is the code)."""
+    import html
+
+    from pygments import highlight
+    from pygments.lexers import get_lexer_by_name
+
+    conf = load_book_conf()
+    written = highlight(CODE, get_lexer_by_name(lexer), conf.LineSpanFormatter())
+    pre = re.search(r"<pre>(.*)</pre>", written, flags=re.DOTALL).group(1)
+    assert html.unescape(re.sub(r"<[^>]*>", "", pre)) == CODE
+    lines = re.findall(
+        r'<span class="line"(?: style="--indent: (\d+)ch")?>((?:(?!<span class="line").)*?)</span>\n', pre
+    )
+    texts = [html.unescape(re.sub(r"<[^>]*>", "", body)) for _, body in lines]
+    assert texts == CODE.splitlines()
+    assert [int(indent or 0) for indent, _ in lines] == [0, 4, 0, 8, 0]
