@@ -211,7 +211,7 @@ def test_bad_fit_input_is_refused_in_one_line(tmp_path, change, message):
     args = {"--system": str(FIGURE3), "--data": "record.csv", "--free": "m.x0", "--output": "fit.json"} | change
     run = _lumped("fit", *[item for pair in args.items() for item in pair], cwd=tmp_path)
     if message is None:  # six parameters from three values
-        message = "data: 3 measured values cannot determine 6 parameters"
+        message = "file 'record.csv': 3 measured values cannot determine 6 parameters"
     assert run.returncode == 2 and run.stderr.startswith(f"lumped fit: error: {message}")
     assert run.stderr.count("\n") == 1 and not (tmp_path / "fit.json").exists()
 
