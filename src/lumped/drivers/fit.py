@@ -40,9 +40,9 @@ from lumped.drivers.sensitivity import plan, system_sensitivities
 from lumped.model.forcing import Constant, SwitchedSine
 from lumped.model.network import Network
 from lumped.model.records import Record, check_record
+from lumped.model.system_parameters import SystemParameter, system_parameters, with_values
 from lumped.numerics import validate
 from lumped.numerics.sine import MAX_ARGUMENT
-from lumped.model.system_parameters import SystemParameter, system_parameters, with_values
 from lumped.solvers.network_sensitivities import NetworkSensitivities
 
 __all__ = ["Combination", "FitResult", "fit"]
@@ -142,13 +142,9 @@ class _Model:
     """Residuals and their exact Jacobian at a parameter vector, the last one kept (``least_squares``
     asks for both at the same point)."""
 
-    def __init__(
-        self, network: Network, params: tuple[SystemParameter, ...], record: Record, *, motion_only: bool = False
-    ) -> None:
+    def __init__(self, network: Network, params: tuple[SystemParameter, ...], record: Record) -> None:
         self.network, self.params, self.record = network, params, record
         self.names = [p.name for p in params]
-        #: The names differentiated: the free ones, or for the motion alone one that every system has.
-        self.derived = [f"{network.mass_names[0]}.x0"] if motion_only else self.names
         self.last: tuple[np.ndarray, np.ndarray, np.ndarray, dict[str, np.ndarray]] | None = None
 
     def __call__(self, theta: np.ndarray) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
@@ -156,7 +152,7 @@ class _Model:
             return self.last[1:]  # type: ignore[return-value]
         try:
             net = with_values(self.network, self.params, theta)
-            solution, sens = system_sensitivities(net, self.record.t, self.derived, "free")
+            solution, sens = system_sensitivities(net, self.record.t, self.names, "free")
         except (ValueError, ArithmeticError) as err:  # an overflow far out in the parameters' range included
             shown = ", ".join(f"{n} = {v:.6g}" for n, v in zip(self.names, theta))
             raise ValueError(f"free: the model cannot be run at {shown}: {err}") from None
@@ -352,7 +348,7 @@ def fit(
         start.
     """
     if not isinstance(network, Network):
-        raise ValueError(f"network: expected a lumped.Network, got {type(network).__name__}")
+        raise ValueError(f"network: expected a lumped.Network, got {type(network).__name__}")  # noqa: TRY004 (the API's one error type)
     rcond = validate.finite("rcond", rcond)
     if not 0 < rcond < 1:
         raise ValueError(f"rcond must be in (0, 1), got {rcond!r}")
@@ -364,7 +360,8 @@ def fit(
     for load in network.loads:
         if not isinstance(load.force, (SwitchedSine, Constant)):
             kind = type(load.force).__name__.lower()
-            raise ValueError(f"system: the load on {load.on!r} is a {kind}; the exact sensitivities take sines and constants")
+            why = f"system: the load on {load.on!r} is a {kind}; the exact sensitivities take sines and constants"
+            raise ValueError(why)  # noqa: TRY004 (the API's one error type)
     plan(network, f"{network.mass_names[0]}.x0", "system")  # the system's own refusals, before the names'
     params = system_parameters(network, free, "free")
     plan(network, [p.name for p in params], "free")
@@ -440,41 +437,40 @@ def _search(
     r, J, fitted = full(best.theta)
     scale = np.where(best.theta != 0, np.abs(best.theta), 1.0)  # relative to the estimate
     result = _result(params, var.start, best, r, J * scale, scale, record, fitted, network, rcond, evaluations)
-    bounds = [_at_bound(network, params, record, best.theta, j, size) for j in np.flatnonzero(var.log)]
-    rivals = ends + [b for b in bounds if b is not None]
-    return _at_reach(_ambiguity(result, rivals, best, J / size, var), best)
+    return _at_reach(_ambiguity(result, ends, best, J / size, var), best, var, J)
 
 
-def _at_reach(result: FitResult, best: _Minimum) -> FitResult:
-    """``result`` with a parameter whose estimate ended at the edge of the search (:data:`_REACH`) not identified."""
-    edge = np.abs(best.u) >= _REACH * (1 - 1e-6)
+def _at_reach(result: FitResult, best: _Minimum, var: _Variables, J: np.ndarray) -> FitResult:
+    """``result`` with a parameter whose estimate ended at the edge of the search (:data:`_REACH`) not
+    identified: one that ran toward its bound 0 (the record cannot tell it from 0), or away from its start;
+    and with it each other parameter that moving the first to 0 (or back to its start) would shift by more
+    than its standard error, by the linearised model of the Jacobian ``J`` at the estimate."""
+    low, high = best.u <= -_REACH * (1 - 1e-6), best.u >= _REACH * (1 - 1e-6)
+    edge = low | high
     if not edge.any():
         return result
-    why = "the estimate ended at the edge of the search, a factor 1000 (or 1000 typical sizes) from the start"
-    return _unidentified(result, edge, why)
+    step = np.where(var.log & low, -best.theta, np.where(edge, var.start - best.theta, 0.0))
+    others = np.linalg.lstsq(J[:, ~edge], -J[:, edge] @ step[edge], rcond=None)[0] if (~edge).any() else []
+    shift = np.zeros(edge.size)
+    shift[~edge] = others
+    names = ", ".join(n for n, e in zip(result.parameters, edge) if e)
+    result = _unidentified(result, ~edge & ~(np.abs(shift) <= result.standard_error), f"it depends on {names}")
+    for which, why in (
+        (var.log & low, "it ran toward 0, the bound of its range, to 1/1000 of its start"),
+        (~var.log & low, "it ran to the edge of the search, 1000 typical sizes below its start"),
+        (high, "it ran to the edge of the search, 1000 times (typical sizes) above its start"),
+    ):
+        result = _unidentified(result, which, why) if which.any() else result
+    return result
 
 
 def _squares(end: _Minimum) -> float:
     return end.squares
 
 
-def _at_bound(
-    network: Network, params: tuple[SystemParameter, ...], record: Record, theta: np.ndarray, j: int, size: float
-) -> _Minimum | None:
-    """The point ``theta`` with its ``j``-th parameter at 0, the lower bound of its range, with its sum of
-    squares; ``None`` where the system refuses a 0 there (a mass, Bingham's ``gamma``)."""
-    at = theta.copy()
-    at[j] = 0.0
-    try:
-        r = _Model(network, params, record, motion_only=True)(at)[0] / size
-    except ValueError:
-        return None
-    return _Minimum(np.full(theta.size, np.nan), at, float(r @ r), True, 1, "the bound 0")
-
-
 def _ambiguity(result: FitResult, ends: list[_Minimum], best: _Minimum, J: np.ndarray, var: _Variables) -> FitResult:
-    """``result`` with the parameters that another minimum in ``ends`` (or a parameter's bound 0) moves
-    marked not identified, when it fits the record as well (module Notes); else ``result``."""
+    """``result`` with the parameters that another minimum in ``ends`` moves marked not identified, when it
+    fits the record as well (module Notes); else ``result``."""
     from scipy.special import fdtri  # the F distribution's quantile (scipy.stats takes a second to import)
 
     n, p = J.shape
@@ -492,10 +488,9 @@ def _ambiguity(result: FitResult, ends: list[_Minimum], best: _Minimum, J: np.nd
     if not moved.any():
         moved[:] = True
     shown = ", ".join(f"{n} = {v:.6g}" for n, v, m in zip(result.parameters, rival.theta, moved) if m)
-    what = "the bound of its range" if rival.message == "the bound 0" else "another minimum"
     reason = (
-        f"{what}, {shown}, fits the record as well (its sum of squares within the 95 % confidence region "
-        "of the estimate's)"
+        f"another minimum, {shown}, fits the record as well (its sum of squares within the 95 % confidence "
+        "region of the estimate's)"
     )
     return dataclasses.replace(_unidentified(result, moved, reason), rival=rival.theta)
 
@@ -547,7 +542,5 @@ def _result(
     net = with_values(network, params, best.theta)
     why = "in a combination of the parameters that the record does not identify (combinations)"
     reasons = tuple("" if ok_j else why for ok_j in identified)
-    return FitResult(
-        names, start, best.theta, se, corr, identified, combos, s, record, fitted, net, evaluations, best.message,
-        reasons, None,
-    )
+    statistics = (se, corr, identified, combos, s)
+    return FitResult(names, start, best.theta, *statistics, record, fitted, net, evaluations, best.message, reasons)

@@ -144,7 +144,7 @@ def check_record(record: object, masses: Sequence[str], what: str = "record") ->
         not finite, or beyond :func:`largest_displacement`.
     """
     if not isinstance(record, Record):
-        raise ValueError(f"{what}: expected a lumped.Record(t, {{mass: x}}), got {type(record).__name__}")
+        raise ValueError(f"{what}: expected a lumped.Record(t, {{mass: x}}), got {type(record).__name__}")  # noqa: TRY004 (the API's one error type)
     t, x = (_floats(f"{what}.t", record.t), record.x)
     if t.ndim != 1 or t.size < 2:
         raise ValueError(f"{what}.t: expected a 1-D array of at least two times, got shape {t.shape}")
@@ -160,12 +160,16 @@ def check_record(record: object, masses: Sequence[str], what: str = "record") ->
     for name, values in out.items():
         where = f"{what}.x[{name!r}]"
         if values.shape != t.shape:
-            raise ValueError(f"{where}: {values.shape[0] if values.ndim == 1 else values.shape} values for {t.size} times")
+            raise ValueError(
+                f"{where}: {values.shape[0] if values.ndim == 1 else values.shape} values for {t.size} times"
+            )
         if not np.all(np.isfinite(values)):
             raise ValueError(f"{where}: the displacements must be finite")
         if np.max(np.abs(values)) > limit:
-            raise ValueError(f"{where}: |x| up to {np.max(np.abs(values)):.3g} m, beyond {limit:.3g} m, where "
-                             "the squared residuals of a fit would overflow")
+            raise ValueError(
+                f"{where}: |x| up to {np.max(np.abs(values)):.3g} m, beyond {limit:.3g} m, where "
+                "the squared residuals of a fit would overflow"
+            )
     return Record(t, out)
 
 

@@ -14,8 +14,8 @@ from __future__ import annotations
 import os
 import re
 from collections.abc import Callable
-from typing import TypeVar
 from pathlib import Path
+from typing import TypeVar
 
 import numpy as np
 
@@ -105,4 +105,3 @@ def plain_float(text: str) -> float:
     if not _DECIMAL.fullmatch(text.strip()):
         raise ValueError(f"{text.strip()[:40]!r} is not a plain decimal number")
     return float(text)
-
