@@ -24,6 +24,41 @@ noise: a symmetry of the model, such as scaling ``m``, ``k``, ``tau`` and
 (the data cannot tell it to within a factor ``e``).  A parameter with a
 weight ``|u_ij| > 0.1`` in such a combination gets no standard error; the
 others' come from the pseudo-inverse on the identified combinations.
+
+**The search** (issue 31).  *Units:* ``least_squares``' tolerances are
+absolute, so it runs in units-free variables: the residuals divided by the
+record's largest ``|x|``, a parameter that must stay positive as
+``u = ln(theta/start)``, another as ``u = (theta - start)/size`` with
+``size`` its start (a phase: pi; ``x0`` or ``v0`` starting at 0: the record's
+largest ``|x|`` or ``|dx/dt|``).  The same record in metres or micrometres is
+then the same problem.  ``u`` is bounded to ``|u| <= ln 1000``: a parameter
+that ends there (one running toward its bound 0, a threshold the record
+cannot tell from 0, or away) is not identified, and so is every other whose
+estimate moving it back would shift by more than its standard error (the
+linearised model).  The Jacobian handed to ``least_squares`` has its singular
+values below ``rcond`` times the largest set to 0, so that the search does not
+wander along a combination the record does not determine.
+
+*Local minima:* the residual of an oscillating record has a minimum for
+every way of matching its cycles, so a start a few per cent off in a
+frequency can end at the wrong one.  Each local fit therefore starts on the
+record's first eighth (at least ``4 p`` times), then doubles the part fitted,
+each from the last estimate, to the whole record: the cycles are matched one
+by one.  It is run from the system's values and from ``starts - 1`` points of
+a Halton sequence around them (a factor 1/2 to 2 for a positive parameter,
+``-+ 2`` sizes for another).  The lowest end is the estimate (the one from the
+system's values unless another is lower beyond round-off).  The cost is
+``starts`` times that of one such fit, each about twice one local fit to the
+whole record (``benchmarks/bench_fit.py``; the guide's benchmarks page).
+
+*Rival minima:* another end ``theta'`` whose sum of squares ``S'`` is within
+the 95 % confidence region of the estimate's, ``S' - S <= p F(0.95; p, n - p)
+s^2`` (the likelihood region of the Gaussian model, where the data cannot
+reject ``theta'``), yet outside the linearised region, ``|J (theta' -
+theta)|^2 > p F s^2`` (so the standard errors would exclude it), fits the
+record as well: the parameters it moves by more than one standard error are
+not identified, with that reason (a phase's difference taken modulo
+``2 pi``).  Not guaranteed: a minimum that no start's windowed fit reaches.
 """
 
 from __future__ import annotations
