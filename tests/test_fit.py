@@ -352,6 +352,14 @@ _TABLE = '\n[[force]]\non = "m"\nkind = "table"\nfile = "T.csv"\n'
         ("t,x_m\n0,0.5\n0.1,0.3\n0.2,1e200\n0.3,0\n", "", "file 'r.csv': line 4: x_m = 1e+200 m is beyond"),
         ("t,x_m\n0,0.5\n0.1,0.0_4\n0.2,0.1\n0.3,0\n", "", "file 'r.csv': line 3: '0.0_4' is not a plain decimal"),
         (_LONG, _SINE, "file 'r.csv': it ends at t = 2e+09 s, where the sine load on 'm' (omega = 5 rad/s)"),
+        (
+            "t,x_m\n0,0.5\n1,0.3\n1e6,0.0\n",
+            _SINE,
+            (
+                "file 'r.csv': the system cannot be run over it, from t = 0 to 1e+06 s: the exact solution would "
+                "have about 6.4e+06 events before the record's end, more than the exact solver's limit of 100000"
+            ),
+        ),
         (None, _TABLE, "system file 's.toml': the load on 'm' is a table; the exact sensitivities take"),
         (
             None,
@@ -362,7 +370,7 @@ _TABLE = '\n[[force]]\non = "m"\nkind = "table"\nfile = "T.csv"\n'
             ),
         ),
     ],
-    ids=["overflow", "underscore", "span", "table", "maxwell"],
+    ids=["overflow", "underscore", "span", "events", "table", "maxwell"],
 )
 def test_bad_records_and_systems_are_blamed_on_the_file(tmp_path, record, system, message):
     (tmp_path / "r.csv").write_text(record or "t,x_m\n0,0.5\n0.1,0.3\n0.2,0.1\n0.3,0.0\n")

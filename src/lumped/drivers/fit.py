@@ -446,8 +446,8 @@ def _search(
     full = _Model(network, params, record)
     try:
         r0 = full(var.start)[0]
-    except ValueError as err:
-        raise ValueError(f"system: the model cannot be run at its start values over the record: {err}") from None
+    except ValueError as err:  # at the file's own values: the record's span is what the system cannot take
+        raise ValueError(_over_record(str(err), float(record.t[-1]))) from None
     data = np.concatenate(list(record.x.values()))
     size = float(np.max(np.abs(data))) or float(np.max(np.abs(r0))) or 1.0  # the record's scale (m)
     ends, evaluations, first = [], 0, None
@@ -473,6 +473,22 @@ def _search(
     scale = np.where(best.theta != 0, np.abs(best.theta), 1.0)  # relative to the estimate
     result = _result(params, var.start, best, r, J * scale, scale, record, fitted, network, rcond, evaluations)
     return _at_reach(_ambiguity(result, ends, best, J / size, var), best, var, J)
+
+
+#: The exact solvers' words for a run's span and its remedy, and the fit's for a record's.
+_SPAN_WORDS = (
+    ("before t_end", "before the record's end"),
+    ("more than max_events = ", "more than the exact solver's limit of "),
+    ("; shorten t_end or use backward Euler", ""),
+)
+
+
+def _over_record(message: str, t_end: float) -> str:
+    """The one line of a model that cannot be run at the system's values over a record ending at ``t_end``."""
+    why = message.split(": ", 2)[-1].removeprefix("t_end: ")  # past "free: the model cannot be run at ...: "
+    for old, new in _SPAN_WORDS:
+        why = why.replace(old, new)
+    return f"record: the system cannot be run over it, from t = 0 to {t_end:.6g} s: {why}; shorten the record"
 
 
 def _at_reach(result: FitResult, best: _Minimum, var: _Variables, J: np.ndarray) -> FitResult:

@@ -94,7 +94,8 @@ def system_parameters(
     if isinstance(names, str):
         names = [n.strip() for n in names.split(",")]
     if not isinstance(names, Sequence):  # a number, a set, a generator: no names in an order
-        raise ValueError(f"{what}: expected names such as dashpot.threshold,m.x0, got {type(names).__name__}")
+        got = type(names).__name__
+        raise ValueError(f"{what}: expected names such as dashpot.threshold,m.x0, got {got}")  # noqa: TRY004 (the API's one error type)
     names = list(names)
     if not names or any(not isinstance(n, str) or not n for n in names):
         raise ValueError(f"{what}: expected names such as dashpot.threshold,m.x0 separated by commas, got {names!r}")
