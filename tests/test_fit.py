@@ -253,6 +253,23 @@ def test_two_minima_that_fit_as_well_are_reported_not_identified():
     assert one.identified.all() and np.array_equal(one.estimate, result.estimate)
 
 
+def test_the_command_writes_why_a_parameter_is_not_identified(tmp_path):
+    system = FORCED.replace("omega = 7.0", "omega = 7.0\nphase = 0.5")
+    record = _record(parse_system(system), np.linspace(0.0, 4.0, 201), 1e-3, seed=5)
+    (tmp_path / "s.toml").write_text(system)
+    np.savetxt(
+        tmp_path / "r.csv", np.column_stack([record.t, record.x["m"]]), delimiter=",", header="t,x_m", comments=""
+    )
+    args = ["--system", "s.toml", "--data", "r.csv", "--free", "force.amplitude,force.phase", "--output", "f.json"]
+    run = _lumped("fit", *args, cwd=tmp_path)
+    assert run.returncode == 0, run.stderr
+    assert "(not identified); residual std" in run.stderr and "; not identified: another minimum" in run.stderr
+    doc = json.loads((tmp_path / "f.json").read_text())["parameters"]
+    for name in ("force.amplitude", "force.phase"):
+        assert doc[name]["identified"] is False and doc[name]["standard_error"] is None
+        assert doc[name]["reason"].startswith("another minimum, force.amplitude = -30")
+
+
 def test_a_turn_of_the_phase_is_the_same_minimum():
     # The phase alone: starts spread over every angle end at phi and at phi - 2 pi, one motion.
     net = parse_system(FORCED.replace("omega = 7.0", "omega = 7.0\nphase = 0.5"))
