@@ -472,7 +472,7 @@ def _search(
     r, J, fitted = full(best.theta)
     scale = np.where(best.theta != 0, np.abs(best.theta), 1.0)  # relative to the estimate
     result = _result(params, var.start, best, r, J * scale, scale, record, fitted, network, rcond, evaluations)
-    return _at_reach(_ambiguity(result, ends, best, J / size, var), best, var, J)
+    return _at_reach(_ambiguity(result, ends, best, J / size, var), best, var, J, r)
 
 
 #: The exact solvers' words for a run's span and its remedy, and the fit's for a record's.
@@ -491,12 +491,16 @@ def _over_record(message: str, t_end: float) -> str:
     return f"record: the system cannot be run over it, from t = 0 to {t_end:.6g} s: {why}; shorten the record"
 
 
-def _at_reach(result: FitResult, best: _Minimum, var: _Variables, J: np.ndarray) -> FitResult:
+def _at_reach(result: FitResult, best: _Minimum, var: _Variables, J: np.ndarray, r: np.ndarray) -> FitResult:
     """``result`` with a parameter whose estimate ended at the edge of the search (:data:`_REACH`) not
-    identified: one that ran toward its bound 0 (the record cannot tell it from 0), or away from its start;
-    and with it each other parameter that moving the first to 0 (or back to its start) would shift by more
-    than its standard error, by the linearised model of the Jacobian ``J`` at the estimate."""
-    low, high = best.u <= -_REACH * (1 - 1e-6), best.u >= _REACH * (1 - 1e-6)
+    identified: one that ran toward its bound 0 (the record cannot tell it from 0: the Gauss-Newton step
+    from the estimate, ``-J^+ r``, would take it to within a standard error of 0 or below; it stops short
+    there only because its gradient in ``ln theta`` vanishes), or away from its start; and with it each
+    other parameter that moving the first to 0 (or back to its start) would shift by more than its standard
+    error, by the linearised model of the Jacobian ``J`` at the estimate."""
+    newton = best.theta + np.linalg.lstsq(J, -r, rcond=None)[0]
+    low = (best.u <= -_REACH * (1 - 1e-6)) | (var.log & (newton <= result.standard_error))
+    high = best.u >= _REACH * (1 - 1e-6)
     edge = low | high
     if not edge.any():
         return result
@@ -507,7 +511,7 @@ def _at_reach(result: FitResult, best: _Minimum, var: _Variables, J: np.ndarray)
     names = ", ".join(n for n, e in zip(result.parameters, edge) if e)
     result = _unidentified(result, ~edge & ~(np.abs(shift) <= result.standard_error), f"it depends on {names}")
     for which, why in (
-        (var.log & low, "it ran toward 0, the bound of its range, to 1/1000 of its start"),
+        (var.log & low, "it ran toward 0, the bound of its range, where the record puts its minimum"),
         (~var.log & low, "it ran to the edge of the search, 1000 typical sizes below its start"),
         (high, "it ran to the edge of the search, 1000 times (typical sizes) above its start"),
     ):
