@@ -32,11 +32,13 @@ the others (a phase over every angle).  The lowest end is the estimate.
 What it guarantees: the estimate is a local minimum of the sum of squares,
 the lowest the starts reached; a parameter is marked not identified (no
 standard error) when the record cannot tell it within a factor e, when it is
-in a combination the record does not determine, when another end or its bound
-0 fits the record as well (a sum of squares within the 95 % confidence region
-of the estimate's), or when it ends a factor 1000 from its start.  What it does
-not: a global minimum outside the starts' reach, nor standard errors beyond
-the linearised model with independent errors of equal variance.
+in a combination the record does not determine, when another end fits the
+record as well (a sum of squares within the 95 % confidence region of the
+estimate's), when it runs toward its bound 0 (a threshold the record cannot
+tell from 0) or a factor 1000 from its start, and then every parameter that
+depends on it.  What it does not: a minimum that none of the starts reaches,
+nor standard errors beyond the linearised model with independent errors of
+equal variance.
 
 The summary gives each estimate with its standard error; --output writes them
 to a JSON file with the reasons for any not identified, the residual standard
