@@ -88,11 +88,14 @@ def system_parameters(
     Raises
     ------
     ValueError
-        One line beginning with ``what``: no name, a name given twice, or one
+        One line beginning with ``what``: not a string or a sequence, no name, a name given twice, or one
         that is not a parameter of ``network`` (the message lists those it has).
     """
     if isinstance(names, str):
         names = [n.strip() for n in names.split(",")]
+    if not isinstance(names, Sequence):  # a number, a set, a generator: no names in an order
+        got = type(names).__name__
+        raise ValueError(f"{what}: expected names such as dashpot.threshold,m.x0, got {got}")  # noqa: TRY004 (the API's one error type)
     names = list(names)
     if not names or any(not isinstance(n, str) or not n for n in names):
         raise ValueError(f"{what}: expected names such as dashpot.threshold,m.x0 separated by commas, got {names!r}")

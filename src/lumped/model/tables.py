@@ -12,9 +12,10 @@ problem is a ``ValueError`` of one line naming the file and the line.
 from __future__ import annotations
 
 import os
+import re
 from collections.abc import Callable
-from typing import TypeVar
 from pathlib import Path
+from typing import TypeVar
 
 import numpy as np
 
@@ -90,3 +91,17 @@ def _row(line: str, number: int, column: str) -> tuple[float, float]:
         return float(fields[0]), float(fields[1])
     except ValueError:
         raise ValueError(f"line {number}: expected two numbers 't,{column}', got {line[:40]!r}") from None
+
+
+#: A plain decimal number as a CSV file of this package writes one: an optional sign, digits with at most one
+#: point, an optional exponent (``-1.5e-3``, ``.5``, ``2.``); ``nan`` and ``inf`` too, for the readers to refuse
+#: as not finite.  Not Python's ``float()`` grammar, which also takes ``1_000`` and ``0.0_4``.
+_DECIMAL = re.compile(r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?|[+-]?(?:nan|inf|infinity)", re.IGNORECASE)
+
+
+def plain_float(text: str) -> float:
+    """The number of a CSV field ``text`` (blanks around it allowed), or a ``ValueError`` if it is not a plain
+    decimal number (:data:`_DECIMAL`)."""
+    if not _DECIMAL.fullmatch(text.strip()):
+        raise ValueError(f"{text.strip()[:40]!r} is not a plain decimal number")
+    return float(text)
