@@ -16,7 +16,7 @@ import numpy as np
 
 from lumped.laws import monotone_graph
 from lumped.laws.bingham import bingham_corrector, sticks
-from lumped.laws.contract import Dashpot, DashpotState, StepBound
+from lumped.laws.contract import BinghamForm, Dashpot, DashpotState, StepBound
 from lumped.numerics import validate
 from lumped.numerics.roots import MAXITER, brentq
 
@@ -170,6 +170,16 @@ class HerschelBulkleyDashpot(Dashpot):
         # the viscous part is small against F~, and the network's iteration
         # compares forces to a few ulps (lumped.solvers.network_step).
         return DashpotState(s * (tau + K * w**n), s * w)
+
+    def bingham_form(self) -> BinghamForm | None:
+        """``(tau, K)`` at ``n = 1``, Bingham's graph with ``c = K`` exactly (no ``1/gamma`` is formed), else ``None``.
+
+        ``F_d = sgn(v)(tau + K |v|)`` is eq. (7) with ``mu_s N_f = tau`` and
+        ``1/gamma = K``, so the closed forms of point 6 (the exact solution,
+        Algorithm 1's loop) apply to it as they stand; the linear dashpot
+        (``tau = 0``) is this case.
+        """
+        return BinghamForm(self.threshold, self.consistency) if self.exponent == 1.0 else None
 
     def viscous_part(self) -> Callable[[float], float]:
         K, n = self.consistency, self.exponent

@@ -315,8 +315,10 @@ def solve_exact(
     Parameters
     ----------
     oscillator : Oscillator
-        Its dashpot must be a :class:`~lumped.laws.BinghamDashpot` (any
-        ``gamma``, ``inf`` included).
+        Its dashpot law must have a Bingham form (the law's contract, point 6):
+        a :class:`~lumped.laws.BinghamDashpot` (any ``gamma``, ``inf``
+        included) or a Herschel-Bulkley law of exponent 1, the linear dashpot
+        (``threshold = 0``) among them.
     t_end : float, s
         Final time ``> 0``.
     x0, v0 : float, m and m/s
