@@ -44,6 +44,8 @@ def read_record(path: str | os.PathLike, masses: Sequence[str]) -> Record:
         not a finite number; fewer than two rows; a time below 0 or not after
         the one before it.
     """
+    if isinstance(masses, str) or not isinstance(masses, Sequence) or not all(isinstance(m, str) for m in masses):
+        raise ValueError(f"masses must be a sequence of the system's mass names, got {masses!r:.60}")
     return read_lines(path, lambda lines: _parse(lines, list(masses)))
 
 

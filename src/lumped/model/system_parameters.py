@@ -91,8 +91,14 @@ def system_parameters(
         One line beginning with ``what``: no name, a name given twice, or one
         that is not a parameter of ``network`` (the message lists those it has).
     """
+    if not isinstance(network, Network):
+        raise ValueError(f"network must be a Network, got {type(network).__name__}")
     if isinstance(names, str):
         names = [n.strip() for n in names.split(",")]
+    if not isinstance(names, Sequence):
+        raise ValueError(
+            f"{what}: expected names such as dashpot.threshold,m.x0 separated by commas, got {names!r:.60}"
+        )
     names = list(names)
     if not names or any(not isinstance(n, str) or not n for n in names):
         raise ValueError(f"{what}: expected names such as dashpot.threshold,m.x0 separated by commas, got {names!r}")

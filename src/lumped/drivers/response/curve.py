@@ -33,7 +33,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.drivers.response.continuation import Branch, ResponsePoint, continue_orbits
+from lumped.drivers.response.continuation import Branch, ResponsePoint, check_points, continue_orbits
 from lumped.drivers.response.shooting import Orbit, find_orbit
 from lumped.drivers.response.systems import Family, LoadedNetwork, parameter_family, response_system
 from lumped.model.network import Network
@@ -116,10 +116,12 @@ def response_curve(
         minus min x over the period, m), then :data:`COLUMNS`; with ``vary``,
         its column first.
     """
+    if not isinstance(network, Network):
+        raise ValueError(f"network must be a Network (a system file read by load_system), got {type(network).__name__}")
+    if not isinstance(mass, str):
+        raise ValueError(f"mass must be the name of a mass of the network, got {mass!r:.40}")
     amplitude = validate.positive("force_amplitude", amplitude)
-    points = validate.positive_int("points", points)
-    if points < 2:
-        raise ValueError(f"points must be at least 2, got {points}")
+    points = check_points(points)
     system = response_system(network, mass)
     if vary is None:
         if omega is not None:

@@ -26,6 +26,7 @@ import numpy as np
 
 from lumped.drivers.response.systems import LoadedNetwork, Scales, period_map
 from lumped.model.oscillator import Oscillator
+from lumped.numerics import validate
 from lumped.solvers.monodromy import PeriodMap
 from lumped.solvers.network_monodromy import NetworkPeriodMap
 
@@ -130,6 +131,9 @@ def find_orbit(
     ValueError
         ``force_omega: ...`` when Newton does not converge in :data:`MAX_NEWTON` steps.
     """
+    if not isinstance(system, (Oscillator, LoadedNetwork)):
+        raise ValueError(f"system must be an Oscillator or a LoadedNetwork, got {type(system).__name__}")
+    amplitude, omega = validate.positive("force_amplitude", amplitude), validate.positive("force_omega", omega)
     scales = Scales.of(system, amplitude)
     z = _settle(system, amplitude, omega, scales) if guess is None else np.asarray(guess, dtype=float)
     for _ in range(MAX_NEWTON):
