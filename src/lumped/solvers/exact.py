@@ -267,8 +267,8 @@ def _check_inputs(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float,
     if estimate > max_events:
         shown = f"{estimate:.2g}" if estimate < 1e300 else "more than 1e300"
         raise ValueError(
-            f"t_end: the exact solution would have about {shown} events before t_end, more than "
-            f"max_events = {max_events}; shorten t_end or use backward Euler"
+            f"t_end: the exact solution would have about {shown} events before t_end, more than the "
+            f"{max_events} a run may have; shorten t_end or use backward Euler"
         )
 
 
