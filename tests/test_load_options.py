@@ -237,6 +237,15 @@ def test_loads_that_act_for_part_of_the_run_still_run(folder):
     assert simulate(["--force-table", str(folder / "inside.csv")], folder / "b.csv") == 0
 
 
+def test_a_sweep_whose_every_sine_is_off_before_it_acts_is_refused_in_one_line(tmp_path):
+    out = tmp_path / "sweep.csv"
+    args = ["--force-amplitude", "3", "--force-omega", "5", "--force-until", "0", "--vary", "x0=0.1:0.2:2"]
+    run = run_lumped("sweep", *args, "--output", out)
+    assert run.returncode == 2 and run.stderr.count("\n") == 1, run.stderr
+    assert run.stderr.startswith("lumped sweep: error: --force-until 0 switches the sine off at t = 0")
+    assert not out.exists()
+
+
 SWEEP_ZERO = [
     (["--force-amplitude", "3", "--vary", "x0=0.1:0.2:2"], "--force-amplitude 3 applies no force"),
     (["--vary", "force_amplitude=1:3:2"], "--vary force_amplitude applies no force"),

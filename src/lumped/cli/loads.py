@@ -25,11 +25,13 @@ import math
 from lumped.model.parameters import PARAMETERS, shown
 from lumped.numerics import validate
 
-__all__ = ["FLAGS", "add_options", "force", "no_sine"]
+__all__ = ["FLAGS", "OFF_AT_START", "add_options", "force", "no_sine"]
 
 #: The options of the constant and table loads, which take a value.
 FLAGS = ("--force-value", "--force-from", "--force-table")
 _SINE = ("force_amplitude", "force_omega", "force_phase")
+#: The refusal of a sine that ``--force-until 0`` switches off before it acts (simulate's and sweep's).
+OFF_AT_START = "--force-until 0 switches the sine off at t = 0, so it never acts; give a later --force-until, or leave it out (inf)"
 
 
 def add_options(parser: argparse.ArgumentParser) -> None:
@@ -142,10 +144,7 @@ def _sine(values: dict[str, object], given: list[str]) -> object | None:
 def _acting_sine(sine: object | None) -> object | None:
     """``sine``, or a ``ValueError`` if ``--force-until`` switches it off at ``t = 0``, before it acts."""
     if sine is not None and sine.until == 0:  # type: ignore[attr-defined]
-        raise ValueError(
-            "--force-until 0 switches the sine off at t = 0, so it never acts; "
-            "give a later --force-until, or leave it out (inf)"
-        )
+        raise ValueError(OFF_AT_START)
     return sine
 
 
