@@ -112,7 +112,7 @@ def _no_march(*args: object, **kwargs: object) -> None:
 
 
 def test_many_events_message_states_the_estimate():
-    with pytest.raises(ValueError, match=r"about 6\.4e\+05 events .* max_events = 100000"):
+    with pytest.raises(ValueError, match=r"about 6\.4e\+05 events .* more than the 100000 a run may have"):
         L.solve_exact(L.Oscillator.bingham(stiffness=1e12), 2.0, x0=0.5)
 
 
@@ -264,7 +264,7 @@ def test_event_estimate_is_not_below_the_count(m, k, tau, gamma, x0):
 def test_max_events_below_the_count_is_refused_naming_t_end():
     osc = L.Oscillator.bingham(stiffness=1e4)
     n = len(L.solve_exact(osc, 100.0, x0=0.5).events)
-    with pytest.raises(ValueError, match=r"^t_end: .*max_events"):
+    with pytest.raises(ValueError, match=rf"^t_end: .*more than the {n - 1}( events)? a run may have"):
         L.solve_exact(osc, 100.0, x0=0.5, max_events=n - 1)
 
 

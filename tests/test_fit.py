@@ -383,7 +383,7 @@ _TABLE = '\n[[force]]\non = "m"\nkind = "table"\nfile = "T.csv"\n'
             _SINE,
             (
                 "file 'r.csv': the system cannot be run over it, from t = 0 to 1e+06 s: the exact solution would "
-                "have about 6.4e+06 events before the record's end, more than the exact solver's limit of 100000"
+                "have about 6.4e+06 events before the record's end, more than the 100000 a run may have; shorten the record"
             ),
         ),
         (None, _TABLE, "system file 's.toml': the load on 'm' is a table; the exact sensitivities take"),

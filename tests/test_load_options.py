@@ -29,6 +29,9 @@ TABLES = {
     "one-row.csv": "t,F\n0,1\n",
     "empty.csv": "",
     "accel-as-force.csv": "t,F\n0,1\n1,1\n",
+    "late.csv": "t,F\n0.6,1\n1,1\n",
+    "zeros.csv": "t,F\n0,0\n1,0\n",
+    "before.csv": "t,F\n-1,2\n0,0\n",
 }
 
 
@@ -188,7 +191,19 @@ BAD_OPTIONS = [
     (["--force-table", "repeat.csv"], "--force-table: file 'repeat.csv': line 4: t must increase strictly"),
     (["--force-table", "nope.csv"], "--force-table: file 'nope.csv': cannot read it"),
     (["--force-table", "good.csv", "--method", "exact"], "force: method 'exact' runs a sine or a constant load"),
-    (["--force-value", "2", "--force-from", "1", "--method", "exact"], "force: method 'exact' runs a sine"),
+    (["--force-value", "2", "--force-from", "0.2", "--method", "exact"], "force: method 'exact' runs a sine"),
+    # loads that cannot act between t = 0 and --t-end (0.5 here), which ran at rest with status 0
+    (
+        ["--force-amplitude", "3", "--force-omega", "5", "--force-until", "0"],
+        "--force-until 0 switches the sine off at t = 0, so it never acts",
+    ),
+    (["--force-amplitude", "3", "--force-phase", "1", "--force-until", "0"], "--force-until 0 switches the sine off"),
+    (["--force-value", "3", "--force-from", "5"], "--force-from 5 is not before --t-end 0.5: the constant load"),
+    (["--force-value", "3", "--force-from", "0.5"], "--force-from 0.5 is not before --t-end 0.5"),
+    (["--force-value", "0"], "--force-value 0 applies no force"),
+    (["--force-table", "late.csv"], "--force-table: file 'late.csv' is 0 from t = 0 to --t-end 0.5 s (its times run"),
+    (["--force-table", "zeros.csv"], "--force-table: file 'zeros.csv' is 0 from t = 0 to --t-end 0.5 s"),
+    (["--force-table", "before.csv"], "--force-table: file 'before.csv' is 0 from t = 0 to --t-end 0.5 s"),
 ]
 
 
@@ -213,6 +228,22 @@ def test_the_paper_sine_and_a_zero_force_still_run(tmp_path):
     # Unchanged: a sine with its frequency, and no forcing option at all.
     assert simulate(["--force-amplitude", "10", "--force-omega", "15.7", "--force-until", "1"], tmp_path / "a.csv") == 0
     assert simulate(["--x0", "0.5", "--force-amplitude", "0"], tmp_path / "b.csv") == 0
+
+
+def test_loads_that_act_for_part_of_the_run_still_run(folder):
+    # The edges of the refusals above: a constant on just before --t-end (0.5), a table that begins inside the run.
+    (folder / "inside.csv").write_text("t,F\n0.4,0\n0.45,3\n")
+    assert simulate(["--force-value", "3", "--force-from", "0.499"], folder / "a.csv") == 0
+    assert simulate(["--force-table", str(folder / "inside.csv")], folder / "b.csv") == 0
+
+
+def test_a_sweep_whose_every_sine_is_off_before_it_acts_is_refused_in_one_line(tmp_path):
+    out = tmp_path / "sweep.csv"
+    args = ["--force-amplitude", "3", "--force-omega", "5", "--force-until", "0", "--vary", "x0=0.1:0.2:2"]
+    run = run_lumped("sweep", *args, "--output", out)
+    assert run.returncode == 2 and run.stderr.count("\n") == 1, run.stderr
+    assert run.stderr.startswith("lumped sweep: error: --force-until 0 switches the sine off at t = 0")
+    assert not out.exists()
 
 
 SWEEP_ZERO = [

@@ -269,8 +269,8 @@ def test_the_initial_state_columns_are_the_monodromy_matrix():
 
 
 def test_a_mass_on_a_linear_dashpot_goes_by_the_network_solver_and_matches_its_closed_form():
-    # One mass on a spring (k = 100) and a linear dashpot (c): the one-mass solver refuses it, the network's
-    # takes it.  x(t) = x0 e^(-h t) (cos(w_d t) + h/w_d sin(w_d t)), h = c/2, w_d = sqrt(k - h^2): dx/dx0 is
+    # One mass on a spring (k = 100) and a linear dashpot (c): the one-mass solver lacks d.damping, the
+    # network's takes it.  x(t) = x0 e^(-h t) (cos(w_d t) + h/w_d sin(w_d t)), h = c/2, w_d = sqrt(k - h^2): dx/dx0 is
     # x/x0, and dx/dc is checked against a central difference of the closed form (step 1e-6: truncation
     # about 1e-12 |x'''|, round-off about eps |x|/1e-6 = 1e-10), both to 1e-9.
     text = FIGURE3.split("[[element]]")[0] + (

@@ -10,7 +10,8 @@ error prints one line and exits with status 2; an interrupted run (Ctrl-C,
 SIGTERM, SIGHUP) prints one line and exits with 128 + the signal number.  The
 output is written to a temporary file in the target folder, created before the
 run (so an unwritable folder is refused at once) and renamed when complete;
-every failure removes it.
+every failure removes it.  An output that is one of the command's input files
+is refused before anything else (:func:`lumped.cli.output.refuse_inputs`).
 
 This module holds the entry point (:func:`main`) and the parser
 (:func:`build_parser`); the rest, one module each:
@@ -37,7 +38,7 @@ from lumped import __version__
 from lumped.cli import fit, response, simulate, sweep
 from lumped.cli.messages import option_message
 from lumped.cli.options import Parser, attach_values, refuse_repeats, refuse_single_mass
-from lumped.cli.output import Output
+from lumped.cli.output import Output, refuse_inputs
 from lumped.cli.signals import Terminated, signals_unwind
 
 __all__ = ["main", "build_parser", "option_message"]
@@ -106,6 +107,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     try:
         with signals_unwind():
             args = _parse(argv)
+            refuse_inputs(args)
             output = Output(args.output) if args.output is not None else None
             summary = {"sweep": sweep.run, "response": response.run, "fit": fit.run}.get(command, simulate.run)(
                 args, output

@@ -11,7 +11,10 @@
 One kind at a time (a system file adds several loads).  An option that
 cannot change the load is refused in one line, naming it and why: today's
 trap was ``--force-amplitude 10`` alone, a sine of frequency 0 and phase 0,
-which is 0 at all times.
+which is 0 at all times.  So is a load that cannot act during the run, from
+``t = 0`` to ``--t-end``: a sine switched off at ``--force-until 0``, a
+constant of 0 or switched on at or after ``--t-end``, a table that is 0 over
+the run (its times outside it, or its values 0).
 """
 
 from __future__ import annotations
@@ -22,11 +25,13 @@ import math
 from lumped.model.parameters import PARAMETERS, shown
 from lumped.numerics import validate
 
-__all__ = ["FLAGS", "add_options", "force", "no_sine"]
+__all__ = ["FLAGS", "OFF_AT_START", "add_options", "force", "no_sine"]
 
 #: The options of the constant and table loads, which take a value.
 FLAGS = ("--force-value", "--force-from", "--force-table")
 _SINE = ("force_amplitude", "force_omega", "force_phase")
+#: The refusal of a sine that ``--force-until 0`` switches off before it acts (simulate's and sweep's).
+OFF_AT_START = "--force-until 0 switches the sine off at t = 0, so it never acts; give a later --force-until, or leave it out (inf)"
 
 
 def add_options(parser: argparse.ArgumentParser) -> None:
@@ -50,13 +55,15 @@ def add_options(parser: argparse.ArgumentParser) -> None:
 
 
 def force(args: argparse.Namespace, values: dict[str, object]) -> object | None:
-    """The load the options describe (``None`` for none), from the parsed ``values`` of the sine's options.
+    """The load the options describe (``None`` for none), from the parsed ``values`` of the sine's options
+    and ``--t-end`` (``values["t_end"]``).
 
     Raises
     ------
     ValueError
         One line naming an option: kinds mixed, an option of another kind,
-        an option that changes nothing, a bad value or table.
+        an option that changes nothing, a load that cannot act before
+        ``--t-end``, a bad value or table.
     """
     given = [o for o in _SINE if values[o] != PARAMETERS[o].default]
     until = values["force_until"] != math.inf
@@ -64,17 +71,17 @@ def force(args: argparse.Namespace, values: dict[str, object]) -> object | None:
         other = [_flag(o) for o in given] + ["--force-until"] * until + _constant_flags(args)
         if other:
             raise ValueError(f"{other[0]} cannot go with --force-table, whose file is the whole load")
-        return _table(args.force_table)
+        return _acting_table(_table(args.force_table), args.force_table, values["t_end"])  # type: ignore[arg-type]
     if args.force_value is not None:
         if given:
             raise ValueError(
                 f"{_flag(given[0])} cannot go with --force-value: one load at a time "
                 "(a system file, --system, adds several)"
             )
-        return _constant(args, values["force_until"], until)
+        return _acting_constant(_constant(args, values["force_until"], until), values["t_end"])  # type: ignore[arg-type]
     if args.force_from is not None:
         raise ValueError("--force-from goes with --force-value, the constant load it switches on")
-    return _sine(values, given + ["force_until"] * until)
+    return _acting_sine(_sine(values, given + ["force_until"] * until))
 
 
 def no_sine(what: str, remedy: str) -> str:
@@ -110,6 +117,8 @@ def _constant(args: argparse.Namespace, until: float, until_given: bool) -> obje
     if value == 0 and (args.force_from is not None or until_given):
         flag = "--force-from" if args.force_from is not None else "--force-until"
         raise ValueError(f"{flag} does nothing: --force-value is 0")
+    if value == 0:
+        raise ValueError("--force-value 0 applies no force; leave it out for a run without load")
     try:
         return Constant(value, start, until)
     except ValueError as err:  # Constant names its fields value, start, until
@@ -130,3 +139,43 @@ def _sine(values: dict[str, object], given: list[str]) -> object | None:
     if given:
         raise ValueError(f"{_flag(given[0])} does nothing: --force-amplitude is 0, so the sine is 0 at all times")
     return None
+
+
+def _acting_sine(sine: object | None) -> object | None:
+    """``sine``, or a ``ValueError`` if ``--force-until`` switches it off at ``t = 0``, before it acts."""
+    if sine is not None and sine.until == 0:  # type: ignore[attr-defined]
+        raise ValueError(OFF_AT_START)
+    return sine
+
+
+def _acting_constant(load: object, t_end: float) -> object:
+    """``load``, or a ``ValueError`` if ``--force-from`` switches it on at or after ``--t-end``."""
+    if load.start >= t_end:  # type: ignore[attr-defined]
+        raise ValueError(
+            f"--force-from {_time(load.start)} is not before --t-end {_time(t_end)}: "  # type: ignore[attr-defined]
+            "the constant load would come on at or after the end of the run, so it never acts"
+        )
+    return load
+
+
+def _acting_table(table: object, path: str, t_end: float) -> object:
+    """``table``, or a ``ValueError`` if it is 0 from ``t = 0`` to ``t_end``.
+
+    The force is piecewise linear between the samples, so it is 0 on ``[0, t_end]``
+    exactly when it is 0 at both ends and at every sample time between them.
+    """
+    import numpy as np
+
+    t = table.t  # type: ignore[attr-defined]
+    points = np.concatenate([[0.0, t_end], t[(t > 0) & (t < t_end)]])
+    if not np.any(table(points)):  # type: ignore[operator]
+        raise ValueError(
+            f"--force-table: file {path!r} is 0 from t = 0 to --t-end {_time(t_end)} s "
+            f"(its times run from {_time(float(t[0]))} to {_time(float(t[-1]))} s), so the load never acts"
+        )
+    return table
+
+
+def _time(value: float) -> str:
+    """A time as written by hand (:func:`~lumped.model.parameters.shown`) when that is exact, else in full."""
+    return shown(value) if float(shown(value)) == value else repr(value)

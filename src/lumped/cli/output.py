@@ -36,6 +36,48 @@ def check_output(path: str, suffixes: tuple[str, ...] = (".csv", ".npz")) -> str
     return path
 
 
+#: The options that name a file a command reads (those a command lacks are skipped).
+_INPUTS = ("system", "force_table", "data")
+
+
+def refuse_inputs(args: object) -> None:
+    """Refuse an ``--output`` that is a file the command reads, before any work: the ``--system``,
+    ``--force-table`` or ``--data`` file, or a table that the system file names.
+
+    Files are compared as the system sees them (:func:`os.path.samefile`: links and other spellings of a
+    path included); a path that does not exist is compared as its resolved name.
+    """
+    output = getattr(args, "output", None)
+    if output is None:
+        return
+    for what, path in _inputs(args):
+        if _same_file(output, path):
+            raise ValueError(f"--output {output!r} is {what}, which this command reads; name another output file")
+
+
+def _inputs(args: object) -> list[tuple[str, str]]:
+    """``(what, path)`` of each file that ``args`` name as inputs."""
+    from lumped.model.files import table_files
+
+    out = []
+    for name in _INPUTS:
+        path = getattr(args, name, None)
+        if path is None:
+            continue
+        flag = "--" + name.replace("_", "-")
+        out.append((f"the {flag} file", path))
+        if name == "system":
+            out += [(f"the file of {entry} in {flag} {path!r}", str(p)) for entry, p in table_files(path)]
+    return out
+
+
+def _same_file(a: str, b: str) -> bool:
+    try:
+        return os.path.samefile(a, b)
+    except (OSError, ValueError):  # one does not exist (or is no path): compare the names
+        return os.path.realpath(a) == os.path.realpath(b)
+
+
 def _new_file_mode(path: str) -> int:
     """Mode for the output: that of the file it replaces, else 0o666 less the umask."""
     with contextlib.suppress(OSError):

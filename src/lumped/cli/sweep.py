@@ -8,7 +8,7 @@ import os
 import sys
 import time
 
-from lumped.cli.loads import no_sine
+from lumped.cli.loads import OFF_AT_START, no_sine
 from lumped.cli.options import HelpFormatter, add_method_options, method_options
 from lumped.cli.output import Output, check_output
 from lumped.cli.reference import methods_help
@@ -104,6 +104,8 @@ def _spec(args: argparse.Namespace):  # noqa: ANN202 (a lumped.drivers.sweep.Swe
             what = f"--force-amplitude {shown(values['force_amplitude'])}" if "force_amplitude" in given else None
             remedy = "give or vary --force-omega, or --force-phase 1.5707963267948966"
             raise ValueError(no_sine(what or "--vary force_amplitude", remedy))
+    if forced and values["force_until"] == 0 and not any(v.name == "force_until" for v in varies):
+        raise ValueError(OFF_AT_START)  # every row's sine is off before it acts
     if args.method in SWEEP_METHODS:  # another is refused by SweepSpec.build
         n_steps = validate.step_count(t_end, dt)
         check_size([v.count for v in varies], n_steps=n_steps, method=args.method, forced=forced, output=suffix)

@@ -68,6 +68,8 @@ _SYSTEM_ENTRIES = {
     "stiffness": ("element", "stiffness"),
     "threshold": ("element", "threshold"),
     "gamma": ("element", "gamma"),
+    "consistency": ("element", "consistency"),
+    "exponent": ("element", "exponent"),
     "force_amplitude": ("force", "amplitude"),
     "force_omega": ("force", "omega"),
     "force_phase": ("force", "phase"),

@@ -478,7 +478,6 @@ def _search(
 #: The exact solvers' words for a run's span and its remedy, and the fit's for a record's.
 _SPAN_WORDS = (
     ("before t_end", "before the record's end"),
-    ("more than max_events = ", "more than the exact solver's limit of "),
     ("; shorten t_end or use backward Euler", ""),
 )
 

@@ -202,14 +202,30 @@ def system_sensitivities(
     t = np.asarray(t, dtype=float).ravel()
     if t.size == 0 or not np.all(np.isfinite(t)) or t[0] < 0 or not t[-1] > 0 or np.any(np.diff(t) < 0):
         raise ValueError("t: the times must be finite, from 0 or later, increasing, and end after 0")
-    if isinstance(names, NetworkPlan):
-        x0, v0 = (a[:-1] for a in network.initial_positions())
-        sens = network_sensitivities(parts(network), x0, v0, t, names.parameters, network.element_names)
-        return sens.motion, _scaled(sens, names.factors, tuple(p.name for p in params))
-    mass = network.masses[0]
-    solution = solve_exact(one_mass_form(network).oscillator, float(t[-1]), x0=mass.x0, v0=mass.v0, force=force)
-    sens = sensitivities(solution, t, names)
-    return solution, dataclasses.replace(sens, parameters=tuple(p.name for p in params))
+    with np.errstate(over="ignore", invalid="ignore"):  # a derivative that overflows is refused below
+        if isinstance(names, NetworkPlan):
+            x0, v0 = (a[:-1] for a in network.initial_positions())
+            sens = network_sensitivities(parts(network), x0, v0, t, names.parameters, network.element_names)
+            motion, out = sens.motion, _scaled(sens, names.factors, tuple(p.name for p in params))
+        else:
+            mass = network.masses[0]
+            oscillator = one_mass_form(network).oscillator
+            motion = solve_exact(oscillator, float(t[-1]), x0=mass.x0, v0=mass.v0, force=force)
+            out = dataclasses.replace(sensitivities(motion, t, names), parameters=tuple(p.name for p in params))
+    _refuse_non_finite(out, what)
+    return motion, out  # type: ignore[return-value]
+
+
+def _refuse_non_finite(sens: Sensitivities | NetworkSensitivities, what: str) -> None:
+    """A ``ValueError`` naming the first derivative of ``x`` or ``v`` that is not finite, and when."""
+    for array in (sens.x, sens.v):
+        bad = ~np.isfinite(array.reshape(array.shape[0], -1, array.shape[-1]))
+        if bad.any():
+            i, _, j = np.argwhere(bad)[0]
+            raise ValueError(
+                f"{what}: the derivative by {sens.parameters[j]!r} is not finite at t = {sens.t[i]:.6g} s: "
+                "the exact sensitivities overflow double precision for this system"
+            )
 
 
 def _scaled(sens: NetworkSensitivities, factors: np.ndarray, names: tuple[str, ...]) -> NetworkSensitivities:

@@ -16,7 +16,7 @@ import numpy as np
 
 from lumped.laws import monotone_graph
 from lumped.laws.bingham import bingham_corrector, sticks
-from lumped.laws.contract import Dashpot, DashpotState, StepBound
+from lumped.laws.contract import BinghamForm, Dashpot, DashpotState, StepBound
 from lumped.numerics import validate
 from lumped.numerics.roots import MAXITER, brentq
 
@@ -171,6 +171,16 @@ class HerschelBulkleyDashpot(Dashpot):
         # compares forces to a few ulps (lumped.solvers.network_step).
         return DashpotState(s * (tau + K * w**n), s * w)
 
+    def bingham_form(self) -> BinghamForm | None:
+        """``(tau, K)`` at ``n = 1``, Bingham's graph with ``c = K`` exactly (no ``1/gamma`` is formed), else ``None``.
+
+        ``F_d = sgn(v)(tau + K |v|)`` is eq. (7) with ``mu_s N_f = tau`` and
+        ``1/gamma = K``, so the closed forms of point 6 (the exact solution,
+        Algorithm 1's loop) apply to it as they stand; the linear dashpot
+        (``tau = 0``) is this case.
+        """
+        return BinghamForm(self.threshold, self.consistency) if self.exponent == 1.0 else None
+
     def viscous_part(self) -> Callable[[float], float]:
         K, n = self.consistency, self.exponent
         if n == 1.0:
@@ -188,19 +198,25 @@ class HerschelBulkleyDashpot(Dashpot):
         ``eta^2`` and ``4 K r`` at ``n = 2``; ``K^2`` and ``4 eta r`` at ``n =
         1/2``; else ``K w^n <= 2^n r`` and ``eta w <= 2 r`` on Brent's bracket.
         The slip force's viscous part is at most ``K speed^n``.
+
+        The parameter blamed is the one that makes the larger term large: the
+        exponent for ``2^n`` and for ``speed^n`` above ``K``, else the consistency.
         """
         K, n = self.consistency, self.exponent
         with np.errstate(over="ignore"):
+            power = float(np.float64(speed) ** n)
             if n == 1.0:
-                step = K * force
+                step, by = K * force, "consistency"
             elif n == 2.0:
-                step = max(eta * eta, 4 * K * force)
+                step, by = max(eta * eta, 4 * K * force), "consistency"
             elif n == 0.5:
-                step = max(K * K, 4 * eta * force)
+                step, by = max(K * K, 4 * eta * force), "consistency"
             else:
-                step = float(np.float64(2.0) ** n) * force
-            slip = float(K * np.float64(speed) ** n)
-        return StepBound(max(step, slip), "viscous term of the Herschel-Bulkley step", "consistency")
+                step, by = (float(np.float64(2.0) ** n) * force if force else 0.0), "exponent"
+            slip = float(K * np.float64(power))
+        if slip > step:
+            by = "exponent" if power > K else "consistency"
+        return StepBound(max(step, slip), "viscous term of the Herschel-Bulkley step", by)
 
 
 def _power_speed(r: float, eta: float, K: float, n: float) -> float:

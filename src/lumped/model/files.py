@@ -40,7 +40,7 @@ from lumped.model.forcing import Constant, SwitchedSine
 from lumped.model.network import Load, Mass, Network, check_count
 from lumped.model.tables import read_table
 
-__all__ = ["MAX_FILE_BYTES", "load_system", "parse_system"]
+__all__ = ["MAX_FILE_BYTES", "load_system", "parse_system", "table_files"]
 
 #: Largest system file read (bytes of UTF-8, or characters of ``text``): a
 #: network of the largest size written as in book/guide/systems.md takes about 7 MB.
@@ -74,6 +74,31 @@ def load_system(path: str | Path) -> Network:
         why = getattr(err, "strerror", None) or str(err)
         raise ValueError(f"{source}: cannot read it: {why}") from None
     return parse_system(text, source, folder=path.parent)
+
+
+def table_files(path: str | Path) -> list[tuple[str, Path]]:
+    """The table files that the system file ``path`` names, as ``(entry, file)``: ``("[[force]] 2", folder /
+    file)`` or ``("[ground] acceleration", ...)``, each resolved as :func:`load_system` reads it.
+
+    What cannot be read is left out (a file that is not TOML names none): :func:`load_system` refuses it.
+    """
+    path = Path(path)
+    try:
+        if path.stat().st_size > MAX_FILE_BYTES:
+            return []
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeError, tomllib.TOMLDecodeError, RecursionError):
+        return []
+    forces = data.get("force", [])
+    ground = data.get("ground", {})
+    entries = [(f"[[force]] {i}", raw) for i, raw in enumerate(forces if isinstance(forces, list) else [], 1)]
+    if isinstance(ground, dict):
+        entries.append(("[ground] acceleration", ground.get("acceleration")))
+    return [
+        (entry, path.parent / raw["file"])
+        for entry, raw in entries
+        if isinstance(raw, dict) and raw.get("kind") == "table" and isinstance(raw.get("file"), str)
+    ]
 
 
 def parse_system(text: str, source: str = "<string>", *, folder: str | Path = ".") -> Network:

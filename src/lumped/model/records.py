@@ -60,6 +60,8 @@ def read_record(path: str | os.PathLike, masses: Sequence[str]) -> Record:
         below 0 or not after the one before it; a displacement beyond
         :func:`largest_displacement`.
     """
+    if isinstance(masses, str) or not isinstance(masses, Sequence) or not all(isinstance(m, str) for m in masses):
+        raise ValueError(f"masses must be a sequence of the system's mass names, got {masses!r:.60}")
     return read_lines(path, lambda lines: _parse(lines, list(masses)))
 
 

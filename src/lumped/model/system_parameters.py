@@ -91,6 +91,8 @@ def system_parameters(
         One line beginning with ``what``: not a string or a sequence, no name, a name given twice, or one
         that is not a parameter of ``network`` (the message lists those it has).
     """
+    if not isinstance(network, Network):
+        raise ValueError(f"network must be a Network, got {type(network).__name__}")
     if isinstance(names, str):
         names = [n.strip() for n in names.split(",")]
     if not isinstance(names, Sequence):  # a number, a set, a generator: no names in an order

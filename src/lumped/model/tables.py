@@ -46,6 +46,8 @@ def read_table(path: str | os.PathLike, column: str) -> Table:
 def read_lines(path: str | os.PathLike, parse: Callable[[list[str]], T]) -> T:
     """``parse`` of the lines of the text file ``path`` (at most :data:`MAX_TABLE_BYTES`); its ``ValueError``,
     or one for a file that cannot be read, as one line beginning ``file 'PATH'`` (tables and records)."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise ValueError(f"path must be a str or a path of a file, got {type(path).__name__}")
     where = f"file {str(path)!a}"
     try:
         size = Path(path).stat().st_size

@@ -107,8 +107,8 @@ class _Budget:
         self.left -= 1
         if self.left < 0:
             raise ValueError(
-                f"max_steps: the event-driven integration needs more than {self.total} steps "
-                f"(reached at t = {t:.6g} s); raise max_steps or rtol, or shorten t_end"
+                f"t_end: the event-driven integration needs more than the {self.total} steps a run may take "
+                f"(reached at t = {t:.6g} s); raise rtol, shorten t_end or use backward Euler"
             )
 
 
@@ -289,9 +289,41 @@ def _check_sizes(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float, 
     with np.errstate(over="ignore"):
         f = abs(float(osc.dashpot.slip_force(v_max))) if v_max > 0 else 0.0
     if not f <= MAGNITUDE_LIMIT:
+        # v_max <= 1e100 here, so a force above 1e300 takes a large coefficient or power of the law
+        # (contract point 9 names which); the start that gives the speed is named too.
+        law = osc.dashpot.step_bound(0.0, v_max, 1.0).parameter
+        start = max(parts, key=parts.get)  # type: ignore[arg-type]
         raise ValueError(
-            f"v0: the dashpot force could reach {f:.3g} N at the speed {v_max:.3g} m/s the energy allows, "
-            f"above {MAGNITUDE_LIMIT:.0e} N; lower v0, x0 or the force"
+            f"{law}: the dashpot force could reach {f:.3g} N at the speed {v_max:.3g} m/s the energy allows "
+            f"(from {start}), above {MAGNITUDE_LIMIT:.0e} N; lower {law}, or {start}"
+        )
+
+
+def _check_steps(osc: Oscillator, force: SwitchedSine, t_end: float, max_steps: int) -> None:
+    """Refuse, before any step, a run that surely takes more than ``max_steps`` steps.
+
+    Notes
+    -----
+    While a sine of amplitude ``P`` above the threshold ``tau`` acts, the mass
+    cannot stick through a whole forcing period: held at ``x``, the dashpot
+    would carry ``P sin(omega t + phase) - k x``, which spans ``2 P > 2 tau``
+    over a period.  Nor can one DOP853 step cover a whole period: its local
+    error there is of the order of ``(2 pi)^9 / 9! = 4.5`` times the force's
+    scale, above every ``rtol`` accepted (:data:`RTOL_RANGE`, at most 1e-2).
+    So the run takes at least one step per whole forcing period while the
+    force acts: a lower bound, which refuses only runs that cannot finish.
+    """
+    if force.is_zero:
+        return
+    P, omega, _ = force.canonical()
+    if not P > osc.threshold:
+        return
+    periods = math.floor(min(t_end, force.until) * omega / (2 * math.pi))
+    if periods > max_steps:
+        raise ValueError(
+            f"t_end: the event-driven integration would take at least {periods:.3g} steps (one per forcing period "
+            f"while the force, above the threshold, acts), more than the {max_steps} a run may take; "
+            "shorten t_end or use backward Euler"
         )
 
 
@@ -347,6 +379,7 @@ def solve_event_driven(
     force = force or SwitchedSine()
     check_scales(oscillator, force, t_end, x0, v0)
     _check_sizes(oscillator, force, t_end, x0, v0)
+    _check_steps(oscillator, force, t_end, max_steps)
     x_scale, v_scale = _motion_scale(oscillator, force, t_end, x0, v0)
     atol = (_ATOL_FACTOR * rtol * x_scale, _ATOL_FACTOR * rtol * v_scale)
     settings = _Settings(viscous_part(oscillator.dashpot), rtol, atol, _Budget(max_steps, max_steps))

@@ -145,7 +145,7 @@ class EventMarch:
         self.events.append(Event(t, kind, x))
         if self.max_events is not None and len(self.events) > self.max_events:
             raise ValueError(
-                f"t_end: more than max_events = {self.max_events} events before t_end; "
+                f"t_end: more than the {self.max_events} events a run may have before t_end; "
                 "shorten t_end or use backward Euler"
             )
 

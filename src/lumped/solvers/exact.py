@@ -267,8 +267,8 @@ def _check_inputs(osc: Oscillator, force: SwitchedSine, t_end: float, x0: float,
     if estimate > max_events:
         shown = f"{estimate:.2g}" if estimate < 1e300 else "more than 1e300"
         raise ValueError(
-            f"t_end: the exact solution would have about {shown} events before t_end, more than "
-            f"max_events = {max_events}; shorten t_end or use backward Euler"
+            f"t_end: the exact solution would have about {shown} events before t_end, more than the "
+            f"{max_events} a run may have; shorten t_end or use backward Euler"
         )
 
 
@@ -315,8 +315,10 @@ def solve_exact(
     Parameters
     ----------
     oscillator : Oscillator
-        Its dashpot must be a :class:`~lumped.laws.BinghamDashpot` (any
-        ``gamma``, ``inf`` included).
+        Its dashpot law must have a Bingham form (the law's contract, point 6):
+        a :class:`~lumped.laws.BinghamDashpot` (any ``gamma``, ``inf``
+        included) or a Herschel-Bulkley law of exponent 1, the linear dashpot
+        (``threshold = 0``) among them.
     t_end : float, s
         Final time ``> 0``.
     x0, v0 : float, m and m/s

@@ -129,7 +129,7 @@ def march(
         mode_after = tuple(int(s) for s in phases[-1].mode)
         events.append(NetworkEvent(t, kind, tuple(names[e] for e in dict.fromkeys(elements)), mode_after))
         if len(events) > max_events:
-            raise ValueError(f"max_events: more than {max_events} events before t_end = {t_end:g} s")
+            raise ValueError(f"t_end: more than the {max_events} events a run may have before t_end = {t_end:g} s")
 
 
 def sample(phases: list[Phase], times: np.ndarray) -> tuple[np.ndarray, ...]:

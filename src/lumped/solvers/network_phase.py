@@ -54,7 +54,7 @@ class Parts(NamedTuple):
 def linear_parts(el: Element) -> tuple[float, float, float] | None:
     """``(stiffness, viscosity, threshold)`` of a linear spring, or of a dashpot whose law is Bingham's graph
     (a Bingham, Coulomb or linear dashpot, by the element's contract: ``linear_stiffness``, its
-    ``one_mass_law()`` and that law's ``bingham_form()``, or a Herschel-Bulkley law of exponent 1); else ``None``."""
+    ``one_mass_law()`` and that law's ``bingham_form()``, a Herschel-Bulkley law of exponent 1 included); else ``None``."""
     if el.linear_stiffness is not None:
         return el.linear_stiffness, 0.0, 0.0
     law = el.one_mass_law()
@@ -63,8 +63,6 @@ def linear_parts(el: Element) -> tuple[float, float, float] | None:
     form = law.bingham_form()
     if form is not None:
         return 0.0, form.viscosity, form.threshold
-    if getattr(law, "exponent", None) == 1:  # Herschel-Bulkley with n = 1: Bingham's graph, c the consistency
-        return 0.0, law.consistency, law.threshold  # type: ignore[attr-defined]
     return None
 
 

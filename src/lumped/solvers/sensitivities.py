@@ -190,6 +190,8 @@ def sensitivities(
     """
     if not isinstance(solution, ExactSolution):
         raise ValueError(f"solution must be an ExactSolution, got {type(solution).__name__}")  # noqa: TRY004 (the API's one error type)
+    if isinstance(parameters, str) or not isinstance(parameters, Sequence):
+        raise ValueError(f"parameters must be a sequence of names such as ('x0', 'threshold'), got {parameters!r:.60}")
     names = tuple(parameters)
     for name in names:
         if name not in PARAMETER_NAMES:

@@ -48,6 +48,7 @@ import numpy as np
 from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, Scales, find_orbit
 from lumped.drivers.response.systems import Family, LoadedNetwork, omega_family, period_map
 from lumped.model.oscillator import Oscillator
+from lumped.numerics import validate
 
 __all__ = [
     "BISECTIONS",
@@ -263,6 +264,14 @@ def _locate(branch: _Branch, a: _Point, b: _Point, kind: str) -> _Point:
     return best
 
 
+def check_points(points: object) -> int:
+    """``points`` as an int >= 2 (a branch's rows: its two ends at least), or a ``ValueError`` naming it."""
+    points = validate.positive_int("points", points)
+    if points < 2:
+        raise ValueError(f"points must be at least 2, got {points}")
+    return points
+
+
 def continue_orbits(
     system: Oscillator | LoadedNetwork,
     amplitude: float,
@@ -290,6 +299,8 @@ def continue_orbits(
     the parameter followed from ``start`` to ``stop`` is that family's, the same
     way (``system`` and ``amplitude`` are then not used).
     """
+    points = check_points(points)
+    start, stop = validate.finite("start", start), validate.finite("stop", stop)
     family = family or omega_family(system, amplitude)
     branch = _Branch(family)
     w0, w1 = start / family.unit, stop / family.unit

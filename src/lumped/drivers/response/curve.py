@@ -41,7 +41,7 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.drivers.response import linear
-from lumped.drivers.response.continuation import Branch, ResponsePoint, continue_orbits
+from lumped.drivers.response.continuation import Branch, ResponsePoint, check_points, continue_orbits
 from lumped.drivers.response.shooting import Orbit, find_orbit
 from lumped.drivers.response.systems import (
     Family,
@@ -127,9 +127,13 @@ def request(
     fixed ``omega`` for the systems at both ends of the range, between which the time scales are monotone).
     A linear system with an undamped mode skips those bounds: its closed form
     (:mod:`~lumped.drivers.response.linear`) refuses the omegas it cannot vouch for itself."""
+    if not isinstance(network, Network):
+        raise ValueError(f"network must be a Network (a system file read by load_system), got {type(network).__name__}")
+    if not isinstance(mass, str):
+        raise ValueError(f"mass must be the name of a mass of the network, got {mass!r:.40}")
     amplitude = validate.positive("force_amplitude", amplitude)
-    points = validate.positive_int("points", points)
-    if not 2 <= points <= MAX_POINTS:
+    points = check_points(points)
+    if points > MAX_POINTS:
         raise ValueError(f"points: between 2 and {MAX_POINTS} rows, got {points}")
     system = response_system(network, mass)
     axis = "START:STOP" if vary is None else vary

@@ -28,6 +28,7 @@ import numpy as np
 
 from lumped.drivers.response.systems import LoadedNetwork, Scales, period_map
 from lumped.model.oscillator import Oscillator
+from lumped.numerics import validate
 from lumped.solvers.monodromy import RESOLUTION, PeriodMap
 from lumped.solvers.network_monodromy import NetworkPeriodMap
 
@@ -214,6 +215,9 @@ def find_orbit(
         ``M - I`` is singular within its computed error (:func:`monodromy_error`: an undamped system at
         ``omega = omega_n/j``, whose periodic motion is not unique, or a fold).
     """
+    if not isinstance(system, (Oscillator, LoadedNetwork)):
+        raise ValueError(f"system must be an Oscillator or a LoadedNetwork, got {type(system).__name__}")
+    amplitude, omega = validate.positive("force_amplitude", amplitude), validate.positive("force_omega", omega)
     scales = Scales.of(system, amplitude)
     z = _settle(system, amplitude, omega, scales) if guess is None else np.asarray(guess, dtype=float)
     for _ in range(MAX_NEWTON):

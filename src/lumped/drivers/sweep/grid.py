@@ -30,8 +30,15 @@ def chunk_slice(rows: int, index: int, count: int) -> slice:
     if isinstance(index, bool) or not isinstance(index, numbers.Integral) or not 0 <= index < count:
         raise ValueError(f"index must be an integer in [0, {count - 1}], got {index!r}")
     index = int(index)
-    bounds = np.linspace(0, rows, count + 1).round().astype(int)
-    return slice(int(bounds[index]), int(bounds[index + 1]))
+    return slice(_bound(rows, index, count), _bound(rows, index + 1, count))
+
+
+def _bound(rows: int, i: int, count: int) -> int:
+    """``np.linspace(0, rows, count + 1).round()[i]``, without the ``count + 1`` values (``count`` may be 1e9).
+
+    ``linspace`` forms ``i * (rows / count)`` and sets its last value to ``rows``; rounding is half to even.
+    """
+    return rows if i == count else int(np.round(np.float64(i) * (rows / count)))
 
 
 def chunk_pair(chunk: object) -> tuple[int, int] | None:
