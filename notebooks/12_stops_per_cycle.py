@@ -391,10 +391,15 @@ print("r, F/P, distance to the nearest 1/2n:", [
 # (the frequency ratio, as we read their notation) the typical symmetric,
 # non-sticking motions are joined by a continuum of asymmetric, marginally
 # stable ones; we know their result from its abstract and have not checked
-# their formulae. Shooting at exactly those frequencies finds asymmetric
-# motions (an odd count) with a Floquet multiplier equal to 1 within
-# Newton's accuracy, that is marginally stable, whose one stop per period
-# lasts a tiny fraction of the period; and a run from rest keeps that count:
+# their formulae. Shooting at exactly those frequencies finds motions with a
+# Floquet multiplier equal to 1 within Newton's accuracy, that is marginally
+# stable. Where $M - I$ is regular to its computed accuracy, Newton lands on
+# an asymmetric one (an odd count) whose one stop per period lasts a tiny
+# fraction of the period. Where it is singular to that accuracy (the
+# continuum itself), Newton's steps are least-norm
+# (`lumped.drivers.response.shooting.least_norm_step`) and stop at the member
+# of the family nearest the state a run from rest reaches, which may be the
+# symmetric motion without stops. The run from rest keeps the count:
 
 # %%
 marginal = []

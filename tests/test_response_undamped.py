@@ -225,10 +225,11 @@ def test_vary_leaves_out_the_parameter_values_at_omega_n_over_j(tmp_path):
 
 
 def test_shooting_refuses_a_singular_monodromy_minus_identity(tmp_path):
-    """At the resonance Newton's matrix ``M - I`` is zero within its error: ``find_orbit`` says so in one line
-    instead of stepping to a non-finite state (which reached the matrix exponential)."""
+    """At the resonance Newton's matrix ``M - I`` is zero within its error: ``find_orbit`` takes least-norm steps,
+    which find no periodic motion (there is none), and says so in one line instead of stepping to a non-finite
+    state (which reached the matrix exponential)."""
     system = response_system(_network(tmp_path, SPRING), "m")
-    with pytest.raises(ValueError, match=r"^force_omega: the periodic motion at omega = 10 rad/s is not isolated"):
+    with pytest.raises(ValueError, match=r"^force_omega: no isolated periodic motion at omega = 10 rad/s: monodromy"):
         find_orbit(system, 1.0, 10.0, np.array([0.0, 0.1]))
     with pytest.raises(ValueError, match=r"^force_omega: no periodic motion found .* \(a state not finite\)"):
         period_map(system, 1.0, 3.0, np.array([math.nan, 0.0]))

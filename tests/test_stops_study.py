@@ -16,7 +16,8 @@ import pytest
 import references as R
 
 from lumped import studies
-from lumped.drivers.response.shooting import NEWTON_TOL, find_orbit
+from lumped.drivers.response import shooting
+from lumped.drivers.response.shooting import NEWTON_TOL, Scales, find_orbit
 from lumped.drivers.sweep import sweep
 from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator
@@ -267,6 +268,19 @@ def test_one_stop_motion_at_half_the_natural_frequency_is_marginal_and_asymmetri
     assert orbit.stops == 1 and abs(orbit.multiplier - 1) < 1e-5
     count = stops.count_stops(stops.run(CFG, 0.5, 0.2), 2 * math.pi / 5.0, stops.PERIODS)
     assert (count.window_stops, count.previous_stops) == (stops.PERIODS, stops.PERIODS)
+
+
+def test_on_a_continuum_of_periodic_motions_newton_takes_least_norm_steps() -> None:
+    # At r = 1/4, F/P = 0.02 the periodic motions form a continuum (Csernak, Stepan and Shaw's Omega = 1/2n,
+    # n = 2): M - I is singular within its computed error, so a Newton step is not defined by the map.  The
+    # least-norm steps find a member of the family (its defect below Newton's tolerance, its multiplier 1 to
+    # the margin of its computation), where a full solve would step by round-off along the family.
+    osc = Oscillator.bingham(CFG["mass"], CFG["stiffness"], CFG["threshold"], math.inf)
+    found = find_orbit(osc, CFG["threshold"] / 0.02, 0.25 * OMEGA_N)
+    assert shooting._singular(found.period)
+    defect = found.period.end - found.state
+    assert np.max(np.abs(Scales.of(osc, CFG["threshold"] / 0.02).state(defect))) <= NEWTON_TOL
+    assert found.max_multiplier == 1.0  # marginal: 1 within the monodromy's error
 
 
 def test_low_grid_continues_the_step_of_the_map_above() -> None:

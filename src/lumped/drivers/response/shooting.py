@@ -185,6 +185,24 @@ def newton_step(pm: PeriodMap | NetworkPeriodMap, z: np.ndarray) -> np.ndarray:
     return -w @ np.linalg.solve(w.T @ (pm.monodromy - np.eye(z.size)) @ w, w.T @ (pm.end - z))
 
 
+def least_norm_step(pm: PeriodMap | NetworkPeriodMap, z: np.ndarray) -> np.ndarray:
+    """The least-norm Newton step where ``W^T (M - I) W`` is singular within its computed error: the directions
+    whose singular values (of the balanced matrix, :func:`monodromy_error`) lie within the error are left out.
+    On a continuum of periodic motions (the marginal families of a friction oscillator at ``omega_n/2n``) it
+    converges to the nearest one; where there is none (an undamped resonance) it makes no progress, and
+    :func:`find_orbit` refuses after :data:`MAX_NEWTON` steps."""
+    import scipy.linalg  # here, not at import (tests/test_imports.py)
+
+    w = pm.free_basis
+    a = w.T @ pm.monodromy @ w
+    balanced, (scale, _) = scipy.linalg.matrix_balance(a, permute=False, separate=True)
+    error = MULTIPLIER_ULPS * np.finfo(float).eps * _work(pm) * np.linalg.norm(balanced, 2)
+    u, sigma, vt = np.linalg.svd(balanced - np.eye(a.shape[0]))
+    keep = sigma > error
+    y = -(vt[keep].T @ ((u[:, keep].T @ (w.T @ (pm.end - z) / scale)) / sigma[keep]))
+    return w @ (scale * y)
+
+
 def find_orbit(
     system: Oscillator | LoadedNetwork,
     amplitude: float,
@@ -211,23 +229,27 @@ def find_orbit(
     Raises
     ------
     ValueError
-        ``force_omega: ...`` when Newton does not converge in :data:`MAX_NEWTON` steps, or meets a state where
-        ``M - I`` is singular within its computed error (:func:`monodromy_error`: an undamped system at
-        ``omega = omega_n/j``, whose periodic motion is not unique, or a fold).
+        ``force_omega: ...`` when Newton does not converge in :data:`MAX_NEWTON` steps; where ``M - I`` is
+        singular within its computed error (:func:`monodromy_error`) its steps are least-norm
+        (:func:`least_norm_step`), and the message says so (an undamped system at ``omega = omega_n/j``, whose
+        periodic motion is not unique, or a fold).
     """
     if not isinstance(system, (Oscillator, LoadedNetwork)):
         raise ValueError(f"system must be an Oscillator or a LoadedNetwork, got {type(system).__name__}")
     amplitude, omega = validate.positive("force_amplitude", amplitude), validate.positive("force_omega", omega)
     scales = Scales.of(system, amplitude)
     z = _settle(system, amplitude, omega, scales) if guess is None else np.asarray(guess, dtype=float)
+    singular = False
     for _ in range(MAX_NEWTON):
         pm = period_map(system, amplitude, omega, z)
         if np.max(np.abs(scales.state(pm.end - z))) <= tol:
             return Orbit(omega, z, pm)
-        if _singular(pm):
-            raise ValueError(
-                f"force_omega: the periodic motion at omega = {omega:.6g} rad/s is not isolated: monodromy - I is "
-                "singular within its computed error (omega = omega_n/j of an undamped mode, or a fold)"
-            )
-        z = z + newton_step(pm, z)
+        singular = _singular(pm)
+        z = z + (least_norm_step(pm, z) if singular else newton_step(pm, z))
+    if singular:
+        raise ValueError(
+            f"force_omega: no isolated periodic motion at omega = {omega:.6g} rad/s: monodromy - I is singular "
+            "within its computed error and Newton's least-norm steps found none (omega = omega_n/j of an undamped "
+            "mode, or a fold)"
+        )
     raise ValueError(f"force_omega: Newton found no periodic motion at omega = {omega:.6g} rad/s in {MAX_NEWTON} steps")
