@@ -320,3 +320,19 @@ def test_work_precision_labels_each_tanh_point_with_its_eps(close):
     legend = [t.get_text() for t in fig.legends[0].get_texts()]
     assert any(text.endswith(r"rtol $10^{-6}$") for text in legend), legend
     assert not any("e-0" in text for text in legend), legend
+
+
+@pytest.mark.parametrize(("gamma", "inset"), [(1.0, True), (math.inf, False)])
+def test_rest_inset_only_where_the_mass_comes_to_rest(close, gamma, inset):
+    # Figure 11's inset magnifies the stretched rest; a Coulomb run still moving at 4 s has none to show
+    # (the gamma=inf variant of the pipeline once failed here).
+    osc = L.Oscillator.bingham(mass=1.0, stiffness=100.0, threshold=1.0, gamma=gamma)
+    tr = L.backward_euler(osc, 4.0, 1e-3, x0=0.5)
+    exact = L.solve_exact(osc, 4.0, x0=0.5)
+    fig = plotting.time_history(tr, exact, "x")
+    made = plotting.rest_inset(fig.axes[0], tr, exact, osc.static_band)
+    assert (made is not None) == inset
+    if inset:
+        low, high = made.get_ylim()
+        assert low <= -osc.static_band and high >= osc.static_band  # the band is in view
+        assert made.get_xlim()[0] <= exact.rest_time <= made.get_xlim()[1]

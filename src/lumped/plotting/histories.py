@@ -262,12 +262,13 @@ def rest_inset(
     solution: ExactSolution,
     band: float,
     bounds: Sequence[float] = (0.62, 0.56, 0.37, 0.36),
-) -> Axes:
+) -> Axes | None:
     """An inset of ``ax`` magnifying where the mass comes to rest, the static band shaded.
 
     On a displacement axis scaled to the first swing, a rest a few millimetres
     from ``x = 0`` cannot be told from the unstretched position; the inset shows
     the last swing and the rest against the band ``|x| <= band`` (``tau / k``).
+    A mass still moving at the end has no rest to show: no inset, ``None``.
 
     Parameters
     ----------
@@ -282,18 +283,23 @@ def rest_inset(
 
     Returns
     -------
-    Axes
-        The inset.
+    Axes or None
+        The inset, or ``None`` when the exact solution does not come to rest by its end.
     """
+    if not np.isfinite(solution.rest_time):  # still moving at the end: no rest to show
+        return None
     inset = ax.inset_axes(list(bounds))
     turns = solution.event_times("reversal")
-    start = turns[turns <= solution.rest_time][-1] if turns.size else 0.0
+    turns = turns[turns <= solution.rest_time]
+    start = turns[-1] if turns.size else 0.0
     inset.axhspan(-band, band, color="0.85", lw=0, label=r"static band $|x| \leq \mu_s N_f/k$")
     inset.axhline(0.0, color="0.4", lw=0.6)
     fine = exact_fine(solution)
     inset.plot(trajectory.t, trajectory.x, **_NUMERIC)
     inset.plot(fine["t"], fine["x"], **_EXACT)
-    inset.set(xlim=(start, trajectory.t[-1]), ylim=(-2.0 * band, 2.0 * band))
+    shown = trajectory.x[trajectory.t >= start]
+    half = max(2.0 * band, 1.2 * float(np.abs(shown).max(initial=0.0)))  # the band, or all of a last swing
+    inset.set(xlim=(start, trajectory.t[-1]), ylim=(-half, half))
     inset.tick_params(labelsize=7)
     inset.yaxis.set_major_formatter(lambda y, _: f"{1e3 * y:g}")
     inset.set_ylabel("x (mm)", fontsize=7)
