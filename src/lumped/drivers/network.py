@@ -97,15 +97,13 @@ def simulate_network(
     """
     if not isinstance(network, Network):
         raise ValueError(f"network must be a Network, got {type(network).__name__}")
-    t_end, dt = validate.positive("t_end", t_end), validate.positive("dt", dt)
-    save_every = validate.stride("save_every", save_every)
+    t_end, dt, save_every, n_steps = validate.grid(t_end, dt, save_every)
     if solver not in SOLVERS:
         raise ValueError(f"solver must be one of {', '.join(SOLVERS)}; got {solver!r}")
     pair = _paper_form(network) if solver == "auto" else None
     if pair is not None:
         return _via_algorithm1(network, pair, t_end, dt, save_every)
     path = _path(network, solver)
-    n_steps = validate.step_count(t_end, dt)
     for load in network.loads:
         if isinstance(load.force, SwitchedSine):
             load.force.check_span(n_steps * dt)  # the sine's range, to the grid's last time
