@@ -22,7 +22,7 @@ import numpy as np
 import pytest
 from test_network_kernel import tree
 
-from lumped.drivers.network import _graphs, _sigma
+from lumped.solvers.backward_euler_network import _graphs, _sigma
 from lumped.solvers import backward_euler
 from lumped.solvers import network_compiled as kernel
 

@@ -253,7 +253,7 @@ def test_a_step_that_does_not_settle_is_not_blamed_on_dt(monkeypatch: pytest.Mon
 
     calls: list[int] = []
     monkeypatch.setattr(kernel, "KERNEL", "python")  # the Python step, whose solve is replaced
-    monkeypatch.setattr("lumped.drivers.network.solve_step", fails)
+    monkeypatch.setattr("lumped.solvers.backward_euler_network.solve_step", fails)
     out = run_lumped("simulate", "--system", system, "--method", "backward-euler", "--output", tmp_path / "o.csv")
     assert out.returncode == 2 and len(out.stderr.strip().splitlines()) == 1
     assert "the step solver failed at the step to t = 0.0001 s" in out.stderr and "--dt" not in out.stderr

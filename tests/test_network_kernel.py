@@ -309,7 +309,7 @@ def test_a_long_compiled_run_is_not_refused(monkeypatch) -> None:
     Python) are accepted compiled and refused in Python."""
     from lumped.drivers import network as integrate
 
-    monkeypatch.setattr(integrate, "_march", lambda *args: args[-1])  # the path, without running
+    monkeypatch.setattr(integrate, "march", lambda *args: args[-1])  # the path, without running
     assert simulate_network(chain(100, 1.0, F), 1000.0, 1e-3, save_every=100) == "compiled"
     with pytest.raises(ValueError, match=r"steps of the network step \(python\) would take about"):
         simulate_network(chain(100, 1.0, F), 1000.0, 1e-3, save_every=100, solver="python")

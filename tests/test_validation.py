@@ -143,3 +143,33 @@ def test_textbook_arguments_checked():
         integrate_adaptive(TextbookModel(osc), 1.0, max_nfev=0)
     with pytest.raises(ValueError, match="dashpot"):
         TextbookModel(L.Oscillator(1.0, L.LinearSpring(1.0), L.MonotoneDashpot(lambda f: f)))
+
+
+def test_the_grid_is_checked_in_one_place_with_one_wording():
+    """validate.grid checks t_end, dt, save_every and the step count in that order; every entry
+    that takes a grid refuses a bad one with its words (tests/test_one_home.py: no other copy)."""
+    from lumped.numerics import validate
+    from lumped.kernels.batched import batch_backward_euler
+
+    assert validate.grid(1.0, 0.25, 3) == (1.0, 0.25, 3, 4)
+    net = L.Network([L.Mass("m", 1.0, 0.5, 0.0)], [L.Spring("s", ("ground", "m"), 1.0)], [])
+    runs = {
+        "backward_euler": lambda t, dt, s: L.backward_euler(L.Oscillator.bingham(), t, dt, save_every=s),
+        "simulate_network": lambda t, dt, s: L.simulate_network(net, t, dt, save_every=s),
+        "theta": lambda t, dt, s: L.simulate(L.Oscillator.bingham(), t, dt, method="theta", save_every=s),
+        "sample": lambda t, dt, s: L.solve_exact(L.Oscillator.bingham(), t).sample(dt, s),
+    }
+    for bad, words in [
+        ((-1.0, 0.1, 1), "t_end must be > 0"),
+        ((1.0, 0.0, 1), "dt must be > 0"),
+        ((1.0, 0.1, 0), "save_every must be an integer >= 1"),
+        ((1e9, 1e-9, 1), "t_end/dt must be at most"),
+    ]:
+        with pytest.raises(ValueError, match="^" + words) as expected:
+            validate.grid(*bad)
+        for name, run in runs.items():
+            with pytest.raises(ValueError) as err:
+                run(*bad)
+            assert str(err.value) == str(expected.value), name
+    with pytest.raises(ValueError, match="^dt must be > 0"):
+        batch_backward_euler({}, 1.0, -1.0)

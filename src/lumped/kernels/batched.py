@@ -228,8 +228,7 @@ def batch_backward_euler(
     BatchSummary
     """
     kernel = _kernel_name(kernel)
-    dt, t_end = validate.positive("dt", dt), validate.positive("t_end", t_end)
-    n_steps = validate.step_count(t_end, dt)
+    t_end, dt, _, n_steps = validate.grid(t_end, dt)
     par = _as_columns(params)
     n = par.shape[1]
     nw = np.full(n, n_steps + 1.0) if window is None else np.minimum(np.asarray(window, dtype=float), n_steps + 1.0)

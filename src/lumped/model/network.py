@@ -15,6 +15,7 @@ import numpy as np
 from lumped.laws.element import GROUND, NAME_PATTERN, Element, check_name
 from lumped.model.forcing import SwitchedSine, evaluate, validate_force
 from lumped.numerics import validate
+from lumped.numerics.union_find import UnionFind
 
 __all__ = [
     "Mass",
@@ -252,18 +253,9 @@ def check_count(what: str, count: int) -> int:
 
 def rigid_loop(points: dict[str, int], edges: list[tuple[tuple[int, int], Element]]) -> list[Element]:
     """The elements of a closed loop in the graph ``edges``, or ``[]`` if it is a forest."""
-    parent = list(range(len(points)))
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
+    sets = UnionFind(len(points))
     for k, ((a, b), el) in enumerate(edges):
-        ra, rb = root(a), root(b)
-        if ra != rb:
-            parent[ra] = rb
+        if sets.union(a, b):
             continue
         return _path(edges[:k], a, b) + [el]
     return []

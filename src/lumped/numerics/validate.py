@@ -16,6 +16,7 @@ from __future__ import annotations
 import math
 import numbers
 import sys
+from typing import NamedTuple
 
 import numpy as np
 
@@ -184,6 +185,27 @@ def step_count(t_end: float, dt: float, names: str = "t_end/dt") -> int:
     if abs(ratio - n) > 1e-9 * max(1.0, ratio):
         n = math.ceil(ratio)
     return max(int(n), 1)
+
+
+class Grid(NamedTuple):
+    """The checked time grid ``t_n = n*dt``, ``n = 0 .. n_steps`` (:func:`grid`)."""
+
+    t_end: float
+    dt: float
+    save_every: int
+    n_steps: int
+
+
+def grid(t_end: object, dt: object, save_every: object = 1) -> Grid:
+    """The one check of a run's grid: ``t_end`` and ``dt`` > 0, ``save_every`` a :func:`stride`,
+    and the grid's :func:`step_count` (at most :data:`MAX_STEPS`), in that order.
+
+    Every entry point that takes ``t_end``, ``dt`` (and ``save_every``) checks
+    them here, once; what it hands on inside the package is already clean.
+    """
+    t_end, dt = positive("t_end", t_end), positive("dt", dt)
+    save_every = stride("save_every", save_every)
+    return Grid(t_end, dt, save_every, step_count(t_end, dt))
 
 
 def output_rows(n_steps: int, save_every: int) -> int:

@@ -14,5 +14,6 @@
   switching rules, the march through phases) of the last three;
 * :mod:`~lumped.solvers.textbook`: the ``sgn(0) = 0`` model of the textbooks;
 * :mod:`~lumped.solvers.network_step`: backward Euler's step for a network
-  (active set).
+  (active set), and :mod:`~lumped.solvers.backward_euler_network` its time
+  loop (in Python, or block by block in the compiled kernel).
 """

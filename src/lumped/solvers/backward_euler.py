@@ -303,13 +303,10 @@ def backward_euler(
     """
     if not isinstance(oscillator, Oscillator):
         raise ValueError(f"oscillator must be an Oscillator, got {type(oscillator).__name__}")
-    t_end = validate.positive("t_end", t_end)
-    dt = validate.positive("dt", dt)
+    t_end, dt, save_every, n_steps = validate.grid(t_end, dt, save_every)
     x0, v0 = validate.finite("x0", x0), validate.finite("v0", v0)
-    save_every = validate.stride("save_every", save_every)
     force = validate_force(force)
     kernel = validate.kernel(kernel, KERNEL, "the C kernel")
-    n_steps = validate.step_count(t_end, dt)
     out = np.empty((validate.output_size(n_steps, save_every), len(COLUMNS)))
     _check_run(oscillator, t_end, dt, x0, v0, force, kernel, n_steps)
     f0 = float(evaluate(force, np.zeros(1))[0])

@@ -176,9 +176,7 @@ class ExactSolution:
         motion is solved again to ``t_N``, so every value is the exact solution
         at its time.  ``final_rest`` is :meth:`rest_through` at ``t_N``.
         """
-        dt = validate.positive("dt", dt)
-        save_every = validate.stride("save_every", save_every)
-        n = validate.step_count(self.t_end, dt)
+        _, dt, save_every, n = validate.grid(self.t_end, dt, save_every)
         validate.output_size(n, save_every)
         index = np.arange(0, n + 1, save_every)
         if index[-1] != n:

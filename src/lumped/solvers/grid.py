@@ -38,10 +38,8 @@ def start_run(
     """Validate the common arguments; return ``(t_end, dt, x0, v0, save_every, n_steps)``."""
     if not isinstance(osc, Oscillator):
         raise ValueError(f"oscillator must be an Oscillator, got {type(osc).__name__}")
-    t_end, dt = validate.positive("t_end", t_end), validate.positive("dt", dt)
+    t_end, dt, save_every, n_steps = validate.grid(t_end, dt, save_every)
     x0, v0 = validate.finite("x0", x0), validate.finite("v0", v0)
-    save_every = validate.stride("save_every", save_every)
-    n_steps = validate.step_count(t_end, dt)
     if isinstance(force, SwitchedSine):
         force.check_span(n_steps * dt)  # the sine's range, to the grid's last time
     validate.output_size(n_steps, save_every)

@@ -50,6 +50,8 @@ from typing import NamedTuple
 
 import numpy as np
 
+from lumped.numerics.union_find import UnionFind
+
 __all__ = ["CoreForces", "core_forces"]
 
 _INF = math.inf
@@ -167,19 +169,13 @@ def _support(columns: list[dict[int, float]]) -> set[int]:
 
 def _groups(columns: list[dict[int, float]]) -> list[list[int]]:
     """Chords whose cycles share an element, together (union-find)."""
-    root = list(range(len(columns)))
-
-    def find(i: int) -> int:
-        while root[i] != i:
-            root[i] = root[root[i]]
-            i = root[i]
-        return i
-
+    sets = UnionFind(len(columns))
+    find = sets.find
     owner: dict[int, int] = {}
     for k, col in enumerate(columns):
         for e in col:
             if e in owner:
-                root[find(k)] = find(owner[e])
+                sets.union(k, owner[e])
             else:
                 owner[e] = k
     groups: dict[int, list[int]] = {}

@@ -153,9 +153,7 @@ def grid_rows(
         raise ValueError(f"network must be a Network, got {type(network).__name__}")
     if (reason := refusal(network, method, any_load=any_load)) is not None:
         raise ValueError(reason)
-    t_end, dt = validate.positive("t_end", t_end), validate.positive("dt", dt)
-    save_every = validate.stride("save_every", save_every)
-    n = validate.step_count(t_end, dt)
+    t_end, dt, save_every, n = validate.grid(t_end, dt, save_every)
     validate.output_size(n, save_every)
     index = np.arange(0, n + 1, save_every)
     return (index if index[-1] == n else np.append(index, n)), dt, save_every

@@ -29,6 +29,7 @@ from lumped.laws.element import Element
 from lumped.model.forcing import Constant, SwitchedSine, jumps, kind_of
 from lumped.model.network import Network, listed, rigid_loop
 from lumped.numerics.expm import expm
+from lumped.numerics.union_find import UnionFind
 
 __all__ = ["Parts", "Phase", "groups", "load_matrix", "parts", "phase", "refusal"]
 
@@ -130,18 +131,12 @@ def switch_times(p: Parts, t_end: float) -> list[float]:
 def groups(p: Parts, mode: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """``P`` (n, G), the membership of each mass in a free group, and the grounded masses (n,)."""
     n = p.m.size
-    parent = list(range(n + 1))  # the ground is n
-
-    def root(i: int) -> int:
-        while parent[i] != i:
-            parent[i] = parent[parent[i]]
-            i = parent[i]
-        return i
-
+    sets = UnionFind(n + 1)  # the ground is n
+    root = sets.find
     for e in np.flatnonzero(p.friction & (mode == 0)):
         ends = [i for i in range(n) if p.b[i, e] != 0] or [n]
         ends += [n] * (2 - len(ends))  # an element to the ground has one mass row
-        parent[root(ends[0])] = root(ends[1])
+        sets.union(ends[0], ends[1])
     roots = [root(i) for i in range(n)]
     free = sorted({r for r in roots if r != root(n)})
     member = np.zeros((n, len(free)))

@@ -33,6 +33,7 @@ from collections.abc import Sequence
 from typing import NamedTuple
 
 from lumped.laws.step_graph import Piece
+from lumped.numerics.union_find import UnionFind
 
 __all__ = ["Clusters", "Merged", "loop_clusters", "loop_merge", "agrees"]
 
@@ -64,19 +65,8 @@ def loop_clusters(
     The ground stays its cluster's root (offset 0).  Elements in ``priority``
     are merged first, then the hard ones, then the rest, each in the given order.
     """
-    parent, off = list(range(n_points)), [0.0] * n_points
-
-    def find(i: int) -> tuple[int, float]:
-        path = []
-        while parent[i] != i:
-            path.append(i)
-            i = parent[i]
-        total = 0.0
-        for node in reversed(path):
-            total = off[node] + total
-            off[node], parent[node] = total, i
-        return i, (off[path[0]] if path else 0.0)
-
+    sets = UnionFind(n_points)
+    find = sets.locate
     first = [r for e in priority for r in rigid if r[0] == e]
     ordered = first + [r for r in rigid if r[4] and r[0] not in priority]
     ordered += [r for r in rigid if not r[4] and r[0] not in priority]
@@ -88,9 +78,9 @@ def loop_clusters(
                 clashes[e] = ob - oa
             continue
         if rb == ground:  # v_ra = v_ground + ob - rate - oa
-            parent[ra], off[ra] = rb, ob - rate - oa
+            sets.attach(ra, rb, ob - rate - oa)
         else:  # v_rb = v_ra + oa + rate - ob
-            parent[rb], off[rb] = ra, oa + rate - ob
+            sets.attach(rb, ra, oa + rate - ob)
     roots = [find(i) for i in range(n_points)]
     return Clusters([r for r, _ in roots], [o for _, o in roots], clashes)
 

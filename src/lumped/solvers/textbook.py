@@ -135,8 +135,7 @@ def integrate_fixed(
     """
     if scheme not in ("euler", "rk4"):
         raise ValueError(f"scheme must be 'euler' or 'rk4', got {scheme!r}")
-    t_end, dt = validate.positive("t_end", t_end), validate.positive("dt", dt)
-    n = validate.step_count(t_end, dt)
+    t_end, dt, _, n = validate.grid(t_end, dt)
     validate.output_size(n, 1, 4)
     validate.run_time(n, SECONDS_PER_STEP[scheme], f"the {scheme} loop")
     z, f = np.array([validate.finite("x0", x0), validate.finite("v0", v0)]), model.rhs

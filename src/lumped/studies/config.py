@@ -45,10 +45,12 @@ __all__ = ["load", "default", "check", "problems", "schema"]
 
 #: End-time keys: dt must be below each of them.
 END_TIMES = ("t_end_forced", "t_end_small", "t_end_large")
-#: Most steps one run may take. A run keeps six float64 columns per step (plus
-#: the exact solution sampled on the same grid), about 1 GB at 1e7 steps, and a
-#: notebook holds several runs at once; the paper's runs take at most 4e4.
-MAX_STEPS = 10**7
+#: Most steps one run of the pipeline may take: the pipeline's memory budget, well
+#: below :data:`lumped.numerics.validate.MAX_STEPS` (the bound of every run, a guard
+#: against typos).  A run keeps six float64 columns per step (plus the exact
+#: solution sampled on the same grid), about 1 GB at 1e7 steps, and a notebook
+#: holds several runs at once; the paper's runs take at most 4e4.
+MAX_PIPELINE_STEPS = 10**7
 
 
 #: The JSON-schema keywords :func:`_violates` implements, each as the 2020-12 draft defines it for numbers
@@ -236,7 +238,7 @@ def problems(raw: Any, overrides: list[str] | None = None) -> list[str]:
     First the overrides' texts, then the schema: unknown keys (with the
     closest known one), missing keys, values out of range. NaN passes every
     JSON-schema comparison, so it is refused here. Only if the schema holds,
-    the time step: ``dt`` below each end time and at most :data:`MAX_STEPS`
+    the time step: ``dt`` below each end time and at most :data:`MAX_PIPELINE_STEPS`
     steps per run; then the runs themselves (:func:`_run_problems`): the
     checks every run makes before it starts, on the four runs of
     :func:`lumped.studies.examples.paper` (built by :func:`lumped.studies.paper_runs.runs`), so that a value a run would refuse (``stiffness:
@@ -380,14 +382,14 @@ def _run_problems(values: dict[str, Any]) -> list[str]:
 
 
 def _step_problems(values: dict[str, Any]) -> list[str]:
-    """dt must be below each end time and leave at most MAX_STEPS steps per run."""
+    """dt must be below each end time and leave at most MAX_PIPELINE_STEPS steps per run."""
     dt = values["dt"]
     for key in END_TIMES:
         if dt >= values[key]:
             return [f"config: dt must be smaller than {key} = {values[key]:g} s; got {dt:g}"]
-        if values[key] / dt > MAX_STEPS:
+        if values[key] / dt > MAX_PIPELINE_STEPS:
             return [
-                f"config: dt must be at least {key}/{MAX_STEPS:.0e} = {values[key] / MAX_STEPS:g} s"
-                f" (a run takes at most {MAX_STEPS:.0e} steps); got {dt:g}"
+                f"config: dt must be at least {key}/{MAX_PIPELINE_STEPS:.0e} = {values[key] / MAX_PIPELINE_STEPS:g} s"
+                f" (a run takes at most {MAX_PIPELINE_STEPS:.0e} steps); got {dt:g}"
             ]
     return []

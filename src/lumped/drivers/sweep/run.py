@@ -165,7 +165,7 @@ def _check_size(
     """:func:`~.limits.check_size` of the rows that will run, from the names and sizes of the axes alone."""
     amplitude = fixed.get("force_amplitude", 0.0)  # a varied amplitude counts as forced: an upper estimate
     forced = "force_amplitude" in keys or not (isinstance(amplitude, numbers.Real) and amplitude == 0)
-    n_steps = validate.step_count(validate.positive("t_end", t_end), validate.positive("dt", dt))
+    n_steps = validate.grid(t_end, dt).n_steps
     rows = None if chunk is None else grid.chunk_slice(math.prod(counts), *grid.chunk_pair(chunk))  # type: ignore[misc]
     limits.check_size(counts, n_steps=n_steps, method=method, forced=forced, rows=rows)
 

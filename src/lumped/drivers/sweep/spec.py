@@ -69,11 +69,12 @@ class SweepSpec:
                 raise ValueError(f"{name}: not a parameter of a sweep; one of {', '.join(PARAMETERS)}")
         values = {n: check_value(n, v) for n, v in (PARAMETERS | dict(fixed)).items()}
         methods.refuse_sweep(method)
+        t_end, dt, _, _ = validate.grid(t_end, dt)
         spec = cls(
             tuple(axes),
             values,
-            validate.positive("t_end", t_end),
-            validate.positive("dt", dt),
+            t_end,
+            dt,
             method,
             validate.positive_int("periods", periods),
             dict(options or {}),
