@@ -41,7 +41,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from lumped.model.forcing import SwitchedSine, kind_of, sine_form
+from lumped.model.forcing import SwitchedSine, as_sine, kind_of
 from lumped.model.network import Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.trajectory import Trajectory
@@ -175,7 +175,7 @@ class Method:
 
     def force_refusal(self, force: object) -> str | None:
         """Why this method cannot run the forcing ``force`` (one line naming the method), or ``None`` if it can."""
-        if self.sine_forcing and callable(force) and not isinstance(force, SwitchedSine):
+        if self.sine_forcing and callable(force) and as_sine(force) is None:
             *others, last = (n for n, m in METHODS.items() if not m.sine_forcing or m.piecewise_any_load)
             anyone = f"{', '.join(others)} and {last}" if others else last
             return (
@@ -194,7 +194,7 @@ class Method:
     def by_network(self, force: object, network: Network) -> bool:
         """True if the one-mass solver refuses ``force`` (a table, ground motion) but the solver of
         piecewise-linear networks takes any load and runs ``network``, the one-mass system with it."""
-        refused = self.force_refusal(sine_form(force)) is not None  # a constant from t = 0 runs as its sine
+        refused = self.force_refusal(force) is not None  # a constant from t = 0 runs as its sine (as_sine)
         return self.piecewise_any_load and refused and self.network_refusal(network) is None
 
     def takes(self, names: object) -> None:

@@ -24,9 +24,9 @@ import numpy as np
 
 from lumped.drivers.methods import NETWORK_SOLVERS
 from lumped.drivers.one_mass import network_trajectory
-from lumped.model.problem import OneMass, one_mass_form
-from lumped.model.forcing import SwitchedSine, one_force, sine_form
+from lumped.model.forcing import check_span, one_force, sine_form
 from lumped.model.network import Network, listed
+from lumped.model.problem import OneMass, one_mass_form
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 from lumped.solvers import network_compiled as kernel
@@ -158,8 +158,7 @@ def simulate_network(
     path = _path(network, solver)
     n_steps = validate.step_count(t_end, dt)
     for load in network.loads:
-        if isinstance(load.force, SwitchedSine):
-            load.force.check_span(n_steps * dt)  # the sine's range, to the grid's last time
+        check_span(load.force, n_steps * dt)  # a sine's range, to the grid's last time
     width = 1 + 2 * len(network.masses) + 3 * len(network.elements)
     rows = validate.output_size(n_steps, save_every, width)
     fixed, per_element = _COST[path]
