@@ -21,7 +21,8 @@ Adding a method
    by which it runs any network (``network_solvers``; none: one-mass
    networks only, as an oscillator), its solver in continuous time if it
    has one (``solution``; none: a fixed-step scheme), whether its forcing
-   must be a :class:`~lumped.model.forcing.SwitchedSine` (``sine_forcing``),
+   must be a sine on from ``t = 0`` (``sine_forcing``: the load answers
+   :meth:`~lumped.model.forcing.Forcing.sine`),
    its solver of the networks whose every phase is linear, if it has one
    (``piecewise_networks``: run for a network that is not of the one-mass
    form), and its :class:`Option` s.
@@ -117,8 +118,8 @@ class Method:
     #: (the events, the rest, the motion at any time), which ``run`` samples on the grid; ``None``
     #: for a fixed-step scheme, whose ``dt`` is its step.
     solution: Callable[..., ExactSolution] | None = None
-    #: True if its forcing must be a :class:`~lumped.model.forcing.SwitchedSine` (its closed forms or its
-    #: events use the formula); false if it takes any callable of time.
+    #: True if its forcing must be a sine on from ``t = 0`` (its closed forms or its events use the formula,
+    #: asked of the load by :func:`~lumped.model.forcing.as_sine`); false if it takes any callable of time.
     sine_forcing: bool = False
     #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots),
     #: ``(network, t_end, dt, *, save_every) -> Trajectory``, which refuses any other network in one
