@@ -21,7 +21,8 @@ Adding a method
    by which it runs any network (``network_solvers``; none: one-mass
    networks only, as an oscillator), its solver in continuous time if it
    has one (``solution``; none: a fixed-step scheme), whether its forcing
-   must be a :class:`~lumped.model.forcing.SwitchedSine` (``sine_forcing``),
+   must be a sine on from ``t = 0`` (``sine_forcing``: the load answers
+   :meth:`~lumped.model.forcing.Forcing.sine`),
    its solver of the networks whose every phase is linear, if it has one
    (``piecewise_networks``: run for a network that is not of the one-mass
    form), and its :class:`Option` s.
@@ -41,7 +42,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from lumped.model.forcing import SwitchedSine, kind_of, sine_form
+from lumped.model.forcing import SwitchedSine, as_sine, kind_of
 from lumped.model.network import Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.trajectory import Trajectory
@@ -117,8 +118,8 @@ class Method:
     #: (the events, the rest, the motion at any time), which ``run`` samples on the grid; ``None``
     #: for a fixed-step scheme, whose ``dt`` is its step.
     solution: Callable[..., ExactSolution] | None = None
-    #: True if its forcing must be a :class:`~lumped.model.forcing.SwitchedSine` (its closed forms or its
-    #: events use the formula); false if it takes any callable of time.
+    #: True if its forcing must be a sine on from ``t = 0`` (its closed forms or its events use the formula,
+    #: asked of the load by :func:`~lumped.model.forcing.as_sine`); false if it takes any callable of time.
     sine_forcing: bool = False
     #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots),
     #: ``(network, t_end, dt, *, save_every) -> Trajectory``, which refuses any other network in one
@@ -175,7 +176,7 @@ class Method:
 
     def force_refusal(self, force: object) -> str | None:
         """Why this method cannot run the forcing ``force`` (one line naming the method), or ``None`` if it can."""
-        if self.sine_forcing and callable(force) and not isinstance(force, SwitchedSine):
+        if self.sine_forcing and callable(force) and as_sine(force) is None:
             *others, last = (n for n, m in METHODS.items() if not m.sine_forcing or m.piecewise_any_load)
             anyone = f"{', '.join(others)} and {last}" if others else last
             return (
@@ -194,7 +195,7 @@ class Method:
     def by_network(self, force: object, network: Network) -> bool:
         """True if the one-mass solver refuses ``force`` (a table, ground motion) but the solver of
         piecewise-linear networks takes any load and runs ``network``, the one-mass system with it."""
-        refused = self.force_refusal(sine_form(force)) is not None  # a constant from t = 0 runs as its sine
+        refused = self.force_refusal(force) is not None  # a constant from t = 0 runs as its sine (as_sine)
         return self.piecewise_any_load and refused and self.network_refusal(network) is None
 
     def takes(self, names: object) -> None:

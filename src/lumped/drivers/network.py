@@ -18,7 +18,7 @@ from __future__ import annotations
 
 from lumped.drivers.methods import NETWORK_SOLVERS
 from lumped.drivers.one_mass import network_trajectory
-from lumped.model.forcing import SwitchedSine, one_force, sine_form
+from lumped.model.forcing import check_span, one_force, sine_form
 from lumped.model.network import Network
 from lumped.model.problem import OneMass, one_mass_form
 from lumped.model.trajectory import Trajectory
@@ -105,8 +105,7 @@ def simulate_network(
         return _via_algorithm1(network, pair, t_end, dt, save_every)
     path = _path(network, solver)
     for load in network.loads:
-        if isinstance(load.force, SwitchedSine):
-            load.force.check_span(n_steps * dt)  # the sine's range, to the grid's last time
+        check_span(load.force, n_steps * dt)  # a sine's range, to the grid's last time
     width = 1 + 2 * len(network.masses) + 3 * len(network.elements)
     rows = validate.output_size(n_steps, save_every, width)
     fixed, per_element = _COST[path]

@@ -28,7 +28,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
-from lumped.model.forcing import SwitchedSine, one_force, sine_form
+from lumped.model.forcing import SwitchedSine, as_sine, one_force
 from lumped.model.network import Network
 from lumped.model.problem import one_mass_form
 from lumped.model.system_parameters import SystemParameter, system_parameters, with_values
@@ -161,8 +161,9 @@ def _one_mass(network: Network, params: tuple[SystemParameter, ...], what: str) 
         form = one_mass_form(network)
     except ValueError as err:
         raise ValueError(f"{what}: the exact sensitivities need a one-mass system; the network {err}") from None
-    force = sine_form(one_force([load.force for load in network.loads]))
-    if force is not None and not isinstance(force, SwitchedSine):
+    loads = one_force([load.force for load in network.loads])
+    force = as_sine(loads)
+    if loads is not None and force is None:
         raise ValueError(f"{what}: the exact sensitivities need a sine load or a constant one from t = 0")
     if form.oscillator.dashpot.bingham_form() is None:
         raise ValueError(f"{what}: the exact sensitivities need a Bingham or Coulomb dashpot")

@@ -1,4 +1,4 @@
-"""External forcing ``F(t)``: the load types, each a small frozen dataclass called with an array of times.
+"""External forcing ``F(t)``: the load contract (:class:`Forcing`) and the load types, each a small frozen dataclass.
 
 * :class:`SwitchedSine`: ``P sin(omega t + phi)`` for ``t <= t_off`` and ``0``
   afterwards, which covers both forcings of the paper, eqs. (17a) and (17b);
@@ -10,10 +10,16 @@
 Any other forcing may be passed to the API as a Python callable of time
 (:func:`evaluate` calls it).  A ground acceleration ``a_g(t)`` is written as
 the loads ``-m a_g(t)`` on every mass (``scaled(-m)`` of its type): positions
-and velocities are then relative to the ground.  The methods whose closed
-forms need the forcing's formula take a :class:`SwitchedSine`;
-:func:`sine_form` writes a :class:`Constant` on from ``t = 0`` as one
-(``P sin(pi/2) = P`` exactly).
+and velocities are then relative to the ground.
+
+Solvers and drivers ask a load what it provides through :class:`Forcing`'s
+contract, or through this module's functions that also answer for a plain
+callable (:func:`closed_form`, :func:`as_sine`, :func:`jumps`,
+:func:`check_span`, :func:`parameters`, :func:`kind_of`); no code outside this
+module asks a load for its class.  The methods whose closed forms need the
+forcing's formula take its :class:`SineForm`; the one-mass ones take it as a
+:class:`SwitchedSine` on from ``t = 0`` (:func:`as_sine`), which writes a
+:class:`Constant` on from ``t = 0`` as one (``P sin(pi/2) = P`` exactly).
 """
 
 from __future__ import annotations
@@ -22,6 +28,7 @@ import math
 import numbers
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import NamedTuple
 
 import numpy as np
 
@@ -30,21 +37,124 @@ from lumped.numerics.sine import sin, sin_array
 
 __all__ = [
     "Constant",
+    "Forcing",
     "LoadSum",
+    "SineForm",
     "SwitchedSine",
     "Table",
+    "as_sine",
+    "check_span",
+    "closed_form",
     "evaluate",
     "first_bad_sample",
     "jumps",
     "kind_of",
     "one_force",
+    "parameters",
     "sine_form",
     "validate_force",
 ]
 
 
+class SineForm(NamedTuple):
+    """A load's closed form (:class:`Forcing`, point 3): ``amplitude * sin(omega t + phase)`` for
+    ``start <= t <= until``, else ``0``.
+
+    ``amplitude`` (N), ``omega`` (rad/s), ``phase`` (rad), ``start`` and ``until`` (s, ``until = inf`` for
+    never).  A step load is the form with ``omega = 0`` and ``phase = pi/2`` (``sin(pi/2)`` is exactly 1
+    in :mod:`math` and in :mod:`lumped.numerics.sine`, tested).
+    """
+
+    amplitude: float
+    omega: float
+    phase: float
+    start: float
+    until: float
+
+    @property
+    def switch_times(self) -> tuple[float, ...]:
+        """``start`` and ``until`` where finite, sorted."""
+        return _finite_sorted({self.start, self.until})
+
+    def on_after(self, t: float) -> bool:
+        """True if the load is on just after ``t`` (s): a phase beginning at ``t`` feels it."""
+        return self.start <= t < self.until
+
+
+class Forcing:
+    """A prescribed function of time: the force of a load (N).
+
+    Written for a load, the contract speaks only of a quantity given as a function of time, so that a
+    driven point's velocity (m/s) can later be given by the same types, asked the same questions.  A new
+    kind of load is one frozen dataclass in this module deriving from this class; solvers and drivers
+    ask it through the points below (or this module's functions of the same names, which also answer
+    for a plain callable of time), never by its class.  A load must provide:
+
+    1. ``__call__(t)``: its value at the times ``t``, vectorised: an array of the shape of ``t`` for an
+       array, a ``float`` for a number; finite for every finite ``t >= 0``.  Every method evaluates a
+       load through this (:func:`evaluate`), so one that has a closed form (point 3) must give the
+       form's values here bit for bit.
+    2. ``scaled(factor)``: ``factor`` times the load, of the same kind, for a kind a system file may
+       give as a ground acceleration ``a_g`` (run as the loads ``-m a_g``); :class:`LoadSum`, which only
+       the API builds, has none.
+
+    What a method may ask beyond the values is a member here, with a default that says "nothing
+    more": a load overrides one only where it can say more.
+
+    3. ``closed_form()``: the :class:`SineForm` the load equals at every ``t >= 0``, or ``None`` (the
+       default).  The exact methods run only loads that have one: the piecewise-linear network
+       solvers take any form; the one-mass exact, event-driven and event-locating solvers and
+       Algorithm 1's compiled sine loop take a form on from ``t = 0`` as a :class:`SwitchedSine`
+       (:meth:`sine`).
+    4. ``sine()``: the load as one :class:`SwitchedSine` at every ``t >= 0``, or ``None``.  The default
+       builds it from :meth:`closed_form` when the form starts at ``t = 0``; a sine returns itself.
+    5. ``switch_times``: the finite times, sorted, at which the value may jump (a stepper or an exact
+       solver breaks its phases there); ``()`` (the default) for a load continuous in time.
+    6. ``check_span(t_last)``: refuse, in one ``ValueError``, a run to ``t_last`` (s) over which the
+       load cannot be evaluated exactly (a sine's argument beyond the range of
+       :mod:`lumped.numerics.sine`).  The default accepts every span.
+    7. ``parameters``: the names of the numeric fields the sensitivities and the fit may vary, as a
+       system file names them after ``force.`` (``amplitude``, ``omega``, ``phase``, ``until`` for a
+       sine), ``()`` (the default) for none.  Each is a dataclass field that
+       :func:`dataclasses.replace` sets and ``__post_init__`` checks again; the exact sensitivities
+       differentiate the closed form (point 3) in them.
+    8. ``description``: the load in a few words for messages (``a sine``, ``a table``).
+    """
+
+    __slots__ = ()
+
+    def closed_form(self) -> SineForm | None:
+        """The :class:`SineForm` this load equals at every ``t >= 0``, or ``None`` (point 3)."""
+        return None
+
+    def sine(self) -> SwitchedSine | None:
+        """This load as one :class:`SwitchedSine` at every ``t >= 0``, or ``None`` (point 4)."""
+        form = self.closed_form()
+        if form is None or form.start != 0:
+            return None
+        return SwitchedSine(form.amplitude, form.omega, form.phase, form.until)
+
+    @property
+    def switch_times(self) -> tuple[float, ...]:
+        """The finite times (s), sorted, at which the value may jump (point 5)."""
+        return ()
+
+    def check_span(self, t_last: float) -> None:
+        """Refuse a run to ``t_last`` (s) over which the load cannot be evaluated exactly (point 6)."""
+
+    @property
+    def parameters(self) -> tuple[str, ...]:
+        """The numeric fields the sensitivities and the fit may vary (point 7)."""
+        return ()
+
+    @property
+    def description(self) -> str:
+        """The load in words, for messages (point 8)."""
+        return "a load"
+
+
 @dataclass(frozen=True)
-class SwitchedSine:
+class SwitchedSine(Forcing):
     """``F(t) = amplitude * sin(omega*t + phase)`` for ``t <= until``, else 0.
 
     Parameters
@@ -85,6 +195,29 @@ class SwitchedSine:
         """
         validate.sine_argument(self.omega, self.phase, min(t_last, self.until))
 
+    def closed_form(self) -> SineForm:
+        """Its own formula, on from ``t = 0`` (:class:`Forcing`, point 3)."""
+        return SineForm(self.amplitude, self.omega, self.phase, 0.0, self.until)
+
+    def sine(self) -> SwitchedSine:
+        """Itself (:class:`Forcing`, point 4)."""
+        return self
+
+    @property
+    def switch_times(self) -> tuple[float, ...]:
+        """``until`` where finite: the force goes off there."""
+        return _finite_sorted({self.until})
+
+    @property
+    def parameters(self) -> tuple[str, ...]:
+        """``amplitude``, ``omega``, ``phase``, ``until``."""
+        return ("amplitude", "omega", "phase", "until")
+
+    @property
+    def description(self) -> str:
+        """``a sine``."""
+        return "a sine"
+
     @property
     def is_zero(self) -> bool:
         """True when the force vanishes at all times."""
@@ -105,7 +238,7 @@ class SwitchedSine:
 
 
 @dataclass(frozen=True)
-class Constant:
+class Constant(Forcing):
     """``F(t) = value`` for ``start <= t <= until``, else 0: a step load, switched off after ``until``.
 
     Parameters
@@ -138,9 +271,29 @@ class Constant:
         """``factor`` times this force."""
         return Constant(factor * self.value, self.start, self.until)
 
+    def closed_form(self) -> SineForm:
+        """``value sin(0 t + pi/2)`` on ``[start, until]``: ``sin(pi/2)`` is exactly 1, so the form's values
+        are the load's bit for bit (:class:`Forcing`, point 3)."""
+        return SineForm(self.value, 0.0, math.pi / 2, self.start, self.until)
+
+    @property
+    def switch_times(self) -> tuple[float, ...]:
+        """``start`` and ``until`` where finite."""
+        return _finite_sorted({self.start, self.until})
+
+    @property
+    def parameters(self) -> tuple[str, ...]:
+        """``value`` and ``until`` (``start`` is a system file's ``from``, not varied)."""
+        return ("value", "until")
+
+    @property
+    def description(self) -> str:
+        """``a constant``, with the time it comes on if later than 0."""
+        return "a constant" + (f" switched on at t = {self.start:g} s" if self.start else "")
+
 
 @dataclass(frozen=True, eq=False)
-class Table:
+class Table(Forcing):
     """Samples ``(t_i, F_i)``, linearly interpolated, zero before ``t_0`` and after the last ``t_i``.
 
     Parameters
@@ -179,6 +332,16 @@ class Table:
         """``factor`` times this force (the values scaled, the times kept)."""
         return Table(self.t, factor * self.values)
 
+    @property
+    def switch_times(self) -> tuple[float, ...]:
+        """The first and last sample times: the force is zero outside them."""
+        return _finite_sorted({float(self.t[0]), float(self.t[-1])})
+
+    @property
+    def description(self) -> str:
+        """``a table``."""
+        return "a table"
+
 
 def _samples(name: str, raw: object) -> np.ndarray:
     """``raw`` as a new one-dimensional float array, or a ``ValueError`` naming ``name``."""
@@ -206,7 +369,7 @@ def first_bad_sample(
 
 
 @dataclass(frozen=True)
-class LoadSum:
+class LoadSum(Forcing):
     """Several forces on one mass, added in their order: one callable of time.
 
     The sum is formed as :meth:`lumped.model.network.Network.load_table`
@@ -231,6 +394,21 @@ class LoadSum:
             out += evaluate(force, flat)
         return float(out[0]) if times.ndim == 0 else out.reshape(times.shape)
 
+    @property
+    def switch_times(self) -> tuple[float, ...]:
+        """Its forces' together."""
+        return _finite_sorted({t for f in self.forces for t in jumps(f)})
+
+    def check_span(self, t_last: float) -> None:
+        """Each of its forces' check."""
+        for force in self.forces:
+            check_span(force, t_last)
+
+    @property
+    def description(self) -> str:
+        """``a sum of N loads``."""
+        return f"a sum of {len(self.forces)} loads"
+
 
 def one_force(forces: Sequence[object]) -> object:
     """The forces on one mass as one: ``None`` for none, the force itself for one, else their :class:`LoadSum`."""
@@ -239,48 +417,60 @@ def one_force(forces: Sequence[object]) -> object:
     return forces[0] if len(forces) == 1 else LoadSum(tuple(forces))
 
 
+def _finite_sorted(times: set[float]) -> tuple[float, ...]:
+    return tuple(sorted(t for t in times if math.isfinite(t)))
+
+
+def closed_form(force: object) -> SineForm | None:
+    """``force``'s :class:`SineForm` (:class:`Forcing`, point 3); ``None`` for none or a plain callable."""
+    return force.closed_form() if isinstance(force, Forcing) else None
+
+
+def as_sine(force: object) -> SwitchedSine | None:
+    """``force`` as one :class:`SwitchedSine` at every ``t >= 0`` (:class:`Forcing`, point 4), else ``None``."""
+    return force.sine() if isinstance(force, Forcing) else None
+
+
 def sine_form(force: object) -> object:
-    """``force`` as a :class:`SwitchedSine` when it is a :class:`Constant` on from ``t = 0``, else ``force``.
+    """``force`` as a :class:`SwitchedSine` where it is one at every ``t >= 0`` (:func:`as_sine`), else ``force``.
 
     ``Constant(P, 0, t_off)`` is ``SwitchedSine(P, 0, pi/2, t_off)`` at every
     ``t >= 0``, value for value: ``sin(pi/2)`` is exactly 1 in
     :mod:`lumped.numerics.sine` (tested), so the methods that need a sine's
     formula run it.
     """
-    if isinstance(force, Constant) and force.start == 0:
-        return SwitchedSine(force.value, 0.0, math.pi / 2, force.until)
-    return force
+    sine = as_sine(force)
+    return force if sine is None else sine
 
 
 def jumps(force: object) -> tuple[float, ...]:
-    """The times at which ``force`` may jump, sorted: a sine's ``until``, a constant's ``start`` and
-    ``until``, a table's first and last times (it is zero outside them), a sum's together; none for
-    any other callable (taken as continuous).  Infinite times are left out."""
-    if isinstance(force, SwitchedSine):
-        times = {force.until}
-    elif isinstance(force, Constant):
-        times = {force.start, force.until}
-    elif isinstance(force, Table):
-        times = {float(force.t[0]), float(force.t[-1])}
-    elif isinstance(force, LoadSum):
-        times = {t for f in force.forces for t in jumps(f)}
-    else:
-        times = set()
-    return tuple(sorted(t for t in times if math.isfinite(t)))
+    """The finite times, sorted, at which ``force`` may jump (:class:`Forcing`, point 5): a sine's
+    ``until``, a constant's ``start`` and ``until``, a table's first and last times (it is zero outside
+    them), a sum's together; none for any other callable (taken as continuous)."""
+    return force.switch_times if isinstance(force, Forcing) else ()
+
+
+def check_span(force: object, t_last: float) -> None:
+    """Refuse a run to ``t_last`` (s) over which ``force`` cannot be evaluated exactly (:class:`Forcing`,
+    point 6); a plain callable is not checked."""
+    if isinstance(force, Forcing):
+        force.check_span(t_last)
+
+
+def parameters(force: object) -> tuple[str, ...]:
+    """The numeric fields of ``force`` that the sensitivities and the fit may vary (:class:`Forcing`, point 7)."""
+    return force.parameters if isinstance(force, Forcing) else ()
 
 
 def kind_of(force: object) -> str:
-    """A force in words, for messages: ``a sine``, ``a table``, ``a sum of 2 loads``, ..."""
-    if isinstance(force, Constant):
-        return "a constant" + (f" switched on at t = {force.start:g} s" if force.start else "")
-    if isinstance(force, LoadSum):
-        return f"a sum of {len(force.forces)} loads"
-    return {SwitchedSine: "a sine", Table: "a table"}.get(type(force), "a callable of time")
+    """A force in words, for messages (:class:`Forcing`, point 8): ``a sine``, ``a table``, ``a sum of 2
+    loads``, ...; ``a callable of time`` for a plain callable."""
+    return force.description if isinstance(force, Forcing) else "a callable of time"
 
 
 def validate_force(force: object) -> SwitchedSine | Callable[[np.ndarray], np.ndarray] | None:
     """Return ``force`` if it is ``None``, a :class:`SwitchedSine` or a callable."""
-    if force is None or isinstance(force, SwitchedSine) or callable(force):
+    if force is None or callable(force):
         return force  # type: ignore[return-value]
     raise ValueError(f"force must be a SwitchedSine, a callable of time or None, got {type(force).__name__}")
 

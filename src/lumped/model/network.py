@@ -6,7 +6,6 @@ unique, is :class:`Network`'s Notes.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 
@@ -231,13 +230,6 @@ class Network:
         """Indices of the masses that carry a load, in increasing order."""
         index = self.point_index()
         return sorted({index[load.on] for load in self.loads})
-
-    def max_load(self) -> float:
-        """Sum of the amplitudes of the switched sines (``inf`` if a callable is present)."""
-        total = 0.0
-        for load in self.loads:
-            total += abs(load.force.amplitude) if isinstance(load.force, SwitchedSine) else math.inf
-        return total
 
 
 def check_count(what: str, count: int) -> int:

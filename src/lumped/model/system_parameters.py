@@ -18,15 +18,13 @@ import math
 from collections.abc import Sequence
 from typing import NamedTuple
 
-from lumped.model.forcing import Constant, SwitchedSine
+from lumped.model.forcing import parameters
 from lumped.model.network import Load, Network, listed
 
 __all__ = ["MASS_KEYS", "SystemParameter", "system_parameters", "with_values"]
 
 #: A mass's numeric keys.
 MASS_KEYS = ("mass", "x0", "v0")
-#: A load's numeric keys, by its type.
-_LOAD_KEYS = {SwitchedSine: ("amplitude", "omega", "phase", "until"), Constant: ("value", "until")}
 #: The loads' table in a system file, which is the first part of their names.
 LOAD = "force"
 
@@ -55,8 +53,8 @@ def _choices(network: Network) -> list[str]:
     """Every parameter name of ``network``, masses first."""
     names = [f"{m.name}.{key}" for m in network.masses for key in MASS_KEYS]
     names += [f"{el.name}.{key}" for el in network.elements for key in _element_keys(el)]
-    if len(network.loads) == 1 and type(network.loads[0].force) in _LOAD_KEYS:
-        names += [f"{LOAD}.{key}" for key in _LOAD_KEYS[type(network.loads[0].force)]]
+    if len(network.loads) == 1:
+        names += [f"{LOAD}.{key}" for key in parameters(network.loads[0].force)]
     return names
 
 
@@ -73,9 +71,9 @@ def _one(network: Network, name: str, what: str) -> SystemParameter:
             return SystemParameter(name, "element", i, key, float(getattr(el, key)))
     if item == LOAD and network.loads:
         force = network.loads[0].force
-        if len(network.loads) > 1 or type(force) not in _LOAD_KEYS:
+        if len(network.loads) > 1 or not parameters(force):
             raise ValueError(f"{what}: {name!r}: only a system with one sine or constant load names it {LOAD}.<key>")
-        if key in _LOAD_KEYS[type(force)]:
+        if key in parameters(force):
             return SystemParameter(name, "force", 0, key, float(getattr(force, key)))
     raise ValueError(f"{what}: unknown parameter {name!r}; this system's are {listed(_choices(network), 12)}")
 

@@ -33,11 +33,10 @@ from collections.abc import Callable
 import numpy as np
 
 from lumped.laws import bingham_corrector
-from lumped.model.forcing import SwitchedSine, evaluate, validate_force
+from lumped.model.forcing import SwitchedSine, as_sine, check_span, evaluate, validate_force
 from lumped.model.oscillator import Oscillator, check_magnitudes, initial_dashpot_force
 from lumped.model.trajectory import COLUMNS, Trajectory
-from lumped.numerics import sine
-from lumped.numerics import validate
+from lumped.numerics import sine, validate
 
 __all__ = ["backward_euler", "algorithm1", "KERNEL"]
 
@@ -174,7 +173,7 @@ def _seconds_per_step(osc: Oscillator, force: object, kernel: str, dt: float) ->
         for p in probes:
             law._resolvent_impl(float(p), eta)
         cost = 1.5 * (time.perf_counter() - start) / probes.size + 1e-6
-    if force is not None and not isinstance(force, SwitchedSine):
+    if force is not None and as_sine(force) is None:  # tabulated: its evaluation costs too
         grid = np.arange(1, 257) * dt
         start = time.perf_counter()
         evaluate(force, grid)
@@ -195,10 +194,9 @@ def _check_run(
     osc: Oscillator, t_end: float, dt: float, x0: float, v0: float, force: object, kernel: str, n_steps: int
 ) -> None:
     """Refuse up front what would overflow or run too long."""
-    amplitude = force.amplitude if isinstance(force, SwitchedSine) else 0.0
-    if isinstance(force, SwitchedSine):
-        force.check_span(n_steps * dt)  # the sine's range, to the grid's last time
-    check_magnitudes(osc, t_end, dt, x0, v0, amplitude)
+    sine = as_sine(force)
+    check_span(force, n_steps * dt)  # a sine's range, to the grid's last time
+    check_magnitudes(osc, t_end, dt, x0, v0, sine.amplitude if sine is not None else 0.0)
     what = "Algorithm 1" if osc.dashpot.bingham_form() is not None else "the generic loop"
     validate.run_time(n_steps, _seconds_per_step(osc, force, kernel, dt), what)
 
@@ -218,8 +216,9 @@ def _march(
     law, m, k = osc.dashpot, osc.mass, osc.spring.stiffness
     form = law.bingham_form()  # (tau, c) of Algorithm 1's loops, or None: the law's resolvent
     bingham = form is not None
-    sine = force if isinstance(force, SwitchedSine) else SwitchedSine()
-    tabulate = not (bingham and (force is None or isinstance(force, SwitchedSine)))
+    sine = as_sine(force)
+    tabulate = not (bingham and (force is None or sine is not None))  # Algorithm 1's loop forms a sine itself
+    sine = sine or SwitchedSine()
     block = BLOCK_TABLE if tabulate else BLOCK_SINE
     loop = (_python_block if kernel == "python" else _bingham_block) if bingham else None
     for first in range(1, n_steps + 1, block):

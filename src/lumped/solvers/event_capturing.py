@@ -45,7 +45,7 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.laws import sticks
-from lumped.model.forcing import SwitchedSine
+from lumped.model.forcing import SwitchedSine, as_sine
 from lumped.model.oscillator import Oscillator, check_magnitudes
 from lumped.model.trajectory import COLUMNS, Trajectory
 from lumped.numerics import validate
@@ -297,9 +297,9 @@ def event_capturing(
     t_end, dt, x0, v0, save_every, n_steps = start_run(
         oscillator, t_end, dt, x0, v0, save_every, "event-locating", force
     )
-    if force is not None and not isinstance(force, SwitchedSine):
+    if force is not None and as_sine(force) is None:
         raise ValueError("force: the event-locating scheme needs a SwitchedSine or None")
-    force = force or SwitchedSine()
+    force = as_sine(force) or SwitchedSine()
     check_magnitudes(oscillator, t_end, dt, x0, v0, force.amplitude)
     run = _Capture(oscillator, force)
     stride = min(save_every, n_steps + 1)

@@ -190,7 +190,7 @@ def solve_capturing_network(network: Network, t_end: float, dt: float, *, save_e
     """
     index, dt, save_every = grid_rows(network, "event-locating", t_end, dt, save_every, any_load=True)
     n = int(index[-1])
-    p = parts(network)._replace(loads=(), omegas=())  # the loads are stepped as functions of time
+    p = parts(network, with_loads=False)  # the loads are stepped as functions of time
     march = _March(network, p, dt, n * dt)
     samples: list[tuple[np.ndarray, ...]] = [march.sample()]
     kept = set(index.tolist())

@@ -56,7 +56,7 @@ from typing import ClassVar
 import numpy as np
 
 from lumped.laws import Dashpot
-from lumped.model.forcing import SwitchedSine
+from lumped.model.forcing import SwitchedSine, as_sine
 from lumped.model.oscillator import MAGNITUDE_LIMIT, Oscillator
 from lumped.numerics import validate
 from lumped.numerics.dop853 import Dop853, Piece, PiecewiseDense, piece_value
@@ -369,14 +369,14 @@ def solve_event_driven(
     """
     if not isinstance(oscillator, Oscillator):
         raise ValueError(f"oscillator must be an Oscillator, got {type(oscillator).__name__}")
-    if force is not None and not isinstance(force, SwitchedSine):
+    if force is not None and as_sine(force) is None:
         raise ValueError("force: the event-driven method needs a SwitchedSine or None")
     t_end = validate.positive("t_end", t_end)
     x0, v0 = validate.finite("x0", x0), validate.finite("v0", v0)
     rtol = validate_rtol(rtol)
     max_events = validate.positive_int("max_events", max_events)
     max_steps = validate.positive_int("max_steps", max_steps)
-    force = force or SwitchedSine()
+    force = as_sine(force) or SwitchedSine()
     check_scales(oscillator, force, t_end, x0, v0)
     _check_sizes(oscillator, force, t_end, x0, v0)
     _check_steps(oscillator, force, t_end, max_steps)

@@ -26,7 +26,7 @@ from typing import ClassVar
 import numpy as np
 
 from lumped.laws import coulomb
-from lumped.model.forcing import SwitchedSine
+from lumped.model.forcing import SwitchedSine, as_sine
 from lumped.model.oscillator import MAGNITUDE_LIMIT, Oscillator, check_magnitudes
 from lumped.model.trajectory import COLUMNS, Trajectory
 from lumped.numerics import validate
@@ -344,12 +344,12 @@ def solve_exact(
         raise ValueError(f"oscillator must be an Oscillator, got {type(oscillator).__name__}")
     if oscillator.dashpot.bingham_form() is None:  # the closed forms (the law's contract, point 6)
         raise ValueError("dashpot: the exact solver needs a BinghamDashpot (any gamma)")
-    if force is not None and not isinstance(force, SwitchedSine):
+    if force is not None and as_sine(force) is None:
         raise ValueError("force: the exact solver needs a SwitchedSine or None")
     t_end = validate.positive("t_end", t_end)
     x0, v0 = validate.finite("x0", x0), validate.finite("v0", v0)
     max_events = validate.positive_int("max_events", max_events)
-    force = force or SwitchedSine()
+    force = as_sine(force) or SwitchedSine()
     _check_inputs(oscillator, force, t_end, x0, v0, max_events)
     build = PhaseMarch(oscillator, force, t_end, max_events, _closed_form(oscillator))
     build.run(x0, v0)

@@ -15,7 +15,7 @@ from collections.abc import Callable
 
 import numpy as np
 
-from lumped.model.forcing import SwitchedSine, evaluate
+from lumped.model.forcing import as_sine, check_span, evaluate
 from lumped.model.oscillator import Oscillator, check_magnitudes, initial_dashpot_force
 from lumped.model.trajectory import COLUMNS, Trajectory
 from lumped.numerics import validate
@@ -40,8 +40,7 @@ def start_run(
         raise ValueError(f"oscillator must be an Oscillator, got {type(osc).__name__}")
     t_end, dt, save_every, n_steps = validate.grid(t_end, dt, save_every)
     x0, v0 = validate.finite("x0", x0), validate.finite("v0", v0)
-    if isinstance(force, SwitchedSine):
-        force.check_span(n_steps * dt)  # the sine's range, to the grid's last time
+    check_span(force, n_steps * dt)  # a sine's range, to the grid's last time
     validate.output_size(n_steps, save_every)
     per_step = _COST_OVER_PYTHON_BE * _seconds_per_step(osc, None, "python", dt)  # law's cost measured there
     validate.run_time(n_steps, per_step, f"the {kind} scheme")
@@ -57,7 +56,8 @@ def march(osc: Oscillator, step: Step, run: tuple, force: object, method: str, w
     raises ``ValueError`` naming ``what`` (``the θ-method``) and the step.
     """
     t_end, dt, x0, v0, save_every, n_steps = run
-    check_magnitudes(osc, t_end, dt, x0, v0, force.amplitude if isinstance(force, SwitchedSine) else 0.0)
+    sine = as_sine(force)
+    check_magnitudes(osc, t_end, dt, x0, v0, sine.amplitude if sine is not None else 0.0)
     stride = min(save_every, n_steps + 1)
     out = np.empty((validate.output_rows(n_steps, stride), len(COLUMNS)))
     f0 = float(evaluate(force, np.zeros(1))[0])  # type: ignore[arg-type]

@@ -64,7 +64,7 @@ __all__ = ["ModeFlow", "NetworkPeriodMap", "event_gradient", "forced_parts", "mo
 
 def forced_parts(p: Parts, mass: int, amplitude: float, omega: float) -> Parts:
     """``p`` with one load, ``amplitude sin(omega t)`` on the mass of index ``mass`` (its own loads dropped)."""
-    return p._replace(loads=((mass, SwitchedSine(amplitude, omega)),), omegas=(float(omega),))
+    return p._replace(loads=((mass, SwitchedSine(amplitude, omega).closed_form()),), omegas=(float(omega),))
 
 
 @dataclass(frozen=True)

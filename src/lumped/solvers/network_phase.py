@@ -25,8 +25,9 @@ import math
 from typing import NamedTuple
 
 import numpy as np
+
 from lumped.laws.element import Element
-from lumped.model.forcing import Constant, SwitchedSine, jumps, kind_of
+from lumped.model.forcing import SineForm, closed_form, kind_of
 from lumped.model.network import Network, listed, rigid_loop
 from lumped.numerics.expm import expm
 from lumped.numerics.union_find import UnionFind
@@ -40,7 +41,8 @@ _TAKES = "linear springs, Bingham or Coulomb elements and linear dashpots under 
 class Parts(NamedTuple):
     """A network as arrays: masses ``m`` (n,), incidence ``b`` (n, E: +1 at ``second``, -1 at ``first``,
     the ground has no row), stiffness ``k``, viscosity ``c`` and threshold ``tau`` (E,), ``friction`` (E,)
-    the elements that can stick, and the loads as ``(mass, force)``."""
+    the elements that can stick, and the loads as ``(mass, form)``, each load's closed form
+    (:class:`~lumped.model.forcing.Forcing`, point 3)."""
 
     m: np.ndarray
     b: np.ndarray
@@ -48,7 +50,7 @@ class Parts(NamedTuple):
     c: np.ndarray
     tau: np.ndarray
     friction: np.ndarray
-    loads: tuple[tuple[int, SwitchedSine | Constant], ...]
+    loads: tuple[tuple[int, SineForm], ...]
     omegas: tuple[float, ...]
 
 
@@ -83,7 +85,7 @@ def refusal(net: Network, method: str = "exact", *, any_load: bool = False) -> s
                 f"its {'closed forms' if not any_load else 'linear steps'} per phase need {takes}"
             )
     for load in net.loads if not any_load else ():
-        if not isinstance(load.force, (SwitchedSine, Constant)):
+        if closed_form(load.force) is None:
             return f"method {method!r} cannot run the load on {load.on!r}, {kind_of(load.force)}: it runs {_TAKES}"
     index = net.point_index()
     sticking = [((index[el.between[0]], index[el.between[1]]), el) for el in net.elements if el.rigid_capable]
@@ -97,8 +99,9 @@ def refusal(net: Network, method: str = "exact", *, any_load: bool = False) -> s
     return None
 
 
-def parts(net: Network) -> Parts:
-    """The arrays of ``net`` (which :func:`refusal` accepts)."""
+def parts(net: Network, with_loads: bool = True) -> Parts:
+    """The arrays of ``net`` (which :func:`refusal` accepts), its loads by their closed forms; without them
+    (``with_loads=False``: a method that steps the loads as functions of time, ``any_load``)."""
     n, index = len(net.masses), net.point_index()
     b = np.zeros((n, len(net.elements)))
     k, c, tau = (np.zeros(len(net.elements)) for _ in range(3))
@@ -109,22 +112,20 @@ def parts(net: Network) -> Parts:
         if first < n:
             b[first, e] -= 1.0
         k[e], c[e], tau[e] = linear_parts(el)  # type: ignore[misc]
-    loads = tuple((index[load.on], load.force) for load in net.loads)
-    omegas = tuple(sorted({abs(f.omega) for _, f in loads if isinstance(f, SwitchedSine) and f.omega != 0}))
+    loads = tuple((index[load.on], closed_form(load.force)) for load in net.loads) if with_loads else ()
+    omegas = tuple(sorted({abs(f.omega) for _, f in loads if f.omega != 0}))  # type: ignore[union-attr]
     m = np.array([mass.mass for mass in net.masses])
     return Parts(m, b, k, c, tau, tau > 0, loads, omegas)
 
 
-def load_on(force: SwitchedSine | Constant, t: float) -> bool:
-    """True if ``force`` is on just after ``t`` (a phase beginning at ``t`` feels it)."""
-    if isinstance(force, SwitchedSine):
-        return t < force.until
-    return force.start <= t < force.until
+def load_on(force: SineForm, t: float) -> bool:
+    """True if the load of closed form ``force`` is on just after ``t`` (a phase beginning at ``t`` feels it)."""
+    return force.on_after(t)
 
 
 def switch_times(p: Parts, t_end: float) -> list[float]:
     """The times in ``(0, t_end)`` at which a load comes on or goes off."""
-    times = {t for _, f in p.loads for t in jumps(f)}
+    times = {t for _, f in p.loads for t in f.switch_times}
     return sorted(t for t in times if 0 < t < t_end)
 
 
@@ -187,9 +188,7 @@ def load_matrix(p: Parts, t: float, dim: int, base: int) -> np.ndarray:
     for i, f in p.loads:
         if not load_on(f, t):
             continue
-        if isinstance(f, Constant):
-            out[i, base] += f.value
-        elif f.omega == 0:
+        if f.omega == 0:  # a constant's form, A sin(pi/2) = A exactly
             out[i, base] += f.amplitude * math.sin(f.phase)
         else:  # A sin(w t + phi) = A sin(phi) cos(w t) + A cos(phi) sin(w t), with w = |omega|
             w, sign = abs(f.omega), math.copysign(1.0, f.omega)

@@ -70,7 +70,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.model.forcing import Constant
+from lumped.model.forcing import SineForm
 from lumped.numerics.expm import expm
 from lumped.solvers.exact_network import march, sample
 from lumped.solvers.network_modes import NetworkEvent
@@ -385,17 +385,17 @@ def _net_derivative(p: Parts, ph: Phase, prm: Parameter, dim: int) -> np.ndarray
     return out
 
 
-def _load_derivative(p: Parts, force: object, kind: str, gens: int) -> np.ndarray:
-    """The derivative of the load's coefficients on the generators (gens,) by its amplitude or phase."""
+def _load_derivative(p: Parts, force: SineForm, kind: str, gens: int) -> np.ndarray:
+    """The derivative of the load's coefficients on the generators (gens,) by its amplitude or phase.
+
+    ``force`` is the load's closed form: a constant's is ``value sin(pi/2)``, whose derivative by its
+    ``value`` (the kind ``amplitude``) is ``sin(pi/2) = 1`` exactly."""
     out = np.zeros(gens)
-    if isinstance(force, Constant):
-        out[0] = 1.0 if kind == "amplitude" else 0.0
-        return out
-    a, ph = force.amplitude, force.phase  # type: ignore[attr-defined]
+    a, ph = force.amplitude, force.phase
     sin, cos = (math.sin(ph), math.cos(ph)) if kind == "amplitude" else (a * math.cos(ph), -a * math.sin(ph))
-    if force.omega == 0:  # type: ignore[attr-defined]
+    if force.omega == 0:
         out[0] = sin
         return out
-    j = 1 + 2 * p.omegas.index(abs(force.omega))  # type: ignore[attr-defined]
-    out[j], out[j + 1] = sin, math.copysign(1.0, force.omega) * cos  # type: ignore[attr-defined]
+    j = 1 + 2 * p.omegas.index(abs(force.omega))
+    out[j], out[j + 1] = sin, math.copysign(1.0, force.omega) * cos
     return out
