@@ -24,6 +24,7 @@ TABLES = {
     "huge.csv": "t,F\n0,1\n1,1e400\n",
     "three.csv": "t,F\n0,1,2\n1,1\n",
     "word.csv": "t,F\n0,one\n1,1\n",
+    "underscore.csv": "t,F\n0,0.0_4\n1,1\n",  # float() reads 0.04; the guide's plain decimals do not
     "blank.csv": "t,F\n0,1\n\n1,1\n",
     "header.csv": "time,F\n0,1\n1,1\n",
     "one-row.csv": "t,F\n0,1\n",
@@ -71,6 +72,7 @@ BAD_FILES = {
     "overflow": (force('kind = "table"\nfile = "huge.csv"\n'), "'{dir}/huge.csv': line 3: F must be finite, got inf"),
     "three-columns": (force('kind = "table"\nfile = "three.csv"\n'), "line 2: expected two numbers 't,F', got '0,1,2'"),
     "a-word": (force('kind = "table"\nfile = "word.csv"\n'), "line 2: expected two numbers 't,F', got '0,one'"),
+    "underscore": (force('kind = "table"\nfile = "underscore.csv"\n'), "line 2: expected two numbers 't,F', got '0,0.0_4'"),
     "blank-line": (force('kind = "table"\nfile = "blank.csv"\n'), "line 3: expected two numbers 't,F', got ''"),
     "header": (force('kind = "table"\nfile = "header.csv"\n'), "line 1: expected the header 't,F', got 'time,F'"),
     "one-row": (force('kind = "table"\nfile = "one-row.csv"\n'), "needs at least two rows of 't,F', got 1"),

@@ -90,7 +90,7 @@ def _row(line: str, number: int, column: str) -> tuple[float, float]:
     try:
         if len(fields) != 2:
             raise ValueError
-        return float(fields[0]), float(fields[1])
+        return plain_float(fields[0]), plain_float(fields[1])  # the guide's plain decimals, not float()'s 0.0_4
     except ValueError:
         raise ValueError(f"line {number}: expected two numbers 't,{column}', got {line[:40]!r}") from None
 
