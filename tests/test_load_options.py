@@ -72,7 +72,10 @@ BAD_FILES = {
     "overflow": (force('kind = "table"\nfile = "huge.csv"\n'), "'{dir}/huge.csv': line 3: F must be finite, got inf"),
     "three-columns": (force('kind = "table"\nfile = "three.csv"\n'), "line 2: expected two numbers 't,F', got '0,1,2'"),
     "a-word": (force('kind = "table"\nfile = "word.csv"\n'), "line 2: expected two numbers 't,F', got '0,one'"),
-    "underscore": (force('kind = "table"\nfile = "underscore.csv"\n'), "line 2: expected two numbers 't,F', got '0,0.0_4'"),
+    "underscore": (
+        force('kind = "table"\nfile = "underscore.csv"\n'),
+        "line 2: expected two numbers 't,F', got '0,0.0_4'",
+    ),
     "blank-line": (force('kind = "table"\nfile = "blank.csv"\n'), "line 3: expected two numbers 't,F', got ''"),
     "header": (force('kind = "table"\nfile = "header.csv"\n'), "line 1: expected the header 't,F', got 'time,F'"),
     "one-row": (force('kind = "table"\nfile = "one-row.csv"\n'), "needs at least two rows of 't,F', got 1"),
