@@ -93,7 +93,10 @@ BAD_FILES = {
     ),
     "kind-not-text": (ground('{ kind = ["sine"] }'), "[ground] acceleration: unknown kind ['sine']"),
     "ground-array": ("[[ground]]\nacceleration = 1.0\n", "[ground]: must be written as a [ground] table"),
-    "unknown-table": ("[grund]\n", "unknown table 'grund'; expected [[mass]], [[element]], [[force]] and [ground]"),
+    "unknown-table": (
+        "[grund]\n",
+        "unknown table 'grund'; expected [[mass]], [[element]], [[force]], [[driver]] and [ground]",
+    ),
 }
 
 

@@ -27,8 +27,10 @@ from lumped.drivers.steady_sensitivity import steady_amplitude_sensitivities
 from lumped.laws import (
     Bingham,
     BinghamDashpot,
+    Contact,
     Dashpot,
     DashpotState,
+    Friction,
     HerschelBulkley,
     HerschelBulkleyDashpot,
     LinearDashpot,
@@ -38,13 +40,16 @@ from lumped.laws import (
     Monotone,
     MonotoneDashpot,
     PapanastasiouDashpot,
+    SlipCurve,
+    SlipLaw,
     Spring,
     SpringString,
+    StribeckLaw,
     coulomb,
 )
 from lumped.model.files import load_system, parse_system
 from lumped.model.forcing import Constant, LoadSum, SwitchedSine, Table
-from lumped.model.network import Load, Mass, Network
+from lumped.model.network import Driver, Load, Mass, Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import Problem
 from lumped.model.records import Record, read_record
@@ -66,12 +71,15 @@ __all__ = [
     "COLUMNS",
     "CapturedRun",
     "Constant",
+    "Contact",
     "Dashpot",
     "DashpotState",
+    "Driver",
     "EnergyBalance",
     "Event",
     "ExactSolution",
     "FitResult",
+    "Friction",
     "HerschelBulkley",
     "HerschelBulkleyDashpot",
     "IntegratedSolution",
@@ -93,8 +101,11 @@ __all__ = [
     "Problem",
     "Record",
     "Sensitivities",
+    "SlipCurve",
+    "SlipLaw",
     "Spring",
     "SpringString",
+    "StribeckLaw",
     "SwitchedSine",
     "Table",
     "Trajectory",

@@ -25,6 +25,7 @@ from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 from lumped.solvers import network_compiled as kernel
 from lumped.solvers.backward_euler_network import march
+from lumped.solvers.uniqueness import check_step
 
 __all__ = ["simulate_network", "SOLVERS"]
 
@@ -103,6 +104,7 @@ def simulate_network(
     pair = _paper_form(network) if solver == "auto" else None
     if pair is not None:
         return _via_algorithm1(network, pair, t_end, dt, save_every)
+    check_step(network, dt)
     path = _path(network, solver)
     for load in network.loads:
         check_span(load.force, n_steps * dt)  # a sine's range, to the grid's last time

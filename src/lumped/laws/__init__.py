@@ -13,6 +13,15 @@ Dashpot laws, each a graph ``v = phi(F_d)`` and its implicit step:
 * :mod:`~lumped.laws.regularised`: the Papanastasiou law, a new law in one
   file that no solver names.
 
+Friction laws, each a graph in (rate, tension) that may fall (static above
+kinetic, Stribeck), picked by a rule where it is not monotone:
+
+* :mod:`~lumped.laws.slip`: the friction contract :class:`SlipLaw` and
+  :class:`SlipCurve` (any slip curve, a callable);
+* :mod:`~lumped.laws.stribeck`: static, kinetic, Stribeck and viscous
+  friction, the ``friction`` kind, a law in one file;
+* :mod:`~lumped.laws.slip_elements`: a friction law as a network element.
+
 Elements of a network, each a constitutive graph between its force and its
 elongation:
 
@@ -34,6 +43,9 @@ from lumped.laws.kinds import KINDS
 from lumped.laws.monotone import HerschelBulkleyDashpot, MonotoneDashpot
 from lumped.laws.monotone_graph import MONOTONE_SAMPLE
 from lumped.laws.regularised import PapanastasiouDashpot
+from lumped.laws.slip import SlipCurve, SlipLaw
+from lumped.laws.slip_elements import Contact, SlipElement
+from lumped.laws.stribeck import Friction, StribeckLaw
 from lumped.laws.spring_elements import MaxwellBingham, Spring, SpringString
 from lumped.laws.step_graph import Piece
 
@@ -43,6 +55,12 @@ __all__ = [
     "MONOTONE_SAMPLE",
     "Bingham",
     "BinghamDashpot",
+    "Contact",
+    "Friction",
+    "SlipCurve",
+    "SlipElement",
+    "SlipLaw",
+    "StribeckLaw",
     "BinghamForm",
     "Dashpot",
     "DashpotState",

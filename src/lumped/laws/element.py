@@ -127,9 +127,18 @@ class Element(ABC):
        and implements ``_kernel_form()``; a subclass that does not declare
        its own ``kernel_code`` gets ``None``, since it may have changed the
        graph the C copy repeats.
+    10. ``steepest_fall`` (N s/m): how steeply the element's force may fall
+        as its rate grows (a friction contact's Stribeck curve), which a
+        backward-Euler step must outweigh to be unique
+        (:func:`lumped.solvers.uniqueness.check_step`); ``0.0`` by default
+        (a monotone graph).
+    11. ``optional`` (a class attribute): the parameters a system file may
+        leave out, which then take the dataclass field's default (``()`` by
+        default: every parameter is written).
     """
 
     kind: ClassVar[str] = ""
+    optional: ClassVar[tuple[str, ...]] = ()
     #: The kind code of ``_network_elements.h`` (point 9), ``None`` if it has none.
     kernel_code: ClassVar[int | None] = None
     name: str
@@ -183,6 +192,11 @@ class Element(ABC):
     @property
     def step_stiffness(self) -> float:
         """Stiffness (N/m) of the element's spring for the mode-test scale (point 7); none by default."""
+        return 0.0
+
+    @property
+    def steepest_fall(self) -> float:
+        """How steeply the force may fall with the rate (N s/m, point 10); ``0.0`` by default."""
         return 0.0
 
     @property

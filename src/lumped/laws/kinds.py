@@ -5,11 +5,12 @@ from __future__ import annotations
 from lumped.laws.dashpot_elements import Bingham, HerschelBulkley, LinearDashpot, LockingBingham
 from lumped.laws.element import Element
 from lumped.laws.spring_elements import MaxwellBingham, Spring, SpringString
+from lumped.laws.stribeck import Friction
 
 __all__ = ["KINDS"]
 
 #: Element kinds by their name in system files.
 KINDS: dict[str, type[Element]] = {
     cls.kind: cls
-    for cls in (Spring, SpringString, Bingham, MaxwellBingham, LinearDashpot, LockingBingham, HerschelBulkley)
+    for cls in (Spring, SpringString, Bingham, MaxwellBingham, LinearDashpot, LockingBingham, HerschelBulkley, Friction)
 }

@@ -176,6 +176,7 @@ class MaxwellBingham(_ForceState, Element):
     threshold: float = 1.0
     gamma: float = 1.0
     force0: float = 0.0
+    optional: ClassVar[tuple[str, ...]] = ("force0",)
 
     def _check(self) -> None:
         self._set("stiffness", validate.positive)

@@ -26,7 +26,20 @@ from typing import ClassVar, NamedTuple
 from lumped.laws.bingham import sticks
 from lumped.laws.contract import Dashpot
 
-__all__ = ["Piece", "StepGraph", "Pieces", "LawGraph", "as_step_graph", "free_piece", "rigid_piece", "bingham_band"]
+__all__ = [
+    "Piece",
+    "StepGraph",
+    "Pieces",
+    "LawGraph",
+    "SlipGraph",
+    "CurveSlipGraph",
+    "Shifted",
+    "as_step_graph",
+    "shifted",
+    "free_piece",
+    "rigid_piece",
+    "bingham_band",
+]
 
 _INF = math.inf
 _EPS = 2.0**-52  # numpy.finfo(float).eps
@@ -82,10 +95,23 @@ class StepGraph(ABC):
     4. ``mode(z, sigma)``: the new mode from the resolvent variable ``z = f +
        sigma w`` of the iteration's solution.
     5. ``same(old, new)``: True when the mode has settled.
+    6. ``monotone``: True (the default) if the graph is maximal monotone, so that
+       its step is a convex problem and parallel graphs may be summed
+       (:mod:`lumped.solvers.parallel_elements`); False for a friction contact
+       whose tension falls (:class:`SlipGraph`), whose solution a rule picks.
+    7. ``next_mode(old, w, f, sigma)``: the new mode from the iteration's
+       rate and force in mode ``old``.  The default is :meth:`mode` of ``z = f +
+       sigma w``, the resolvent's choice, right for a monotone graph; a graph
+       that is not monotone states its rule here.
     """
 
     __slots__ = ()
     is_piecewise: ClassVar[bool] = True
+    monotone: ClassVar[bool] = True
+
+    def next_mode(self, old: object, w: float, f: float, sigma: float) -> object:
+        """The mode after an iteration that gave ``(w, f)`` in mode ``old`` (point 7)."""
+        return self.mode(f + sigma * w, sigma)
 
     @abstractmethod
     def initial_mode(self) -> object:
@@ -173,6 +199,195 @@ class LawGraph(StepGraph):
             return False
         scale = abs(new[1]) + abs(old[1]) + 1e-300  # type: ignore[index]
         return abs(new[1] - old[1]) <= 8 * _EPS * scale  # type: ignore[index]
+
+
+#: The modes of a friction contact's step graph (:class:`SlipGraph`): the indices of its pieces.
+SLIP_BACK, STICK, SLIP_FORWARD = 0, 1, 2
+
+
+def _slip_rule(old: int, w: float, f: float, static: float) -> int:
+    """The rule that picks a friction contact's step (a graph that is not monotone).
+
+    A stuck contact stays stuck while its tension is within ``[-static, static]``
+    and slips the way it is pulled beyond; a slipping contact slips while its
+    rate keeps its direction and sticks when the rate would change sign (the
+    next iteration then tests the stuck tension against ``static``, so a
+    contact may stop and slip back within one step).
+    """
+    if old == STICK:
+        return SLIP_FORWARD if f > static else SLIP_BACK if f < -static else STICK
+    if old == SLIP_FORWARD:
+        return SLIP_FORWARD if w > 0 else STICK
+    return SLIP_BACK if w < 0 else STICK
+
+
+class SlipGraph(StepGraph):
+    """The step graph of a friction contact whose slip curve is linear, ``g(s) = a + b s``.
+
+    Three pieces: slip back (``f = -a + b w``, ``w <= 0``), stick (``w = 0``,
+    ``|f| <= static``) and slip forward (``f = a + b w``, ``w >= 0``).  With
+    ``a < static`` the graph falls at ``w = 0`` and is not monotone: the mode
+    is chosen by the contact's rule (:func:`_slip_rule`), starting from the
+    contact's state at the step's start (``start``: the piece it is on).
+    """
+
+    __slots__ = ("pieces", "static", "start")
+    is_piecewise: ClassVar[bool] = True
+    monotone: ClassVar[bool] = False
+
+    def __init__(self, static: float, a: float, b: float, start: int) -> None:
+        self.static, self.start = static, start
+        self.pieces = (free_piece(-a, b, -_INF, 0.0), rigid_piece(0.0, -static, static), free_piece(a, b, 0.0, _INF))
+
+    def __getitem__(self, k: int) -> Piece:
+        return self.pieces[k]
+
+    def __len__(self) -> int:
+        return 3
+
+    def __iter__(self):  # noqa: ANN204
+        return iter(self.pieces)
+
+    def initial_mode(self) -> int:
+        return self.start
+
+    def piece(self, mode: object, sigma: float) -> Piece:
+        return self.pieces[mode]  # type: ignore[index]
+
+    def mode(self, z: float, sigma: float) -> int:
+        """The stuck contact's choice from ``z`` (used by the dual sweeps' first guess)."""
+        return Pieces(self.pieces).mode(z, sigma)
+
+    def next_mode(self, old: object, w: float, f: float, sigma: float) -> int:
+        return _slip_rule(old, w, f, self.static)  # type: ignore[arg-type]
+
+    def same(self, old: object, new: object) -> bool:
+        return old == new
+
+
+class CurveSlipGraph(StepGraph):
+    """The step graph of a friction contact with any slip curve (a :class:`lumped.laws.SlipLaw`).
+
+    Its mode is :data:`STICK`, or the point ``(s, w, f)`` of the slip branch
+    of direction ``s`` last reached; the piece of a slip mode is the line of
+    slope ``sigma`` through that point and the next point is the branch's
+    resolvent point of ``z = f + sigma w`` (``SlipLaw.slip_speed``), as for a
+    :class:`LawGraph`.  Where the branch has no point (``|z|`` at most the
+    slip limit), the contact stops: the rule of :func:`_slip_rule`.  The mode
+    has settled when the force agrees to a relative 8 ulps.
+    """
+
+    __slots__ = ("law", "start")
+    is_piecewise: ClassVar[bool] = False
+    monotone: ClassVar[bool] = False
+
+    def __init__(self, law: object, start: int) -> None:
+        self.law, self.start = law, start
+
+    def _point(self, direction: float, z: float, sigma: float) -> object:
+        """The point of the branch ``direction`` whose ``f + sigma w`` is ``z``, or :data:`STICK`."""
+        if direction * z <= self.law.slip_limit:  # type: ignore[attr-defined]
+            return STICK
+        s = self.law.slip_speed(direction * z, sigma)  # type: ignore[attr-defined]
+        return (direction, direction * s, direction * float(self.law.slip(s)))  # type: ignore[attr-defined]
+
+    def initial_mode(self) -> object:
+        if self.start == STICK:
+            return STICK
+        direction = 1.0 if self.start == SLIP_FORWARD else -1.0
+        return (direction, 0.0, direction * self.law.slip_limit)  # type: ignore[attr-defined]
+
+    def piece(self, mode: object, sigma: float) -> Piece:
+        if mode == STICK:
+            return rigid_piece(0.0, -self.law.static, self.law.static)  # type: ignore[attr-defined]
+        _, w0, f0 = mode  # type: ignore[misc]
+        return Piece(False, f0 - sigma * w0, sigma, -_INF, _INF)
+
+    def mode(self, z: float, sigma: float) -> object:
+        static = self.law.static  # type: ignore[attr-defined]
+        return STICK if abs(z) <= static else self._point(math.copysign(1.0, z), z, sigma)
+
+    def next_mode(self, old: object, w: float, f: float, sigma: float) -> object:
+        if old == STICK:
+            static = self.law.static  # type: ignore[attr-defined]
+            return STICK if abs(f) <= static else self._point(math.copysign(1.0, f), f, sigma)
+        direction = old[0]  # type: ignore[index]
+        if direction * w <= 0:
+            return STICK
+        return self._point(direction, f + sigma * w, sigma)
+
+    def same(self, old: object, new: object) -> bool:
+        if old == STICK or new == STICK:
+            return old == new
+        if old[0] != new[0]:  # type: ignore[index]
+            return False
+        scale = abs(new[2]) + abs(old[2]) + 1e-300  # type: ignore[index]
+        return abs(new[2] - old[2]) <= 8 * _EPS * scale  # type: ignore[index]
+
+
+class Shifted(StepGraph):
+    """A step graph seen with one point driven: the element's rate is ``w + delta``.
+
+    A driven point (:class:`lumped.model.network.Driver`) enters the one-step
+    problem as the ground does, at velocity 0; an element joined to it has the
+    true rate ``w + delta``, with ``delta`` the driver's mean velocity over the
+    step (``+`` if the driver is the element's ``second`` point, ``-`` if its
+    ``first``).  This wrapper shows the element's graph in the problem's rate
+    ``w``; :func:`shifted` gives piecewise graphs as shifted :class:`Pieces`.
+    """
+
+    __slots__ = ("inner", "delta")
+
+    def __init__(self, inner: StepGraph, delta: float) -> None:
+        self.inner, self.delta = inner, delta
+
+    @property
+    def is_piecewise(self) -> bool:  # type: ignore[override]
+        return self.inner.is_piecewise
+
+    @property
+    def monotone(self) -> bool:  # type: ignore[override]
+        return self.inner.monotone
+
+    def __getitem__(self, k: int) -> Piece:
+        return _shift_piece(self.inner[k], self.delta)  # type: ignore[index]
+
+    def __len__(self) -> int:
+        return len(self.inner)  # type: ignore[arg-type]
+
+    def __iter__(self):  # noqa: ANN204
+        return (_shift_piece(p, self.delta) for p in self.inner)  # type: ignore[attr-defined]
+
+    def initial_mode(self) -> object:
+        return self.inner.initial_mode()
+
+    def piece(self, mode: object, sigma: float) -> Piece:
+        return _shift_piece(self.inner.piece(mode, sigma), self.delta)
+
+    def mode(self, z: float, sigma: float) -> object:
+        return self.inner.mode(z + sigma * self.delta, sigma)
+
+    def next_mode(self, old: object, w: float, f: float, sigma: float) -> object:
+        return self.inner.next_mode(old, w + self.delta, f, sigma)
+
+    def same(self, old: object, new: object) -> bool:
+        return self.inner.same(old, new)
+
+
+def _shift_piece(p: Piece, delta: float) -> Piece:
+    """``p`` in the rate ``w`` of an element whose true rate is ``w + delta``."""
+    if p.rigid:
+        return Piece(True, p.a - delta, 0.0, p.lo, p.hi)
+    return Piece(False, p.a + p.b * delta, p.b, p.lo - delta, p.hi - delta)
+
+
+def shifted(graph: StepGraph | Sequence[Piece], delta: float) -> StepGraph | Sequence[Piece]:
+    """``graph`` seen in the rate ``w`` of an element whose true rate is ``w + delta`` (:class:`Shifted`)."""
+    if delta == 0:
+        return graph
+    if isinstance(graph, StepGraph):
+        return Shifted(graph, delta)
+    return Pieces(_shift_piece(p, delta) for p in graph)
 
 
 def as_step_graph(graph: StepGraph | Sequence[Piece]) -> StepGraph:

@@ -37,7 +37,7 @@ from pathlib import Path
 from lumped.laws.element import Element
 from lumped.laws.kinds import KINDS
 from lumped.model.forcing import Constant, SwitchedSine
-from lumped.model.network import Load, Mass, Network, check_count
+from lumped.model.network import Driver, Load, Mass, Network, check_count
 from lumped.model.tables import read_table
 
 __all__ = ["MAX_FILE_BYTES", "load_system", "parse_system", "table_files"]
@@ -45,9 +45,9 @@ __all__ = ["MAX_FILE_BYTES", "load_system", "parse_system", "table_files"]
 #: Largest system file read (bytes of UTF-8, or characters of ``text``): a
 #: network of the largest size written as in book/guide/systems.md takes about 7 MB.
 MAX_FILE_BYTES = 16 * 1024**2
-_COUNTED = {"mass": "masses", "element": "elements", "force": "loads"}
+_COUNTED = {"mass": "masses", "element": "elements", "force": "loads", "driver": "drivers"}
 
-_TABLES = {"mass", "element", "force"}
+_TABLES = {"mass", "element", "force", "driver"}
 _MASS_KEYS = {"name": None, "mass": None, "x0": 0.0, "v0": 0.0}
 #: The keys of a load history by ``kind`` (``None``: required); a ``[[force]]`` adds ``on``.
 _HISTORY_KEYS = {
@@ -133,7 +133,8 @@ def _parse(text: str, source: str, folder: Path) -> Network:
     unknown = sorted(set(data) - _TABLES - {"ground"})
     if unknown:
         raise ValueError(
-            f"{source}: unknown table {unknown[0]!r:.40}; expected [[mass]], [[element]], [[force]] and [ground]"
+            f"{source}: unknown table {unknown[0]!r:.40}; expected [[mass]], [[element]], [[force]], [[driver]] "
+            "and [ground]"
         )
     tables = {}
     for key in sorted(_TABLES):
@@ -149,8 +150,11 @@ def _parse(text: str, source: str, folder: Path) -> Network:
     elements = [_entry(source, "element", i, t, _element) for i, t in enumerate(tables["element"], 1)]
     loads = [_entry(source, "force", i, t, lambda raw: _force(raw, folder)) for i, t in enumerate(tables["force"], 1)]
     loads += _ground(source, data.get("ground"), masses, folder)
+    drivers = [
+        _entry(source, "driver", i, t, lambda raw: _driver(raw, folder)) for i, t in enumerate(tables["driver"], 1)
+    ]
     try:
-        net = Network(masses, elements, loads)
+        net = Network(masses, elements, loads, drivers)
         _initial_check(net)
     except ValueError as err:
         raise ValueError(f"{source}: {err}") from None
@@ -182,6 +186,10 @@ def _mass(raw: dict) -> Mass:
     return Mass(**_fields(raw, _MASS_KEYS))
 
 
+#: An optional parameter a file leaves out (the element's dataclass default applies).
+_LEFT_OUT = object()
+
+
 def _element(raw: dict) -> Element:
     kind = raw.get("kind")
     if kind not in KINDS:
@@ -190,8 +198,8 @@ def _element(raw: dict) -> Element:
     spec = {"name": None, "kind": None, "between": None}
     for f in dataclasses.fields(cls):
         if f.name not in spec:
-            spec[f.name] = f.default if f.name in ("force0",) else None
-    values = _fields(raw, spec)
+            spec[f.name] = _LEFT_OUT if f.name in cls.optional else None
+    values = {k: v for k, v in _fields(raw, spec).items() if v is not _LEFT_OUT}  # left out: the field's default
     del values["kind"]
     if isinstance(values["between"], list):
         values["between"] = tuple(values["between"])
@@ -203,6 +211,21 @@ def _force(raw: dict, folder: Path) -> Load:
     values = _fields(raw, {"on": None} | keys)
     on = values.pop("on")
     return Load(on, _history(values, folder, "F"))
+
+
+def _driver(raw: dict, folder: Path) -> Driver:
+    """A ``[[driver]]``: ``name`` and ``velocity``, a number (m/s) or a history table like a force's
+    (``{ kind = "table", file = "belt.csv" }`` with columns ``t,v``, a sine or a constant)."""
+    values = _fields(raw, {"name": None, "velocity": None})
+    velocity = values["velocity"]
+    if isinstance(velocity, dict):
+        velocity = _history(_fields(velocity, _HISTORY_KEYS[_kind(velocity)]), folder, "v")
+    elif isinstance(velocity, bool) or not isinstance(velocity, (int, float)):
+        raise ValueError(
+            f'velocity must be a number (m/s) or a table such as {{ kind = "table", file = "belt.csv" }}, '
+            f"got {velocity!r:.40}"
+        )
+    return Driver(values["name"], velocity)
 
 
 def _kind(raw: dict) -> str:
@@ -253,8 +276,8 @@ def _ground(source: str, raw: object, masses: list[Mass], folder: Path) -> list[
 
 def _initial_check(net: Network) -> None:
     """Initial elongations the elements refuse (a string beyond its length)."""
-    x = {m.name: m.x0 for m in net.masses} | {"ground": 0.0}
-    v = {m.name: m.v0 for m in net.masses} | {"ground": 0.0}
+    x = {m.name: m.x0 for m in net.masses} | {"ground": 0.0} | {d.name: 0.0 for d in net.drivers}
+    v = {m.name: m.v0 for m in net.masses} | {"ground": 0.0} | {d.name: float(d.velocity_at(0.0)) for d in net.drivers}
     for el in net.elements:
         a, b = el.between
         try:

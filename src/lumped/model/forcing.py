@@ -47,6 +47,7 @@ __all__ = [
     "closed_form",
     "evaluate",
     "first_bad_sample",
+    "history",
     "jumps",
     "kind_of",
     "one_force",
@@ -119,6 +120,11 @@ class Forcing:
        :func:`dataclasses.replace` sets and ``__post_init__`` checks again; the exact sensitivities
        differentiate the closed form (point 3) in them.
     8. ``description``: the load in a few words for messages (``a sine``, ``a table``).
+    9. ``integral(t)``: the integral of the value from ``0`` to the times ``t``, vectorised, in closed
+       form; ``None`` (the default) if the kind has none.  A driven point's velocity must have one: its
+       position is this integral (:class:`lumped.model.network.Driver`).
+    10. ``initial_slope()``: the value's rate of change just after ``t = 0`` (a driven point's
+        acceleration there, for the consistent initial forces); ``None`` (the default) if unknown.
     """
 
     __slots__ = ()
@@ -151,6 +157,14 @@ class Forcing:
     def description(self) -> str:
         """The load in words, for messages (point 8)."""
         return "a load"
+
+    def integral(self, t: np.ndarray | float) -> np.ndarray | float | None:
+        """The integral of the value from 0 to ``t`` (point 9), or ``None``."""
+        return None
+
+    def initial_slope(self) -> float | None:
+        """The value's rate of change just after ``t = 0`` (point 10), or ``None``."""
+        return None
 
 
 @dataclass(frozen=True)
@@ -218,6 +232,19 @@ class SwitchedSine(Forcing):
         """``a sine``."""
         return "a sine"
 
+    def integral(self, t: np.ndarray | float) -> np.ndarray | float:
+        """``P (cos(phase) - cos(omega t + phase)) / omega`` up to ``until`` (``P sin(phase) t`` at ``omega = 0``)."""
+        end = np.minimum(np.asarray(t, dtype=float), self.until)
+        if self.omega == 0:
+            out = self.amplitude * math.sin(self.phase) * end
+        else:
+            out = self.amplitude * (math.cos(self.phase) - np.cos(self.omega * end + self.phase)) / self.omega
+        return float(out) if np.ndim(out) == 0 else out
+
+    def initial_slope(self) -> float:
+        """``P omega cos(phase)`` (0 if the sine is off from the start)."""
+        return 0.0 if self.until == 0 else self.amplitude * self.omega * math.cos(self.phase)
+
     @property
     def is_zero(self) -> bool:
         """True when the force vanishes at all times."""
@@ -266,6 +293,16 @@ class Constant(Forcing):
         t = np.asarray(t, dtype=float)
         out = np.where((t >= self.start) & (t <= self.until), self.value, 0.0)
         return float(out) if out.ndim == 0 else out
+
+    def integral(self, t: np.ndarray | float) -> np.ndarray | float:
+        """``value`` times the time spent on, from 0 to ``t``."""
+        on = np.clip(np.asarray(t, dtype=float) - self.start, 0.0, self.until - self.start)
+        out = self.value * on
+        return float(out) if np.ndim(out) == 0 else out
+
+    def initial_slope(self) -> float:
+        """0: the value is constant while on."""
+        return 0.0
 
     def scaled(self, factor: float) -> Constant:
         """``factor`` times this force."""
@@ -327,6 +364,34 @@ class Table(Forcing):
         """The force at the times ``t`` (N)."""
         out = np.interp(np.asarray(t, dtype=float), self.t, self.values, left=0.0, right=0.0)
         return float(out) if np.ndim(out) == 0 else out
+
+    def integral(self, t: np.ndarray | float) -> np.ndarray | float:
+        """The exact integral of the straight lines between samples (the trapezoids), from 0 to ``t``."""
+        tt, ff = self.t, self.values
+        if tt[0] > 0:  # zero before the first sample; the integral counts from t = 0
+            tt, ff = np.concatenate(([0.0], tt)), np.concatenate(([0.0], ff))
+        cumulative = np.concatenate(([0.0], np.cumsum(np.diff(tt) * (ff[1:] + ff[:-1]) / 2)))
+        x = np.clip(np.asarray(t, dtype=float), tt[0], tt[-1])
+        k = np.clip(np.searchsorted(tt, x, side="right") - 1, 0, tt.size - 2)
+        here = np.interp(x, tt, ff)
+        out = cumulative[k] + (x - tt[k]) * (ff[k] + here) / 2
+        if tt[0] < 0:  # samples before t = 0: count from 0
+            out = out - self._from_start(tt, ff, cumulative)
+        return float(out) if np.ndim(out) == 0 else out
+
+    @staticmethod
+    def _from_start(tt: np.ndarray, ff: np.ndarray, cumulative: np.ndarray) -> float:
+        """The integral from the first sample to ``t = 0``."""
+        k = int(np.clip(np.searchsorted(tt, 0.0, side="right") - 1, 0, tt.size - 2))
+        here = float(np.interp(0.0, tt, ff))
+        return float(cumulative[k] + (0.0 - tt[k]) * (ff[k] + here) / 2)
+
+    def initial_slope(self) -> float:
+        """The slope of the straight line holding ``t = 0`` (0 before the first sample)."""
+        if not self.t[0] <= 0 < self.t[-1]:
+            return 0.0
+        k = int(np.searchsorted(self.t, 0.0, side="right") - 1)
+        return float((self.values[k + 1] - self.values[k]) / (self.t[k + 1] - self.t[k]))
 
     def scaled(self, factor: float) -> Table:
         """``factor`` times this force (the values scaled, the times kept)."""
@@ -408,6 +473,11 @@ class LoadSum(Forcing):
     def description(self) -> str:
         """``a sum of N loads``."""
         return f"a sum of {len(self.forces)} loads"
+
+
+def history(value: object) -> Forcing | None:
+    """``value`` if it is a prescribed function of time of this module (a :class:`Forcing`), else ``None``."""
+    return value if isinstance(value, Forcing) else None
 
 
 def one_force(forces: Sequence[object]) -> object:

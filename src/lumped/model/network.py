@@ -8,17 +8,19 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 
 from lumped.laws.element import GROUND, NAME_PATTERN, Element, check_name
-from lumped.model.forcing import SwitchedSine, evaluate, validate_force
+from lumped.model.forcing import Constant, Forcing, SwitchedSine, evaluate, history, validate_force
 from lumped.numerics import validate
 from lumped.numerics.union_find import UnionFind
 
 __all__ = [
     "Mass",
     "Load",
+    "Driver",
     "Network",
     "NAME_PATTERN",
     "MAX_MASSES",
@@ -96,6 +98,89 @@ class Load:
 
 
 @dataclass(frozen=True)
+class Driver:
+    """A driven point: a point whose motion is prescribed (a moving belt, a plate pulled at a speed).
+
+    Parameters
+    ----------
+    name : str
+        Its name, which elements give in ``between`` as they give a mass or ``"ground"``.
+    velocity : float or Forcing, m/s
+        A number (the point sits at ``velocity * t``), or a history of the velocity
+        (:class:`~lumped.model.forcing.Table`, :class:`~lumped.model.forcing.SwitchedSine`,
+        :class:`~lumped.model.forcing.Constant`); the position is its integral from 0
+        (point 9 of :class:`~lumped.model.forcing.Forcing`), so the point starts at 0.
+    """
+
+    name: str
+    velocity: float | Forcing
+
+    def __post_init__(self) -> None:
+        check_name("name", self.name)
+        if self.name == GROUND:
+            raise ValueError(f"name {GROUND!r} is reserved for the fixed point")
+        if history(self.velocity) is not None:
+            if self.velocity.integral(0.0) is None or self.velocity.initial_slope() is None:
+                raise ValueError(
+                    f"velocity: {self.velocity.description} has no closed-form integral to give a position"
+                )
+        else:
+            object.__setattr__(self, "velocity", validate.finite("velocity", self.velocity))
+
+    @property
+    def history(self) -> Forcing:
+        """The velocity as a function of time (a number as a :class:`~lumped.model.forcing.Constant`)."""
+        given = history(self.velocity)
+        return given if given is not None else Constant(self.velocity)  # type: ignore[arg-type]
+
+    @property
+    def constant_velocity(self) -> float | None:
+        """The velocity (m/s) if it is one number at all times, else ``None``."""
+        return None if history(self.velocity) is not None else self.velocity  # type: ignore[return-value]
+
+    def position(self, t: np.ndarray | float) -> np.ndarray | float:
+        """The point's position (m) at the times ``t``: the integral of its velocity from 0."""
+        if self.constant_velocity is not None:
+            return self.constant_velocity * np.asarray(t, dtype=float) if np.ndim(t) else self.constant_velocity * t
+        return self.history.integral(t)  # type: ignore[return-value]
+
+    def velocity_at(self, t: np.ndarray | float) -> np.ndarray | float:
+        """The point's velocity (m/s) at the times ``t``."""
+        return (
+            evaluate(self.history, np.atleast_1d(np.asarray(t, dtype=float))) if np.ndim(t) else float(self.history(t))
+        )
+
+    def mean_velocity(self, t0: np.ndarray, t1: np.ndarray) -> np.ndarray:
+        """The mean velocity over each ``[t0, t1]``: its displacement over the time, the one a
+        backward-Euler step moves the point by (exactly ``velocity`` for a number)."""
+        if self.constant_velocity is not None:
+            return np.full(np.shape(t0), self.constant_velocity)
+        h = self.history
+        return (np.asarray(h.integral(t1)) - np.asarray(h.integral(t0))) / (t1 - t0)
+
+    @property
+    def initial_acceleration(self) -> float:
+        """The velocity's rate of change just after ``t = 0`` (m/s^2)."""
+        return float(self.history.initial_slope())  # type: ignore[arg-type]
+
+    @staticmethod
+    def check(value: object, name: str, message: str = "{name} must be a Driver, got {got}") -> Driver:
+        """``value`` if it is a :class:`Driver`, else a ``ValueError`` (as :meth:`Element.check`)."""
+        if not isinstance(value, Driver):
+            raise ValueError(message.format(name=name, got=type(value).__name__))
+        return value
+
+
+class Driven(NamedTuple):
+    """An element joined to a driven point: its index, the driver's index, and ``+1`` if the driver is the
+    element's ``second`` point (its rate is the problem's plus the driver's velocity), ``-1`` if its ``first``."""
+
+    element: int
+    driver: int
+    sign: float
+
+
+@dataclass(frozen=True)
 class Network:
     """Masses, elements and loads, validated as a whole.
 
@@ -105,6 +190,8 @@ class Network:
     elements : sequence of Element
         Each between two points: mass names or ``"ground"``.
     loads : sequence of Load
+    drivers : sequence of Driver
+        Points whose motion is prescribed; elements join them as they join the ground.
 
     Notes
     -----
@@ -143,9 +230,10 @@ class Network:
     masses: tuple[Mass, ...]
     elements: tuple[Element, ...]
     loads: tuple[Load, ...] = field(default=())
+    drivers: tuple[Driver, ...] = field(default=())
 
     def __post_init__(self) -> None:
-        for what in ("masses", "elements", "loads"):
+        for what in ("masses", "elements", "loads", "drivers"):
             value = getattr(self, what)
             if isinstance(value, (str, bytes)) or not isinstance(value, Sequence):
                 raise ValueError(f"{what} must be a sequence, got {type(value).__name__}")
@@ -154,7 +242,7 @@ class Network:
         self._check_names()
 
     def _check_items(self) -> None:
-        for what, cls in (("masses", Mass), ("elements", Element), ("loads", Load)):
+        for what, cls in (("masses", Mass), ("elements", Element), ("loads", Load), ("drivers", Driver)):
             check_count(what, len(getattr(self, what)))
             for item in getattr(self, what):
                 cls.check(item, what, f"{{name}} must hold {cls.__name__} objects, got {{got}}")
@@ -162,29 +250,57 @@ class Network:
             raise ValueError("masses: a network needs at least one mass")
 
     def _check_names(self) -> None:
-        for what, items in (("mass", self.masses), ("element", self.elements)):
+        for what, items in (("mass", self.masses + self.drivers), ("element", self.elements)):
             seen: set[str] = set()
             for item in items:
                 if item.name in seen:
                     raise ValueError(f"{what} {item.name!r}: the name is used twice")
                 seen.add(item.name)
-        known = {m.name for m in self.masses} | {GROUND}
+        masses = {m.name for m in self.masses}
+        known = masses | {GROUND} | {d.name for d in self.drivers}
         for el in self.elements:
             for point in el.between:
                 if point not in known:
                     raise ValueError(
                         f"element {el.name!r}: between names {point!r}, which is neither a mass nor 'ground'"
+                        + (" nor a driver" if self.drivers else "")
                     )
+            if not masses & set(el.between):
+                raise ValueError(f"element {el.name!r}: joins {el.between[0]!r} and {el.between[1]!r}, neither a mass")
         for load in self.loads:
             if load.on not in known - {GROUND}:
                 raise ValueError(f"force on {load.on!r}: there is no mass of that name")
 
     # -- indices ------------------------------------------------------------
     def point_index(self) -> dict[str, int]:
-        """Point name -> index: masses in order, then the ground (``len(masses)``)."""
+        """Point name -> index: masses in order, then the ground (``len(masses)``).
+
+        A driven point has the ground's index: the one-step problem sees it as the
+        ground, and shifts the rates of the elements joined to it (:meth:`driven`).
+        """
         index = {m.name: i for i, m in enumerate(self.masses)}
         index[GROUND] = len(self.masses)
+        for d in self.drivers:
+            index[d.name] = len(self.masses)
         return index
+
+    def driven(self) -> list[Driven]:
+        """The elements joined to a driven point, in element order (:class:`Driven`)."""
+        where = {d.name: k for k, d in enumerate(self.drivers)}
+        out = []
+        for e, el in enumerate(self.elements):
+            for point, sign in zip(el.between, (-1.0, 1.0)):
+                if point in where:
+                    out.append(Driven(e, where[point], sign))
+        return out
+
+    def refuse_drivers(self, what: str) -> None:
+        """A ``ValueError`` saying that ``what`` cannot run a system with driven points, if it has any."""
+        if self.drivers:
+            raise ValueError(
+                f"{what} cannot run a system with driven points ({listed([d.name for d in self.drivers])}); "
+                "backward-euler runs it"
+            )
 
     def index_of(self, el: Element) -> tuple[int, int]:
         """``(first, second)`` point indices of an element."""
@@ -234,7 +350,7 @@ class Network:
 
 def check_count(what: str, count: int) -> int:
     """``count`` if at most the bound on ``what`` (``masses``, ``elements``, ``loads``), else a ``ValueError``."""
-    bound = {"masses": MAX_MASSES, "elements": MAX_ELEMENTS, "loads": MAX_LOADS}[what]
+    bound = {"masses": MAX_MASSES, "elements": MAX_ELEMENTS, "loads": MAX_LOADS, "drivers": MAX_MASSES}[what]
     if count > bound:
         raise ValueError(
             f"{what}: {count} given, more than the {bound} a network may have "

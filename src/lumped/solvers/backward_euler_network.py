@@ -22,6 +22,7 @@ import numpy as np
 from lumped.model.network import Network, listed
 from lumped.model.trajectory import Trajectory
 from lumped.solvers import network_compiled as kernel
+from lumped.laws.step_graph import shifted
 from lumped.solvers.network_step import StepError, default_bound, solve_step, unsettled
 
 __all__ = ["march"]
@@ -45,11 +46,36 @@ def _sigma(net: Network, inertia: np.ndarray, dt: float) -> np.ndarray:
     )  # the ground is infinitely stiff
 
 
-def _graphs(net: Network, state: list[float], dt: float | None, w0: np.ndarray | None) -> list:
-    """Each element's step graph (``dt`` given) or its rate graph at ``t = 0`` (``w0`` given)."""
+def _graphs(
+    net: Network, state: list[float], dt: float | None, w0: np.ndarray | None, delta: np.ndarray | None = None
+) -> list:
+    """Each element's step graph (``dt`` given) or its rate graph at ``t = 0`` (``w0`` given), seen in the
+    problem's rates: an element joined to a driven point shifted by ``delta`` (:func:`_shifts`)."""
     if dt is not None:
-        return [el.step_graph(s, dt) for el, s in zip(net.elements, state)]
-    return [el.rate_graph(s, float(w)) for el, s, w in zip(net.elements, state, w0)]  # type: ignore[arg-type]
+        graphs = [el.step_graph(s, dt) for el, s in zip(net.elements, state)]
+    else:
+        graphs = [el.rate_graph(s, float(w)) for el, s, w in zip(net.elements, state, w0)]  # type: ignore[arg-type]
+    if delta is not None:
+        for d in net.driven():
+            graphs[d.element] = shifted(graphs[d.element], float(delta[d.element]))
+    return graphs
+
+
+def _shifts(net: Network, times: np.ndarray, dt: float) -> np.ndarray | None:
+    """Each element's rate shift at each step ending at ``times`` (``(steps, elements)``): ``+-`` the mean
+    velocity over the step of the driven point it is joined to (0 for the others); ``None`` without drivers.
+
+    The problem sees a driven point as the ground; an element's true rate is the
+    problem's plus this shift, and the mean velocity moves the point by its exact
+    displacement over the step, so a contact stuck to it follows its position.
+    """
+    if not net.drivers:
+        return None
+    out = np.zeros((times.size, len(net.elements)))
+    means = [d.mean_velocity(times - dt, times) for d in net.drivers]
+    for d in net.driven():
+        out[:, d.element] += d.sign * means[d.driver]
+    return out
 
 
 def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str):
@@ -57,6 +83,11 @@ def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str):
     (the problem solved by ``path``'s step)."""
     x, v = net.initial_positions()
     e0, w0 = x[second] - x[first], v[second] - v[first]
+    speed, acceleration = np.zeros(len(net.elements)), np.zeros(len(net.elements))
+    for d in net.driven():  # a driven point starts at 0 with its velocity at t = 0
+        speed[d.element] = d.sign * float(net.drivers[d.driver].velocity_at(0.0))
+        acceleration[d.element] = d.sign * net.drivers[d.driver].initial_acceleration
+    w0 = w0 + speed
     state = []
     for e, el in enumerate(net.elements):
         try:
@@ -65,7 +96,7 @@ def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str):
             raise ValueError(f"element {el.name!r}: {err}") from None
     inertia = np.array([m.mass for m in net.masses])
     f0 = net.load_table(np.zeros(1))[0]
-    graphs, sigma = _graphs(net, state, None, w0), _sigma(net, inertia, 1.0)
+    graphs, sigma = _graphs(net, state, None, w0, acceleration if net.drivers else None), _sigma(net, inertia, 1.0)
     if path == "compiled" and not kernel.has_chord(kernel.plan(net)):  # a loop's intervals: the Python step
         sol = kernel.solve_graphs(kernel.plan(net), inertia, sigma, graphs, f0)
     else:
@@ -183,10 +214,12 @@ def _run_python(
     modes, most = None, 0
     for begin in range(1, n_steps + 1, _BLOCK):
         stop = min(begin + _BLOCK - 1, n_steps)
-        table = net.load_table(np.arange(begin, stop + 1) * dt)
+        times = np.arange(begin, stop + 1) * dt
+        table, shifts = net.load_table(times), _shifts(net, times, dt)
         for n in range(begin, stop + 1):
             rhs = start.inertia * v + table[n - begin]
-            graphs = _graphs(net, state, dt, None)
+            delta = None if shifts is None else shifts[n - begin]
+            graphs = _graphs(net, state, dt, None, delta)
             saved = n % save_every == 0 or n == n_steps
             try:
                 sol = solve_step(first, second, start.inertia, rhs, graphs, start.sigma, modes, ranges=saved)
@@ -194,9 +227,10 @@ def _run_python(
                 raise _failed(net, n, dt, err) from None
             v, modes, most = sol.v, sol.modes, max(most, sol.iterations)
             x = x + dt * v
+            w = sol.w if delta is None else sol.w + delta  # the true rates of elements joined to drivers
             state = [
                 el.next_state(s, dt, float(we), float(fe), r)
-                for el, s, we, fe, r in zip(net.elements, state, sol.w, sol.f, sol.rigid)
+                for el, s, we, fe, r in zip(net.elements, state, w, sol.f, sol.rigid)
             ]
             if not (np.isfinite(v).all() and np.isfinite(sol.f).all()):
                 raise _overflowed(n, dt)

@@ -91,6 +91,8 @@ def ineligible(net: Network) -> str | None:
     """Why the compiled step cannot run ``net``, or ``None`` if it can."""
     if KERNEL != "compiled":
         return "the compiled network kernel was not built"
+    if net.drivers:
+        return "the network has driven points"
     forms = [el.kernel_form() for el in net.elements]  # the element contract, point 9
     odd = [el.name for el, form in zip(net.elements, forms) if form is None]
     if odd:

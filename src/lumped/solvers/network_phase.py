@@ -78,6 +78,8 @@ def refusal(net: Network, method: str = "exact", *, any_load: bool = False) -> s
     unless ``any_load`` (a method that steps the loads as functions of time).
     """
     takes = _TAKES if not any_load else _TAKES.split(" under ")[0]
+    if net.drivers:
+        return f"method {method!r} cannot run a system with driven points ({listed([d.name for d in net.drivers])})"
     for el in net.elements:
         if linear_parts(el) is None:
             return (

@@ -280,7 +280,7 @@ def _iterate(
         clash[0] = lin.clash
         if lin.clash:
             return None  # rigid pieces whose rates disagree and none can give way
-        new = [g.mode(fe + s * we, s) for g, fe, we, s in zip(graphs, f, w, sigma)]
+        new = [g.next_mode(m, we, fe, s) for g, m, fe, we, s in zip(graphs, modes, f, w, sigma)]
         settled = all(g.same(a, b) for a, b, g in zip(modes, new, graphs))
         if settled:
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin

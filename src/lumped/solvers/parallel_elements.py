@@ -69,7 +69,7 @@ def reduce(
     """
     pairs: dict[tuple[int, int], list[int]] = {}
     for e, g in enumerate(graphs):
-        if g.is_piecewise and any(p.rigid for p in g):  # type: ignore[attr-defined]
+        if g.is_piecewise and g.monotone and any(p.rigid for p in g):  # type: ignore[attr-defined]
             pairs.setdefault((min(first[e], second[e]), max(first[e], second[e])), []).append(e)
     sums = {}
     for els in pairs.values():
