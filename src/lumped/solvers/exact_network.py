@@ -162,7 +162,7 @@ def solve_exact_network(
         For a bad argument, or a network whose phases have no closed form
         (one line naming the element or load that blocks it).
     """
-    index, dt, save_every = grid_rows(network, "exact", t_end, dt, save_every, any_load=False)
+    index, dt, save_every = grid_rows(network, "exact", t_end, dt, save_every, any_load=False, slip=True)
     p = parts(network)
     x0, v0 = (a[:-1] for a in network.initial_positions())
     phases, events = march(p, x0, v0, float(index[-1] * dt), network.element_names, max_events)
