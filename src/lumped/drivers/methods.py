@@ -54,8 +54,7 @@ from lumped.solvers.exact import ExactSolution, solve_exact
 from lumped.solvers.exact_network import solve_exact_network
 from lumped.solvers.moreau_jean import BINGHAM_REASON, DEFAULT_THETA, moreau_jean, validate_theta
 from lumped.solvers.network_phase import _TAKES as PIECEWISE_TAKES  # the one wording of what they take
-from lumped.solvers.network_phase import SLIP_TAKES
-from lumped.solvers.network_phase import refusal
+from lumped.solvers.network_phase import SLIP_TAKES, refusal
 from lumped.solvers.theta import theta_method
 
 __all__ = ["ALIASES", "METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", "NETWORK_SOLVERS", "OPTIONS"]

@@ -32,12 +32,25 @@ from lumped.model.network import Network, listed, rigid_loop
 from lumped.numerics.expm import expm
 from lumped.numerics.union_find import UnionFind
 
-__all__ = ["SLIP_TAKES", "Parts", "Phase", "generator_one", "groups", "load_matrix", "parts", "phase", "refusal", "slip_parts"]
+__all__ = [
+    "SLIP_TAKES",
+    "Parts",
+    "Phase",
+    "generator_one",
+    "groups",
+    "load_matrix",
+    "parts",
+    "phase",
+    "refusal",
+    "slip_parts",
+]
 
 #: What the closed forms of a phase take, for the refusals.
 _TAKES = "linear springs, Bingham or Coulomb elements and linear dashpots under sine and constant loads"
 #: What ``exact`` takes beyond them (``refusal``'s ``slip``).
-SLIP_TAKES = "friction elements with a linear slip curve (no stribeck_velocity) and points driven at a constant velocity"
+SLIP_TAKES = (
+    "friction elements with a linear slip curve (no stribeck_velocity) and points driven at a constant velocity"
+)
 
 
 class Parts(NamedTuple):
