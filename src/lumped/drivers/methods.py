@@ -121,7 +121,8 @@ class Method:
     #: True if its forcing must be a sine on from ``t = 0`` (its closed forms or its events use the formula,
     #: asked of the load by :func:`~lumped.model.forcing.as_sine`); false if it takes any callable of time.
     sine_forcing: bool = False
-    #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots),
+    #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots; with
+    #: ``piecewise_slip``, friction contacts with a linear slip curve and points driven at constant velocities),
     #: ``(network, t_end, dt, *, save_every) -> Trajectory``, which refuses any other network in one
     #: line (:meth:`network_refusal`); ``None`` if it runs one-mass networks only (or any network, by
     #: ``network_solvers``).

@@ -1,7 +1,8 @@
 """The modes of a piecewise-linear network and their switches, shared by its ``exact`` and ``event-locating`` methods.
 
-A friction element (one that can stick: Bingham, Coulomb) is in one of
-three modes: sticking (0) or slipping one way (+-1); the mode of the network
+A friction element (one that can stick: Bingham, Coulomb, a friction
+contact with a linear slip curve) is in one of three modes: sticking (0) or
+slipping one way (+-1); the mode of the network
 fixes its linear phase (:func:`lumped.solvers.network_phase.phase`).  This
 module holds what both methods do at the boundaries of phases:
 

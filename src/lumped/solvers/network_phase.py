@@ -3,8 +3,12 @@
 A network of linear springs, Bingham and Coulomb elements and linear
 dashpots (:class:`Parts`) under constant and sine loads is linear while its
 *mode* is fixed: each friction element either sticks (``mode 0``: its two
-points move together) or slips one way (``mode +-1``: its force is
-``+-threshold + w/gamma``).  :func:`phase` merges the points joined by
+points move together, with a force within ``+-threshold``) or slips one way
+(``mode +-1``: its force is ``+-threshold + w/gamma``).  So is a friction
+contact whose slip curve is one linear piece (:func:`slip_parts`): it sticks
+within ``+-static`` and slips with ``+-kinetic + c w``; and a point driven at
+a constant velocity ``V`` (its position ``V t``, carried by the ramp
+generator ``t - start``; a mass that sticks to it moves with it).  :func:`phase` merges the points joined by
 sticking elements into groups, writes the motion of the free groups as
 
     M_r u'' + C_r u' + K_r u = h + P^T F(t),    x = x_0 + P u,
