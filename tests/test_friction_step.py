@@ -190,3 +190,50 @@ def test_methods_that_do_not_run_drivers_refuse_them():
     net = one_mass(Friction("d", ("m", "belt"), static=1.0, kinetic=1.0), drivers=[Driver("belt", 0.2)])
     with pytest.raises(ValueError, match="driven points"):
         lumped.simulate_network(net, 1.0, 1e-3, solver="compiled")
+
+
+# -- one law contract ------------------------------------------------------------------------------------
+
+LAWS = {
+    "bingham": lambda: lumped.BinghamDashpot(1.0, 2.0),
+    "coulomb": lambda: lumped.coulomb(1.5),
+    "herschel-bulkley": lambda: lumped.HerschelBulkleyDashpot(1.0, 2.0, 0.5),
+    "papanastasiou": lambda: lumped.PapanastasiouDashpot(1.0, 2.0, 100.0),
+    "stribeck": lambda: StribeckLaw(6.0, 2.0, 0.1, "gaussian", 0.2),
+    "static-kinetic": lambda: StribeckLaw(1.0, 0.5),
+    "leine": lambda: lumped.SlipCurve(1.0, lambda s: 1.0 / (1.0 + 3.0 * s), fall=3.0),
+}
+
+
+@pytest.mark.parametrize("name", list(LAWS))
+def test_every_law_answers_the_one_contract(name):
+    """Every law, the dashpots included, is a graph in (rate, tension) by :class:`SlipLaw`'s points: the
+    slip limit within the stick interval, the curve >= 0 and odd, no sample falling faster than ``fall``
+    (difference quotients on a grid of 1e-4 m/s bracket slopes no steeper than the fall), the linear
+    pieces equal to the curve where given, the Bingham form only where the curve is ``static + c s``."""
+    law = LAWS[name]()
+    assert isinstance(law, lumped.SlipLaw)
+    assert 0 <= law.slip_limit <= law.static
+    s = np.linspace(1e-4, 2.0, 20000)
+    g = law.slip(s)
+    assert np.all(g >= 0)
+    assert np.all(-np.diff(g) / np.diff(s) <= law.fall * (1 + 1e-9) + 1e-9)
+    assert np.array_equal(law.tension(-s), -law.tension(s))
+    pieces = law.pieces()
+    if pieces is not None:
+        (p,) = pieces
+        assert np.allclose(g, p.a + p.b * s, rtol=1e-14, atol=0)
+    form = law.bingham_form()
+    assert (form is not None) == (pieces is not None and pieces[0].a == law.static)
+
+
+def test_a_contact_holds_any_law_a_dashpot_included():
+    """A :class:`Contact` with a Herschel-Bulkley law runs as the Herschel-Bulkley element does: both
+    iterate to a fixed point on the same graph to a relative 8 ulps of the force, so the runs agree to
+    a few hundred ulps over 1000 steps."""
+    law = lumped.HerschelBulkleyDashpot(1.0, 2.0, 0.5)
+    a = one_mass(lumped.Contact("d", (G, "m"), law), v0=1.0, force=lumped.SwitchedSine(3.0, 5.0))
+    b = one_mass(lumped.HerschelBulkley("d", (G, "m"), 1.0, 2.0, 0.5), v0=1.0, force=lumped.SwitchedSine(3.0, 5.0))
+    ta = lumped.simulate_network(a, 1.0, 1e-3, solver="python")
+    tb = lumped.simulate_network(b, 1.0, 1e-3, solver="python")
+    assert np.allclose(ta.positions, tb.positions, rtol=0, atol=1e-12)
