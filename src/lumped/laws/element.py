@@ -22,13 +22,10 @@ import re
 from abc import ABC, abstractmethod
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, ClassVar, NamedTuple
+from typing import ClassVar, NamedTuple
 
-from lumped.laws.contract import Dashpot
+from lumped.laws.contract import Dashpot, SlipLaw
 from lumped.laws.step_graph import Piece
-
-if TYPE_CHECKING:
-    from lumped.laws.slip import SlipLaw
 
 __all__ = ["Element", "KernelForm", "GROUND", "NAME_PATTERN", "MAX_NAME_LENGTH", "check_name"]
 
