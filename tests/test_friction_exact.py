@@ -247,16 +247,23 @@ def test_exact_refuses_a_stribeck_contact_in_one_line() -> None:
     contact = Friction("fric", ("belt", "m"), static=STATIC, kinetic=KINETIC, stribeck_velocity=0.1)
     message = (
         r"^method 'exact' cannot run element 'fric' of kind 'friction': its slip curve is not linear "
-        r"\(a Stribeck fall\), and the closed forms per phase need a linear one$"
+        r"\(it falls with speed\), and the closed forms per phase need a linear one$"
     )
     with pytest.raises(ValueError, match=message):
         L.solve(L.Problem(belt(contact), 1.0), 1e-2, method="exact")
 
 
-def test_exact_refuses_a_contact_with_a_curve_given_as_a_callable() -> None:
-    law = L.laws.SlipCurve(1.0, lambda s: 1.0 / (1.0 + 3.0 * s))
-    with pytest.raises(ValueError, match="^method 'exact' cannot run element 'c' of kind 'contact': its slip curve"):
-        solve_exact_network(belt(L.laws.slip_elements.Contact("c", ("belt", "m"), law)), 1.0, 1e-2)
+@pytest.mark.parametrize(
+    ("law", "shape"),
+    [
+        (L.laws.SlipCurve(1.0, lambda s: 1.0 / (1.0 + 3.0 * s)), "it falls with speed"),  # Leine's law
+        (L.laws.SlipCurve(1.0, lambda s: 0.5 + s * s), "it is curved"),
+    ],
+)
+def test_exact_refuses_a_contact_with_a_curve_given_as_a_callable(law: L.laws.SlipLaw, shape: str) -> None:
+    message = rf"^method 'exact' cannot run element 'c' of kind 'contact': its slip curve is not linear \({shape}\)"
+    with pytest.raises(ValueError, match=message):
+        solve_exact_network(belt(L.laws.Contact("c", ("belt", "m"), law)), 1.0, 1e-2)
 
 
 @pytest.mark.parametrize(("velocity", "what"), [(L.SwitchedSine(0.2, 1.0), "a sine"), (L.Constant(0.2), "a constant")])

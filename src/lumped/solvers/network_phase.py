@@ -142,10 +142,11 @@ def refusal(net: Network, method: str = "exact", *, any_load: bool = False, slip
         return reason
     for el in net.elements:
         if (linear_parts(el) if not slip else slip_parts(el)) is None:
-            if slip and el.slip_law() is not None:
+            if slip and (law := el.slip_law()) is not None:
+                shape = "it falls with speed" if law.fall > 0 else "it is curved"
                 return (
                     f"method {method!r} cannot run element {el.name!r} of kind {el.kind!r}: its slip curve is not "
-                    "linear (a Stribeck fall), and the closed forms per phase need a linear one"
+                    f"linear ({shape}), and the closed forms per phase need a linear one"
                 )
             return (
                 f"method {method!r} cannot run element {el.name!r} of kind {el.kind!r}: "
