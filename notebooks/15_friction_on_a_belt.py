@@ -331,6 +331,7 @@ print("observed orders: " + ", ".join(f"{name} {order:.1f}" for name, order in o
 theta = np.linspace(0.0, 1.0, 400) * cycle["t_slip"]
 slip_x = sp.lambdify(t_, slip.subs(values), "numpy")
 slip_v = sp.lambdify(t_, slip.diff(t_).subs(values), "numpy")
+assert np.all(slip_v(theta[1:-1]) < V)  # the slip's relative rate keeps its sign, as Step 3 says
 closed = (np.concatenate((slip_x(theta), [S / k])), np.concatenate((slip_v(theta), [V])))
 stick = ((2 * K - S) / k, S / k, V)
 fig = P.belt_phase_portrait(
