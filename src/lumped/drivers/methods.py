@@ -54,7 +54,7 @@ from lumped.solvers.exact import ExactSolution, solve_exact
 from lumped.solvers.exact_network import solve_exact_network
 from lumped.solvers.moreau_jean import BINGHAM_REASON, DEFAULT_THETA, moreau_jean, validate_theta
 from lumped.solvers.network_phase import _TAKES as PIECEWISE_TAKES  # the one wording of what they take
-from lumped.solvers.network_phase import refusal
+from lumped.solvers.network_phase import SLIP_TAKES, refusal
 from lumped.solvers.theta import theta_method
 
 __all__ = ["ALIASES", "METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", "NETWORK_SOLVERS", "OPTIONS"]
@@ -121,7 +121,8 @@ class Method:
     #: True if its forcing must be a sine on from ``t = 0`` (its closed forms or its events use the formula,
     #: asked of the load by :func:`~lumped.model.forcing.as_sine`); false if it takes any callable of time.
     sine_forcing: bool = False
-    #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots),
+    #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots; with
+    #: ``piecewise_slip``, friction contacts with a linear slip curve and points driven at constant velocities),
     #: ``(network, t_end, dt, *, save_every) -> Trajectory``, which refuses any other network in one
     #: line (:meth:`network_refusal`); ``None`` if it runs one-mass networks only (or any network, by
     #: ``network_solvers``).
@@ -130,6 +131,10 @@ class Method:
     #: and constants (its closed forms carry them).  A one-mass system whose load the one-mass solver
     #: refuses then runs through it.
     piecewise_any_load: bool = False
+    #: True if that solver also runs friction contacts whose slip curve is linear (static above kinetic,
+    #: a viscous part) and points driven at constant velocities (:func:`~lumped.solvers.network_phase.refusal`'s
+    #: ``slip``).
+    piecewise_slip: bool = False
     #: Former names that still select it (``METHODS[alias]`` is this method; ``--help`` and a note on use say so).
     aliases: tuple[str, ...] = ()
 
@@ -158,6 +163,8 @@ class Method:
         elif self.piecewise_networks is not None:
             takes = PIECEWISE_TAKES.split(" under ")[0] + (" under any load" if self.piecewise_any_load else "")
             networks = "networks of " + (takes if self.piecewise_any_load else PIECEWISE_TAKES)
+            if self.piecewise_slip:
+                networks = networks.replace(" under ", f", {SLIP_TAKES} under ")
         else:
             networks = "no network of more than one mass"
         return f"one mass with {law} under {load}; {networks}"
@@ -190,7 +197,7 @@ class Method:
         or load), or ``None`` if it can; a method without one refuses every network in one line."""
         if self.piecewise_networks is None:
             return f"method {self.name!r} runs one-mass systems only"
-        return refusal(network, self.name, any_load=self.piecewise_any_load)
+        return refusal(network, self.name, any_load=self.piecewise_any_load, slip=self.piecewise_slip)
 
     def by_network(self, force: object, network: Network) -> bool:
         """True if the one-mass solver refuses ``force`` (a table, ground motion) but the solver of
@@ -308,6 +315,7 @@ METHODS: Mapping[str, Method] = _Registry(
                 solution=solve_exact,
                 sine_forcing=True,
                 piecewise_networks=solve_exact_network,
+                piecewise_slip=True,
             ),
             Method(
                 "event-driven",

@@ -24,7 +24,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import ClassVar, NamedTuple
 
-from lumped.laws.contract import Dashpot
+from lumped.laws.contract import Dashpot, SlipLaw
 from lumped.laws.step_graph import Piece
 
 __all__ = ["Element", "KernelForm", "GROUND", "NAME_PATTERN", "MAX_NAME_LENGTH", "check_name"]
@@ -135,6 +135,10 @@ class Element(ABC):
     11. ``optional`` (a class attribute): the parameters a system file may
         leave out, which then take the dataclass field's default (``()`` by
         default: every parameter is written).
+    12. ``slip_law()``: the friction law (:class:`lumped.laws.SlipLaw`) of a
+        contact, which a method asks through that law's contract (its
+        ``static``, ``slip_limit``, ``pieces()``), or ``None`` (the default:
+        the element is not a friction contact).
     """
 
     kind: ClassVar[str] = ""
@@ -213,6 +217,10 @@ class Element(ABC):
         """True if ``solver="auto"`` runs one mass, one spring and this dashpot by
         :func:`lumped.backward_euler` (point 8); False by default."""
         return False
+
+    def slip_law(self) -> SlipLaw | None:
+        """The contact's friction law (point 12), or ``None``: not a friction contact."""
+        return None
 
     def kernel_form(self) -> KernelForm | None:
         """The element as ``_network_kernel.c`` reads it, or ``None`` (point 9)."""
