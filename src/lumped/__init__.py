@@ -18,11 +18,10 @@ backward Euler's choice of step solver; the method registry; the sweep; the resp
 
 from lumped.drivers.fit import FitResult, fit
 from lumped.drivers.methods import METHODS
-from lumped.drivers.network import simulate_network
+from lumped.drivers.simulation import simulate, simulate_network, solve
 from lumped.drivers.response import continue_orbits, find_orbit
 from lumped.drivers.response.curve import response_curve
 from lumped.drivers.sensitivity import one_sided_sensitivities, system_sensitivities
-from lumped.drivers.simulation import simulate, solve
 from lumped.drivers.steady_sensitivity import steady_amplitude_sensitivities
 from lumped.laws import (
     Bingham,

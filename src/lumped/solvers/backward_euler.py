@@ -317,8 +317,9 @@ def backward_euler(
     _march(oscillator, dt, n_steps, stride, force, kernel, state, counters, out)
     rest = int(counters[1])
     final_rest = (rest * dt, float(out[-1, 1])) if state[1] == 0 else (math.nan, math.nan)
+    path = "algorithm1" if oscillator.dashpot.bingham_form() is not None else "resolvent"
     return Trajectory.from_array(
-        out, oscillator, method="backward-euler", dt=dt, save_every=save_every, final_rest=final_rest
+        out, oscillator, method="backward-euler", dt=dt, save_every=save_every, final_rest=final_rest, solver=path
     )
 
 
