@@ -25,6 +25,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -235,7 +236,7 @@ def test_the_solver_option_is_backward_eulers_alone() -> None:
         ("theta", lambda: L.theta_method(PAPER, 0.5, DT, x0=0.5)),
     ],
 )
-def test_the_one_mass_solvers_users_know_give_what_solve_gives(name: str, call) -> None:  # noqa: ANN001
+def test_the_one_mass_solvers_users_know_give_what_solve_gives(name: str, call: Callable[[], L.Trajectory]) -> None:
     """Each is the method's one-mass solver, the path ``solve`` takes for the paper's system: the same
     numbers bit for bit (``solve`` adds the network's columns: each element's force)."""
     own = call()

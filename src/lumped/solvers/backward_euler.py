@@ -265,6 +265,13 @@ def backward_euler(
 ) -> Trajectory:
     """Integrate the DAE (8) with Algorithm 1 on the grid ``t_n = n*dt``.
 
+    A shim of the one entry point, kept for the name users know:
+    ``lumped.solve(Problem.oscillator(oscillator, t_end, x0=x0, v0=v0,
+    force=force), dt, method="backward-euler")`` runs this function for the
+    paper's system (Algorithm 1's kernel is chosen inside) and gives the same
+    numbers, with each element's force.  Called directly it adds ``kernel``
+    (the compiled or the Python loop).  ``lumped.algorithm1`` is this function.
+
     Parameters
     ----------
     oscillator : Oscillator
