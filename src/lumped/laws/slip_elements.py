@@ -18,7 +18,7 @@ from typing import ClassVar
 
 from lumped.laws.bingham import BinghamDashpot
 from lumped.laws.element import Element, KernelForm
-from lumped.laws.slip import SlipLaw
+from lumped.laws.contract import SlipLaw
 from lumped.laws.step_graph import (
     SLIP_BACK,
     SLIP_FORWARD,
