@@ -26,11 +26,13 @@ import dataclasses
 import math
 import re
 from collections.abc import Callable
+from pathlib import Path
 
 import numpy as np
 import pytest
 
 import lumped as L
+from lumped.cli import main
 from lumped.model.files import parse_system
 from conftest import assert_same_trajectory
 
@@ -243,3 +245,18 @@ def test_the_one_mass_solvers_users_know_give_what_solve_gives(name: str, call: 
     stack = L.solve(L.Problem.oscillator(PAPER, 0.5, x0=0.5), DT, method=name)
     for field in ("t", "positions", "velocities", "applied", "forces"):
         assert np.array_equal(getattr(own, field), getattr(stack, field)), field
+
+
+def test_the_command_line_does_not_offer_the_api_option_solver(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """``solver`` is the API's option of backward Euler; a refusal on the command line lists only its flags."""
+    out = tmp_path / "run.csv"
+    argv = ["simulate", "--t-end", "1", "--dt", "1e-3", "--rtol", "1e-8", "--output", str(out)]
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert err.endswith("--rtol: method 'backward-euler' takes no option 'rtol' (it takes none)"), err
+    with pytest.raises(
+        ValueError, match=r"^rtol: method 'backward-euler' takes no option 'rtol' \(its options are solver\)$"
+    ):
+        L.solve(problem("paper"), DT, rtol=1e-8)

@@ -207,12 +207,14 @@ class Method:
         line and a sweep offer the :data:`OPTIONS` flags, and a network run from them takes ``"auto"``."""
         return tuple(o.name for o in self.options) + ((SOLVER,) if self.runs_networks else ())
 
-    def takes(self, names: object) -> None:
-        """Refuse the first of ``names`` that is not one of this method's options."""
+    def takes(self, names: object, *, command_line: bool = False) -> None:
+        """Refuse the first of ``names`` that is not one of this method's options; from the
+        ``command_line``, the message lists only the options it offers as flags (not ``solver``)."""
         own = self.option_names
+        shown = tuple(o.name for o in self.options) if command_line else own
         for name in names:  # type: ignore[attr-defined]
             if name not in own:
-                takes = f"its options are {', '.join(own)}" if own else "it takes none"
+                takes = f"its options are {', '.join(shown)}" if shown else "it takes none"
                 raise ValueError(f"{name}: method {self.name!r} takes no option {name!r} ({takes})")
 
     def check_options(self, options: Mapping[str, object]) -> dict[str, object]:
