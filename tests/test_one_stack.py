@@ -30,11 +30,11 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from conftest import assert_same_trajectory
 
 import lumped as L
 from lumped.cli import main
 from lumped.model.files import parse_system
-from conftest import assert_same_trajectory
 
 RUNS, REFUSES, EITHER = "runs", "refuses", "either"
 
