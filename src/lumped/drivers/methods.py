@@ -2,10 +2,10 @@
 
 Each method is declared here once, with what it can run and its options.
 Everything that chooses a method by name reads this table:
-:func:`lumped.simulate` (one mass), the command line (``--method``'s choices
+:func:`lumped.solve` (the one entry point: a method's options, the
+``solver`` of the method that runs any network), the command line (``--method``'s choices
 and help, the option flags such as ``--rtol``, which methods run a
-``--system`` network), :mod:`lumped.drivers.sweep` (the methods a sweep runs),
-:func:`lumped.simulate_network` (the step solvers of a network run) and the
+``--system`` network), :mod:`lumped.drivers.sweep` (the methods a sweep runs) and the
 studies (:mod:`lumped.studies.accuracy` compares every method, grouped by
 ``fixed_step`` and ``bingham_only``; :mod:`lumped.studies.rest` two of them).
 
@@ -62,6 +62,8 @@ __all__ = ["ALIASES", "METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", 
 Force = SwitchedSine | Callable[[np.ndarray], np.ndarray] | None
 #: A one-mass solver: ``(osc, t_end, dt, x0, v0, force, save_every, **options) -> Trajectory``.
 Solver = Callable[..., Trajectory]
+#: The keyword that picks a method's step solver of networks (:attr:`Method.network_solvers`).
+SOLVER = "solver"
 
 
 @dataclass(frozen=True)
@@ -106,7 +108,7 @@ class Method:
     bingham_only: bool = False
     #: True if a sweep runs it (a batch of rows).
     batch: bool = False
-    #: The step solvers (``simulate_network``'s ``solver``) by which it runs any network,
+    #: The step solvers by which it runs any network (the option ``solver`` of :func:`lumped.solve`),
     #: the default first; empty if it runs one-mass networks only, as an oscillator.
     network_solvers: tuple[str, ...] = ()
     options: tuple[Option, ...] = ()
@@ -205,19 +207,34 @@ class Method:
         refused = self.force_refusal(force) is not None  # a constant from t = 0 runs as its sine (as_sine)
         return self.piecewise_any_load and refused and self.network_refusal(network) is None
 
-    def takes(self, names: object) -> None:
-        """Refuse the first of ``names`` that is not one of this method's options."""
-        own = [o.name for o in self.options]
+    @property
+    def option_names(self) -> tuple[str, ...]:
+        """The keywords :func:`lumped.solve` takes for it: its :attr:`options`, and ``solver`` (one of
+        :attr:`network_solvers`) if it runs any network.  ``solver`` is the API's alone: the command
+        line and a sweep offer the :data:`OPTIONS` flags, and a network run from them takes ``"auto"``."""
+        return tuple(o.name for o in self.options) + ((SOLVER,) if self.runs_networks else ())
+
+    def takes(self, names: object, *, command_line: bool = False) -> None:
+        """Refuse the first of ``names`` that is not one of this method's options; from the
+        ``command_line``, the message lists only the options it offers as flags (not ``solver``)."""
+        own = self.option_names
+        shown = tuple(o.name for o in self.options) if command_line else own
         for name in names:  # type: ignore[attr-defined]
             if name not in own:
-                takes = f"its options are {', '.join(own)}" if own else "it takes none"
+                takes = f"its options are {', '.join(shown)}" if shown else "it takes none"
                 raise ValueError(f"{name}: method {self.name!r} takes no option {name!r} ({takes})")
 
     def check_options(self, options: Mapping[str, object]) -> dict[str, object]:
         """``options`` checked and cleaned, or a ``ValueError`` naming the first it does not take or refuses."""
         self.takes(options)
-        own = {o.name: o for o in self.options}
-        return {name: own[name].check(value) for name, value in options.items()}
+        own = {o.name: o.check for o in self.options} | {SOLVER: self._check_solver}
+        return {name: own[name](value) for name, value in options.items()}
+
+    def _check_solver(self, solver: object) -> str:
+        """``solver`` if it is one of :attr:`network_solvers`, else a ``ValueError`` naming them."""
+        if not isinstance(solver, str) or solver not in self.network_solvers:
+            raise ValueError(f"solver must be one of {', '.join(self.network_solvers)}; got {solver!r}")
+        return solver
 
 
 def _backward_euler(
@@ -361,7 +378,7 @@ METHODS: Mapping[str, Method] = _Registry(
 ALIASES: Mapping[str, str] = MappingProxyType({a: m.name for m in METHODS.values() for a in m.aliases})
 #: Views of the registry.  The methods a sweep runs (``batch``; backward Euler in the batched kernel):
 SWEEP_METHODS = tuple(name for name, m in METHODS.items() if m.batch)
-#: The step solvers of a network run (``simulate_network``'s ``solver``), of the method that runs any network:
+#: The step solvers of a network run (``solve``'s option ``solver``), of the method that runs any network:
 NETWORK_SOLVERS = next(m.network_solvers for m in METHODS.values() if m.runs_networks)
 #: Every option of a method, by name, with the methods that take it.
 OPTIONS: Mapping[str, tuple[Option, tuple[str, ...]]] = MappingProxyType(
