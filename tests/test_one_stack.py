@@ -95,10 +95,10 @@ EXPECTED: dict[tuple[str, str], str] = {
     **{("two-mass", m): RUNS for m in ("backward-euler", "exact", "event-locating")},
     **{("two-mass", m): REFUSES for m in _ONE_MASS},
     ("friction", "backward-euler"): RUNS,
-    ("friction", "exact"): EITHER,  # static/kinetic without a Stribeck velocity: closed forms per phase (part E)
+    ("friction", "exact"): RUNS,  # static/kinetic without a Stribeck velocity: closed forms per phase
     ("friction", "event-driven"): EITHER,  # any slip curve (part D)
     ("belt", "backward-euler"): RUNS,
-    ("belt", "exact"): EITHER,  # a driver at constant velocity: closed forms per phase (part E)
+    ("belt", "exact"): RUNS,  # a driver at constant velocity: closed forms per phase
     ("belt", "event-driven"): EITHER,
     ("stribeck", "backward-euler"): RUNS,
     ("stribeck", "exact"): REFUSES,  # a Stribeck curve has no closed form per phase
