@@ -352,3 +352,16 @@ def test_the_stribeck_example_is_the_linearised_motion(belt: float) -> None:
     else:
         assert abs(linear[-1] - x_eq) > 10 * abs(x[0] - x_eq)  # the linearised motion grows
         assert np.any(u == belt)  # the run grows until the block sticks to the belt
+
+
+@pytest.mark.parametrize("entry", ["find_orbit", "continue_orbits"])
+def test_the_orbit_functions_refuse_a_network_in_one_line(entry: str) -> None:
+    """They take the period map's system, which ``response_system`` makes of a network (and which refuses a
+    belt); given the network itself, ``continue_orbits`` once failed with an AttributeError."""
+    net = L.load_system(EXAMPLES / "belt.toml")
+    call = {
+        "find_orbit": lambda: L.find_orbit(net, 1.0, 1.0),
+        "continue_orbits": lambda: L.continue_orbits(net, 1.0, 1.0, 2.0),
+    }
+    with pytest.raises(ValueError, match=r"^system must be an Oscillator or a LoadedNetwork \(a network made one by "):
+        call[entry]()
