@@ -25,7 +25,8 @@ Adding a method
    :meth:`~lumped.model.forcing.Forcing.sine`),
    its solver of the networks whose every phase is linear, if it has one
    (``piecewise_networks``: run for a network that is not of the one-mass
-   form), and its :class:`Option` s.
+   form), whether it runs friction whose graph is not monotone and driven
+   points (``runs_friction``), and its :class:`Option` s.
 
 A method asked to run what it cannot says so in one line that names the
 method and the reason (:meth:`Method.refusal`).  What ``--help`` and the
@@ -139,6 +140,9 @@ class Method:
     piecewise_slip: bool = False
     #: Former names that still select it (``METHODS[alias]`` is this method; ``--help`` and a note on use say so).
     aliases: tuple[str, ...] = ()
+    #: True if it runs friction contacts whose graph is not monotone (static above kinetic, a falling slip
+    #: curve: point 12 of :class:`~lumped.laws.element.Element`) and driven points, on any network.
+    runs_friction: bool = False
 
     def __call__(self, *args: object, **options: object) -> Trajectory:
         return self.run(*args, **options)
@@ -169,6 +173,11 @@ class Method:
                 networks = networks.replace(" under ", f", {SLIP_TAKES} under ")
         else:
             networks = "no network of more than one mass"
+        if self.runs_friction:
+            networks += (
+                ", with friction whose static force is above its kinetic one or whose slip curve falls "
+                "(the step's dt bounded so that it is unique) and driven points (belts)"
+            )
         return f"one mass with {law} under {load}; {networks}"
 
     @property
@@ -322,6 +331,7 @@ METHODS: Mapping[str, Method] = _Registry(
                 "Algorithm 1 (backward Euler)",
                 batch=True,
                 network_solvers=("auto", "active-set", "compiled", "python"),
+                runs_friction=True,
             ),
             Method(
                 "exact",

@@ -81,7 +81,8 @@ def solve(
     ValueError
         For a bad argument (named), or a method that cannot run the problem:
         one line naming the method and the reason (a single-mass method and a
-        network that is not the paper's form, ``exact`` and a law with no
+        network that is not the paper's form, or that has driven points or a
+        friction contact whose graph is not monotone, ``exact`` and a law with no
         Bingham form, ``exact`` and a network element or load that has no
         closed form per phase).
 
@@ -107,6 +108,9 @@ def solve(
     save_every = validate.stride("save_every", save_every)  # before a method solves, then samples
     if run.runs_networks:
         return run_network(problem.system, problem.t_end, dt, save_every=save_every, **options)  # type: ignore[arg-type]
+    if run.piecewise_networks is None:  # the one-mass route: no driven point, no falling graph
+        problem.system.refuse_drivers(f"method {method!r}")
+        problem.system.refuse_non_monotone(f"method {method!r}")
     try:
         form = problem.one_mass()
     except ValueError as err:

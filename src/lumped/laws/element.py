@@ -139,6 +139,14 @@ class Element(ABC):
         contact, which a method asks through that law's contract (its
         ``static``, ``slip_limit``, ``pieces()``), or ``None`` (the default:
         the element is not a friction contact).
+    13. ``monotone``: True (the default) if the element's graph is maximal
+        monotone for every state; False for a graph that falls (a friction
+        contact with ``static`` above its slip limit, a slip curve falling
+        with speed, a curve invertible neither way), whose step a rule picks
+        (point 6 of :class:`lumped.laws.step_graph.StepGraph`).  The methods
+        written for monotone graphs (the period map, the exact
+        sensitivities, the one-mass schemes) refuse such an element
+        (:meth:`lumped.model.network.Network.refuse_non_monotone`).
     """
 
     kind: ClassVar[str] = ""
@@ -202,6 +210,11 @@ class Element(ABC):
     def steepest_fall(self) -> float:
         """How steeply the force may fall with the rate (N s/m, point 10); ``0.0`` by default."""
         return 0.0
+
+    @property
+    def monotone(self) -> bool:
+        """True if the graph is maximal monotone for every state (point 12); True by default."""
+        return True
 
     @property
     def linear_stiffness(self) -> float | None:
