@@ -186,13 +186,15 @@ def test_every_method_runs_or_refuses_every_problem(name: str, method: str) -> N
 
 
 def test_a_driven_point_is_named_in_the_refusal_of_a_one_mass_method() -> None:
-    """A contact on a belt is not to the ground: the refusal says where it goes."""
+    """A contact on a belt is not to the ground: the refusal names the driven point and who runs it."""
     with pytest.raises(
-        ValueError,
-        match="^method 'theta' needs a one-mass system; the network element 'fric' joins "
-        "the mass to the driven point 'belt', not to the ground$",
+        ValueError, match=r"^method 'theta' cannot run a system with driven points \('belt'\); backward-euler runs it$"
     ):
         L.solve(problem("belt"), DT, method="theta")
+    with pytest.raises(
+        ValueError, match="^element 'fric' joins the mass to the driven point 'belt', not to the ground$"
+    ):
+        L.model.problem.one_mass_form(problem("belt").system)
 
 
 # -- the shims: the same stack, the same numbers ------------------------------------------------------
