@@ -25,9 +25,10 @@ from dataclasses import dataclass
 from typing import ClassVar, NamedTuple
 
 from lumped.laws.contract import Dashpot
+from lumped.laws.slip import SlipLaw
 from lumped.laws.step_graph import Piece
 
-__all__ = ["Element", "KernelForm", "GROUND", "NAME_PATTERN", "MAX_NAME_LENGTH", "check_name"]
+__all__ = ["GROUND", "MAX_NAME_LENGTH", "NAME_PATTERN", "Element", "KernelForm", "check_name"]
 
 #: The name of the fixed point at ``x = 0``.
 GROUND = "ground"
@@ -46,7 +47,7 @@ def check_name(what: str, value: object) -> str:
     if not isinstance(value, str) or not NAME_PATTERN.match(value):
         raise ValueError(
             f"{what} must be 1 to {MAX_NAME_LENGTH} ASCII letters, digits, '_', '.', '-' "
-            f"starting with a letter or '_', got {ascii(value):.40}"
+            f"starting with a letter or '_', got {value!a:.40}"
         )
     return value
 
@@ -135,6 +136,9 @@ class Element(ABC):
     11. ``optional`` (a class attribute): the parameters a system file may
         leave out, which then take the dataclass field's default (``()`` by
         default: every parameter is written).
+    12. ``slip_law()``: the friction law (:class:`lumped.laws.SlipLaw`) of a
+        contact, whose slip phases a method may integrate (the
+        ``event-driven`` method); ``None`` by default (no friction contact).
     """
 
     kind: ClassVar[str] = ""
@@ -206,6 +210,10 @@ class Element(ABC):
 
     def one_mass_law(self) -> Dashpot | None:
         """The dashpot law a single-mass method runs for this element (point 8), else ``None``."""
+        return None
+
+    def slip_law(self) -> SlipLaw | None:
+        """The friction law of a contact (point 12), else ``None``."""
         return None
 
     @property

@@ -84,6 +84,10 @@ class SlipElement:
     def steepest_fall(self) -> float:
         return self.law.fall
 
+    def slip_law(self) -> SlipLaw:
+        """The contact's law (point 12 of :class:`~lumped.laws.element.Element`)."""
+        return self.law
+
     def one_mass_law(self) -> BinghamDashpot | None:
         """The Bingham law this contact equals, if it is one (the paper's methods run it), else ``None``."""
         form = self.law.bingham_form()
