@@ -4,26 +4,25 @@ The system is one mass ``m`` with linear springs and linear dashpots, each
 to the ground or to a driven point moving at a constant velocity, and one
 friction contact (any :class:`lumped.laws.SlipLaw`, or a Bingham or Coulomb
 element, whose graph is one) to the ground or to such a point, moving at
-``V``, under a sine or a constant load from ``t = 0``.  In the contact's
-frame, ``r = x - V t`` and ``u = v - V`` (the contact's slip rate, seen from
-the mass), the equation of motion is
+``V``, under a sine or a constant load from ``t = 0``.  With ``u = v - V``
+(the contact's slip rate, seen from the mass) the equation of motion is
 
-    m u' = S(t, r, u) - T,    S = F(t) - K r + beta t - C u + gamma,
+    x' = u + V,    m u' = S(t, x, u) - T,    S = F(t) - K x + A t - C u + gamma,
 
-with ``K``, ``C`` the sums of the stiffnesses and viscosities, ``beta = sum
-k_i (V_i - V)`` and ``gamma = sum c_i (V_i - V)`` (``V_i`` the velocity of
-the element's other point), and ``T`` the contact's force on the mass,
+with ``K``, ``C`` the sums of the stiffnesses and viscosities, ``A = sum
+k_i V_i`` and ``gamma = sum c_i (V_i - V)`` (``V_i`` the velocity of the
+element's other point), and ``T`` the contact's force on the mass,
 resisting the slip: ``T = sgn(u) g(|u|)`` off zero rate, any value in
 ``[-static, static]`` at ``u = 0``.  The motion is a sequence of phases:
 
-* **stick** (``u = 0``, ``r`` constant): ``T = S(t, r, 0)``, a sine plus a
-  linear function of ``t``, which holds while ``|T| <= static``.  The
+* **stick** (``u = 0``, ``x = x_s + V (t - t_s)``): ``T = S(t, x, 0)``, a sine
+  plus a linear function of ``t`` (of slope ``beta = A - K V``), which holds while ``|T| <= static``.  The
   *breakaway* (``|S|`` reaches ``static``) is found between the critical
   points of ``S`` (in closed form), on each of which ``S`` is monotone, by
   Brent's method: no sign change is missed, whatever the length of the stick;
 * **slip** with direction ``s = +-1``: ``m u' = S - s g(max(s u, 0))``
   integrated by DOP853 (:class:`lumped.solvers.event_driven.IntegratedSlip`,
-  the integrator of the one-mass method, on the state ``(r, u)``); the clipped
+  the integrator of the one-mass method, on the state ``(x, u)``); the clipped
   speed keeps the right-hand side continuous where the step passes the stop,
   whose time is found on the step's dense output by Brent's method.  At the
   stop the rule of :class:`lumped.laws.step_graph.SlipGraph` decides: the
@@ -61,7 +60,7 @@ from lumped.solvers.event_driven import (
 from lumped.solvers.events import OFF, STICK, Phase, Piece
 from lumped.solvers.network_modes import NetworkEvent, grid_index
 
-__all__ = ["TAKES", "refusal", "solve_event_driven_network"]
+__all__ = ["TAKES", "March", "refusal", "solve_contact", "solve_event_driven_network"]
 
 METHOD = "event-driven"
 #: What it runs, in words (the refusals, ``--help``).
@@ -101,12 +100,13 @@ class Contact:
 
 @dataclass(frozen=True)
 class Model:
-    """The equation of motion in the contact's frame (module docstring): ``m``, ``K``, ``C``, ``beta``,
-    ``gamma``, the contact, its other point's velocity ``V``, and the elements as :class:`Link` s."""
+    """The equation of motion (module docstring): ``m``, ``K``, ``C``, ``A``, ``beta = A - K V``, ``gamma``,
+    the contact, its other point's velocity ``V``, and the elements as :class:`Link` s."""
 
     m: float
     K: float
     C: float
+    A: float
     beta: float
     gamma: float
     contact: Contact
@@ -114,10 +114,14 @@ class Model:
     springs: tuple[Link, ...]
     dashpots: tuple[Link, ...]
 
-    def smooth(self, t: float, r: float, u: float, p: Piece) -> float:
-        """``S(t, r, u)`` (N): every force on the mass but the contact's, with the load's piece ``p``."""
+    def smooth(self, t: float, x: float, u: float, p: Piece) -> float:
+        """``S(t, x, u)`` (N): every force on the mass but the contact's, with the load's piece ``p``."""
         force = p.amplitude * math.sin(p.omega * t + p.phase) if p.amplitude else 0.0
-        return force - self.K * r + self.beta * t - self.C * u + self.gamma
+        return force - self.K * x + self.A * t - self.C * u + self.gamma
+
+    def held(self, t: float, start: float, x_start: float, p: Piece) -> float:
+        """``S`` on the contact stuck since ``start`` at ``x_start``: the force it holds (N)."""
+        return self.smooth(t, x_start + self.V * (t - start), 0.0, p)
 
 
 def _classify(network: Network) -> tuple[list[Link], list[Link], list[Contact], str | None]:
@@ -175,13 +179,14 @@ def model(network: Network) -> Model:
     springs, dashpots, (contact,), _ = _classify(network)
     V = contact.link.velocity
     K, C = sum(s.coefficient for s in springs), sum(d.coefficient for d in dashpots)
-    beta = sum(s.coefficient * (s.velocity - V) for s in springs)
+    A = sum(s.coefficient * s.velocity for s in springs)
     gamma = sum(d.coefficient * (d.velocity - V) for d in dashpots)
-    return Model(network.masses[0].mass, K, C, beta, gamma, contact, V, tuple(springs), tuple(dashpots))
+    m = network.masses[0].mass
+    return Model(m, K, C, A, A - K * V, gamma, contact, V, tuple(springs), tuple(dashpots))
 
 
 class ContactSlip(IntegratedSlip):
-    """A slip phase of direction ``s`` on the state ``(r, u)``: :class:`IntegratedSlip` with this system's
+    """A slip phase of direction ``s`` on the state ``(x, u)``: :class:`IntegratedSlip` with this system's
     right-hand side (its stop is the zero of ``u``, the second component)."""
 
     def __init__(self, mdl: Model, s: int, p: Piece, start: tuple[float, float, float], settings: _Settings):
@@ -189,14 +194,14 @@ class ContactSlip(IntegratedSlip):
         self.model, self.s, self.piece = mdl, s, p
 
     def rhs(self, t: float, y: list[float]) -> tuple[float, float]:
-        """``(r', u')``: ``u`` and ``(S - s g(max(s u, 0)))/m``."""
-        r, u = y
+        """``(x', u')``: ``u + V`` and ``(S - s g(max(s u, 0)))/m``."""
+        x, u = y
         mdl = self.model
-        return u, (mdl.smooth(t, r, u, self.piece) - mdl.contact.slip_force(self.s, u)) / mdl.m
+        return u + mdl.V, (mdl.smooth(t, x, u, self.piece) - mdl.contact.slip_force(self.s, u)) / mdl.m
 
 
-def breakaway(mdl: Model, t0: float, t_lim: float, r: float, p: Piece) -> tuple[float, int]:
-    """First time in ``[t0, t_lim]`` at which the holding force ``S(t, r, 0)`` leaves ``[-static, static]``
+def breakaway(mdl: Model, t0: float, t_lim: float, x0: float, p: Piece) -> tuple[float, int]:
+    """First time in ``[t0, t_lim]`` at which the holding force of a stick from ``(t0, x0)`` leaves ``[-static, static]``
     and its sign, or ``(t_lim, 0)``.
 
     ``S = P sin(w t + ph) + beta t + c0`` is monotone between its critical points,
@@ -210,7 +215,7 @@ def breakaway(mdl: Model, t0: float, t_lim: float, r: float, p: Piece) -> tuple[
         turns = 2 * math.pi * np.arange(lo, hi + 1)
         crit = (np.concatenate((turns + theta, turns - theta)) - ph) / w
         knots = [t0, *np.sort(crit[(crit > t0) & (crit < t_lim)]).tolist(), t_lim]
-    held = lambda t: mdl.smooth(t, r, 0.0, p)
+    held = lambda t: mdl.held(t, t0, x0, p)
     values = np.array([held(t) for t in knots])
     out = np.flatnonzero(np.abs(values[1:]) > band)
     if not out.size:
@@ -239,6 +244,12 @@ class March:
         self.phases: list[Phase] = []
         self.events: list[NetworkEvent] = []
 
+    def state(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The mass's position (m) and velocity (m/s) at the times ``t`` (in ``[0, t_end]``)."""
+        t = np.asarray(t, dtype=float)
+        x, u, _, _ = _sample(self, t)
+        return x, u + self.mdl.V
+
     def piece(self, t: float) -> Piece:
         return next(p for p in self.pieces if t < p.end)
 
@@ -253,26 +264,27 @@ class March:
                 "shorten t_end or use backward Euler"
             )
 
-    def mode(self, t: float, r: float, u: float) -> int:
-        """STICK or the slip direction at ``(t, r, u)``: the sign of ``u``, else the stick test on ``S``."""
+    def mode(self, t: float, x: float, u: float) -> int:
+        """STICK or the slip direction at ``(t, x, u)``: the sign of ``u``, else the stick test on ``S``."""
         if u != 0:
             return 1 if u > 0 else -1
-        net = self.mdl.smooth(t, r, 0.0, self.piece(t))
+        net = self.mdl.smooth(t, x, 0.0, self.piece(t))
         if sticks(net, -self.mdl.contact.static, self.mdl.contact.static):
             return STICK
         return 1 if net > 0 else -1
 
-    def run(self, r: float, u: float) -> None:
+    def run(self, x: float, u: float) -> None:
         t, nxt, stalled = 0.0, None, 0
         while t < self.t_end:
             p = self.piece(t)
             t_lim = min(p.end, self.t_end)
-            nxt = self.mode(t, r, u) if nxt is None else nxt
+            nxt = self.mode(t, x, u) if nxt is None else nxt
             t_before = t
             if nxt == STICK:
-                t, nxt = self.stick(t, t_lim, r, p)
+                t, nxt = self.stick(t, t_lim, x, p)
+                x = x + self.mdl.V * (t - t_before)
             else:
-                t, r, u, nxt = self.slip(t, t_lim, r, u, nxt, p)
+                t, x, u, nxt = self.slip(t, t_lim, x, u, nxt, p)
             if t < self.t_end and t == p.end:
                 self.event(t, "switch", 0 if nxt == STICK else nxt or 0)
             stalled = stalled + 1 if t == t_before else 0
@@ -282,28 +294,28 @@ class March:
                     "on the edge of its static bound to round-off; perturb x0 or the load"
                 )
 
-    def stick(self, t: float, t_lim: float, r: float, p: Piece) -> tuple[float, int | None]:
-        t_b, direction = breakaway(self.mdl, t, t_lim, r, p)
-        self.phases.append(Phase(t, t_b, "stick", r))
+    def stick(self, t: float, t_lim: float, x: float, p: Piece) -> tuple[float, int | None]:
+        t_b, direction = breakaway(self.mdl, t, t_lim, x, p)
+        self.phases.append(Phase(t, t_b, "stick", x))
         if direction:
             self.event(t_b, "breakaway", direction)
         return t_b, direction or None
 
     def slip(
-        self, t: float, t_lim: float, r: float, u: float, s: int, p: Piece
+        self, t: float, t_lim: float, x: float, u: float, s: int, p: Piece
     ) -> tuple[float, float, float, int | None]:
-        motion = ContactSlip(self.mdl, s, p, (t, r, u), self.settings)
+        motion = ContactSlip(self.mdl, s, p, (t, x, u), self.settings)
         t_stop = motion.first_stop(t_lim, s)
         if t_stop is None:
-            r_end, u_end = (float(a) for a in motion.state(t_lim))
-            self.phases.append(Phase(t, t_lim, "slip", r, motion))
-            return t_lim, r_end, u_end, None
-        r_stop = float(motion.state(t_stop)[0])
-        self.phases.append(Phase(t, t_stop, "slip", r, motion))
-        net = self.mdl.smooth(t_stop, r_stop, 0.0, p)
+            x_end, u_end = (float(a) for a in motion.state(t_lim))
+            self.phases.append(Phase(t, t_lim, "slip", x, motion))
+            return t_lim, x_end, u_end, None
+        x_stop = float(motion.state(t_stop)[0])
+        self.phases.append(Phase(t, t_stop, "slip", x, motion))
+        net = self.mdl.smooth(t_stop, x_stop, 0.0, p)
         reverses = -s * net > self.mdl.contact.static
         self.event(t_stop, "reversal" if reverses else "stop", -s if reverses else 0)
-        return t_stop, r_stop, 0.0, -s if reverses else STICK
+        return t_stop, x_stop, 0.0, -s if reverses else STICK
 
 
 def _forcing(network: Network) -> tuple[Piece, ...]:
@@ -315,16 +327,17 @@ def _forcing(network: Network) -> tuple[Piece, ...]:
     return (on, OFF) if math.isfinite(sine.until) else (on,)
 
 
-def _scales(mdl: Model, pieces: tuple[Piece, ...], t_end: float, r0: float, u0: float) -> tuple[float, float]:
-    """Displacement (m) and speed (m/s) scales of the motion, for the absolute tolerance: the forces
-    ``static + P + |gamma| + |beta| t_end`` over the stiffness (or over ``m / t_end^2`` without a spring)."""
-    force = mdl.contact.static + max(p.amplitude for p in pieces) + abs(mdl.gamma) + abs(mdl.beta) * t_end
+def _scales(mdl: Model, pieces: tuple[Piece, ...], t_end: float, x0: float, u0: float) -> tuple[float, float]:
+    """Displacement (m) and speed (m/s) scales of the motion, for the absolute tolerance: the band of the
+    forces ``static + P`` over the stiffness (speeds: over ``sqrt(k m)``, and the belt's), or without a spring
+    the motion those forces give over ``t_end``; at least the initial state."""
+    force = mdl.contact.static + max(p.amplitude for p in pieces)
     if mdl.K > 0:
         x, v = force / mdl.K, force / math.sqrt(mdl.K * mdl.m)
     else:
         v = force * t_end / mdl.m
         x = v * t_end
-    return max(x, abs(r0)), max(v, abs(u0))
+    return max(x, abs(x0)), max(v, abs(mdl.V), abs(u0))
 
 
 def _options(options: dict[str, object]) -> tuple[float, int, int]:
@@ -368,43 +381,61 @@ def solve_event_driven_network(
         raise ValueError(reason)
     rtol, max_events, max_steps = _options(options)
     index, dt, save_every = grid_index(t_end, dt, save_every)
-    mdl, pieces = model(network), _forcing(network)
-    t_last = float(index[-1] * dt)
-    mass = network.masses[0]
-    r0, u0 = mass.x0, mass.v0 - mdl.V
-    x_scale, v_scale = _scales(mdl, pieces, t_last, r0, u0)
-    budget = _Budget(max_steps, max_steps)
-    settings = _Settings(None, rtol, (_ATOL_FACTOR * rtol * x_scale, _ATOL_FACTOR * rtol * v_scale), budget)  # type: ignore[arg-type]
-    name = network.elements[mdl.contact.link.element].name
-    march = March(mdl, pieces, t_last, settings, max_events, (name, METHOD), len(network.elements))
-    march.run(r0, u0)
+    march = _march(network, float(index[-1] * dt), rtol, max_events, max_steps)
     return _trajectory(network, march, index, dt, save_every)
 
 
+def solve_contact(network: Network, t_end: float, **options: object) -> March:
+    """The motion to ``t_end`` in continuous time: its phases, its events and :meth:`March.state` at any time.
+
+    Takes what :func:`solve_event_driven_network` takes but the grid, and raises as it does.
+    """
+    if not isinstance(network, Network):
+        raise ValueError(f"network must be a Network, got {type(network).__name__}")  # noqa: TRY004 (the API's one error type)
+    if (reason := refusal(network)) is not None:
+        raise ValueError(reason)
+    rtol, max_events, max_steps = _options(options)
+    return _march(network, validate.positive("t_end", t_end), rtol, max_events, max_steps)
+
+
+def _march(network: Network, t_end: float, rtol: float, max_events: int, max_steps: int) -> March:
+    """The :class:`March` of an accepted network from its initial state to ``t_end``."""
+    mdl, pieces = model(network), _forcing(network)
+    mass = network.masses[0]
+    x0, u0 = mass.x0, mass.v0 - mdl.V
+    x_scale, v_scale = _scales(mdl, pieces, t_end, x0, u0)
+    atol = (_ATOL_FACTOR * rtol * x_scale, _ATOL_FACTOR * rtol * v_scale)
+    settings = _Settings(None, rtol, atol, _Budget(max_steps, max_steps))  # type: ignore[arg-type]
+    name = network.elements[mdl.contact.link.element].name
+    march = March(mdl, pieces, t_end, settings, max_events, (name, METHOD), len(network.elements))
+    march.run(x0, u0)
+    return march
+
+
 def _sample(march: March, times: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """``r``, ``u``, the contact's force on the mass ``T`` and the stick flags at ``times``."""
+    """``x``, ``u``, the contact's force on the mass ``T`` and the stick flags at ``times``."""
     mdl, phases = march.mdl, march.phases
     which = np.searchsorted([ph.start for ph in phases], times, side="right") - 1
-    r, u, T = (np.empty(times.size) for _ in range(3))
+    x, u, T = (np.empty(times.size) for _ in range(3))
     stuck = np.zeros(times.size, dtype=bool)
     for i, ph in enumerate(phases):
         at = np.flatnonzero(which == i)
         if not at.size:
             continue
         if ph.motion is None:
-            r[at], u[at], stuck[at] = ph.x_start, 0.0, True
-            T[at] = [mdl.smooth(float(t), ph.x_start, 0.0, march.piece(float(t))) for t in times[at]]
+            x[at], u[at], stuck[at] = ph.x_start + mdl.V * (times[at] - ph.start), 0.0, True
+            T[at] = [mdl.held(float(t), ph.start, ph.x_start, march.piece(float(t))) for t in times[at]]
             continue
-        r[at], u[at] = ph.motion.state(times[at])
+        x[at], u[at] = ph.motion.state(times[at])
         T[at] = [mdl.contact.slip_force(ph.motion.s, float(w)) for w in u[at]]
-    return r, u, T, stuck
+    return x, u, T, stuck
 
 
 def _trajectory(network: Network, march: March, index: np.ndarray, dt: float, save_every: int) -> Trajectory:
     """The :class:`Trajectory`: positions, velocities, every element's tension, the events and the rest."""
     mdl, times = march.mdl, index * dt
-    r, u, T, stuck = _sample(march, times)
-    x, v = r + mdl.V * times, u + mdl.V
+    x, u, T, stuck = _sample(march, times)
+    v = u + mdl.V
     forces = np.zeros((times.size, len(network.elements)))
     for s in mdl.springs:
         forces[:, s.element] = s.coefficient * s.orientation * (x - s.velocity * times)
