@@ -285,8 +285,9 @@ class March:
                 x = x + self.mdl.V * (t - t_before)
             else:
                 t, x, u, nxt = self.slip(t, t_lim, x, u, nxt, p)
-            if t < self.t_end and t == p.end:
-                self.event(t, "switch", 0 if nxt == STICK else nxt or 0)
+            if t < self.t_end and t == p.end:  # the load goes off: the mode after it, from the state
+                nxt = self.mode(t, x, u) if nxt is None else nxt
+                self.event(t, "switch", nxt)
             stalled = stalled + 1 if t == t_before else 0
             if stalled > 8:
                 raise ValueError(
