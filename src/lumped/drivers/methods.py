@@ -2,10 +2,10 @@
 
 Each method is declared here once, with what it can run and its options.
 Everything that chooses a method by name reads this table:
-:func:`lumped.simulate` (one mass), the command line (``--method``'s choices
+:func:`lumped.solve` (the one entry point: a method's options, the
+``solver`` of the method that runs any network), the command line (``--method``'s choices
 and help, the option flags such as ``--rtol``, which methods run a
-``--system`` network), :mod:`lumped.drivers.sweep` (the methods a sweep runs),
-:func:`lumped.simulate_network` (the step solvers of a network run) and the
+``--system`` network), :mod:`lumped.drivers.sweep` (the methods a sweep runs) and the
 studies (:mod:`lumped.studies.accuracy` compares every method, grouped by
 ``fixed_step`` and ``bingham_only``; :mod:`lumped.studies.rest` two of them).
 
@@ -57,7 +57,7 @@ from lumped.solvers.exact import ExactSolution, solve_exact
 from lumped.solvers.exact_network import solve_exact_network
 from lumped.solvers.moreau_jean import BINGHAM_REASON, DEFAULT_THETA, moreau_jean, validate_theta
 from lumped.solvers.network_phase import _TAKES as PIECEWISE_TAKES  # the one wording of what they take
-from lumped.solvers.network_phase import refusal
+from lumped.solvers.network_phase import SLIP_TAKES, refusal
 from lumped.solvers.theta import theta_method
 
 __all__ = ["ALIASES", "METHODS", "NETWORK_SOLVERS", "OPTIONS", "SWEEP_METHODS", "Method", "Option", "Solver"]
@@ -65,6 +65,8 @@ __all__ = ["ALIASES", "METHODS", "NETWORK_SOLVERS", "OPTIONS", "SWEEP_METHODS", 
 Force = SwitchedSine | Callable[[np.ndarray], np.ndarray] | None
 #: A one-mass solver: ``(osc, t_end, dt, x0, v0, force, save_every, **options) -> Trajectory``.
 Solver = Callable[..., Trajectory]
+#: The keyword that picks a method's step solver of networks (:attr:`Method.network_solvers`).
+SOLVER = "solver"
 
 
 @dataclass(frozen=True)
@@ -109,7 +111,7 @@ class Method:
     bingham_only: bool = False
     #: True if a sweep runs it (a batch of rows).
     batch: bool = False
-    #: The step solvers (``simulate_network``'s ``solver``) by which it runs any network,
+    #: The step solvers by which it runs any network (the option ``solver`` of :func:`lumped.solve`),
     #: the default first; empty if it runs one-mass networks only, as an oscillator.
     network_solvers: tuple[str, ...] = ()
     options: tuple[Option, ...] = ()
@@ -124,7 +126,8 @@ class Method:
     #: True if its forcing must be a sine on from ``t = 0`` (its closed forms or its events use the formula,
     #: asked of the load by :func:`~lumped.model.forcing.as_sine`); false if it takes any callable of time.
     sine_forcing: bool = False
-    #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots),
+    #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots; with
+    #: ``piecewise_slip``, friction contacts with a linear slip curve and points driven at constant velocities),
     #: ``(network, t_end, dt, *, save_every) -> Trajectory``, which refuses any other network in one
     #: line (:meth:`network_refusal`); ``None`` if it runs one-mass networks only (or any network, by
     #: ``network_solvers``).
@@ -133,6 +136,10 @@ class Method:
     #: and constants (its closed forms carry them).  A one-mass system whose load the one-mass solver
     #: refuses then runs through it.
     piecewise_any_load: bool = False
+    #: True if that solver also runs friction contacts whose slip curve is linear (static above kinetic,
+    #: a viscous part) and points driven at constant velocities (:func:`~lumped.solvers.network_phase.refusal`'s
+    #: ``slip``).
+    piecewise_slip: bool = False
     #: The refusal of that solver, ``(network) -> str | None``, and what it runs in words, when they are not the
     #: piecewise-linear networks' (:func:`~lumped.solvers.network_phase.refusal`, ``PIECEWISE_TAKES``).
     piecewise_refusal: Callable[[Network], str | None] | None = None
@@ -167,6 +174,8 @@ class Method:
         elif self.piecewise_networks is not None:
             takes = PIECEWISE_TAKES.split(" under ")[0] + (" under any load" if self.piecewise_any_load else "")
             networks = "networks of " + (takes if self.piecewise_any_load else PIECEWISE_TAKES)
+            if self.piecewise_slip:
+                networks = networks.replace(" under ", f", {SLIP_TAKES} under ")
         else:
             networks = "no network of more than one mass"
         return f"one mass with {law} under {load}; {networks}"
@@ -201,7 +210,7 @@ class Method:
             return f"method {self.name!r} runs one-mass systems only"
         if self.piecewise_refusal is not None:
             return self.piecewise_refusal(network)
-        return refusal(network, self.name, any_load=self.piecewise_any_load)
+        return refusal(network, self.name, any_load=self.piecewise_any_load, slip=self.piecewise_slip)
 
     def by_network(self, force: object, network: Network) -> bool:
         """True if the one-mass solver refuses ``force`` (a table, ground motion) but the solver of
@@ -209,19 +218,34 @@ class Method:
         refused = self.force_refusal(force) is not None  # a constant from t = 0 runs as its sine (as_sine)
         return self.piecewise_any_load and refused and self.network_refusal(network) is None
 
-    def takes(self, names: object) -> None:
-        """Refuse the first of ``names`` that is not one of this method's options."""
-        own = [o.name for o in self.options]
+    @property
+    def option_names(self) -> tuple[str, ...]:
+        """The keywords :func:`lumped.solve` takes for it: its :attr:`options`, and ``solver`` (one of
+        :attr:`network_solvers`) if it runs any network.  ``solver`` is the API's alone: the command
+        line and a sweep offer the :data:`OPTIONS` flags, and a network run from them takes ``"auto"``."""
+        return tuple(o.name for o in self.options) + ((SOLVER,) if self.runs_networks else ())
+
+    def takes(self, names: object, *, command_line: bool = False) -> None:
+        """Refuse the first of ``names`` that is not one of this method's options; from the
+        ``command_line``, the message lists only the options it offers as flags (not ``solver``)."""
+        own = self.option_names
+        shown = tuple(o.name for o in self.options) if command_line else own
         for name in names:  # type: ignore[attr-defined]
             if name not in own:
-                takes = f"its options are {', '.join(own)}" if own else "it takes none"
+                takes = f"its options are {', '.join(shown)}" if shown else "it takes none"
                 raise ValueError(f"{name}: method {self.name!r} takes no option {name!r} ({takes})")
 
     def check_options(self, options: Mapping[str, object]) -> dict[str, object]:
         """``options`` checked and cleaned, or a ``ValueError`` naming the first it does not take or refuses."""
         self.takes(options)
-        own = {o.name: o for o in self.options}
-        return {name: own[name].check(value) for name, value in options.items()}
+        own = {o.name: o.check for o in self.options} | {SOLVER: self._check_solver}
+        return {name: own[name](value) for name, value in options.items()}
+
+    def _check_solver(self, solver: object) -> str:
+        """``solver`` if it is one of :attr:`network_solvers`, else a ``ValueError`` naming them."""
+        if not isinstance(solver, str) or solver not in self.network_solvers:
+            raise ValueError(f"solver must be one of {', '.join(self.network_solvers)}; got {solver!r}")
+        return solver
 
 
 def _backward_euler(
@@ -319,6 +343,7 @@ METHODS: Mapping[str, Method] = _Registry(
                 solution=solve_exact,
                 sine_forcing=True,
                 piecewise_networks=solve_exact_network,
+                piecewise_slip=True,
             ),
             Method(
                 "event-driven",
@@ -367,7 +392,7 @@ METHODS: Mapping[str, Method] = _Registry(
 ALIASES: Mapping[str, str] = MappingProxyType({a: m.name for m in METHODS.values() for a in m.aliases})
 #: Views of the registry.  The methods a sweep runs (``batch``; backward Euler in the batched kernel):
 SWEEP_METHODS = tuple(name for name, m in METHODS.items() if m.batch)
-#: The step solvers of a network run (``simulate_network``'s ``solver``), of the method that runs any network:
+#: The step solvers of a network run (``solve``'s option ``solver``), of the method that runs any network:
 NETWORK_SOLVERS = next(m.network_solvers for m in METHODS.values() if m.runs_networks)
 #: Every option of a method, by name, with the methods that take it.
 OPTIONS: Mapping[str, tuple[Option, tuple[str, ...]]] = MappingProxyType(

@@ -16,8 +16,9 @@ Dashpot laws, each a graph ``v = phi(F_d)`` and its implicit step:
 Friction laws, each a graph in (rate, tension) that may fall (static above
 kinetic, Stribeck), picked by a rule where it is not monotone:
 
-* :mod:`~lumped.laws.slip`: the friction contract :class:`SlipLaw` and
-  :class:`SlipCurve` (any slip curve, a callable);
+* :mod:`~lumped.laws.contract`: the law contract :class:`SlipLaw`, which
+  every law (the dashpots included) provides;
+* :mod:`~lumped.laws.slip`: :class:`SlipCurve` (any slip curve, a callable);
 * :mod:`~lumped.laws.stribeck`: static, kinetic, Stribeck and viscous
   friction, the ``friction`` kind, a law in one file;
 * :mod:`~lumped.laws.slip_elements`: a friction law as a network element.
@@ -36,14 +37,14 @@ Nothing here imports a solver, a driver or the model above it.
 """
 
 from lumped.laws.bingham import BinghamDashpot, bingham_corrector, coulomb, sticks
-from lumped.laws.contract import BinghamForm, Dashpot, DashpotState, LinearSpring, StepBound
+from lumped.laws.contract import BinghamForm, Dashpot, DashpotState, LinearSpring, SlipLaw, StepBound
 from lumped.laws.dashpot_elements import Bingham, HerschelBulkley, LawElement, LinearDashpot, LockingBingham, Monotone
 from lumped.laws.element import GROUND, Element
 from lumped.laws.kinds import KINDS
 from lumped.laws.monotone import HerschelBulkleyDashpot, MonotoneDashpot
 from lumped.laws.monotone_graph import MONOTONE_SAMPLE
 from lumped.laws.regularised import PapanastasiouDashpot
-from lumped.laws.slip import SlipCurve, SlipLaw
+from lumped.laws.slip import SlipCurve
 from lumped.laws.slip_elements import Contact, SlipElement
 from lumped.laws.stribeck import Friction, StribeckLaw
 from lumped.laws.spring_elements import MaxwellBingham, Spring, SpringString

@@ -1,26 +1,38 @@
-"""The dashpot contract: what a law must provide, and the values its step returns.
+"""The law contracts: a law is a graph in (rate, tension); a dashpot is its monotone case.
 
-A dashpot here is a *graph* relating velocity and force, written the way the
-paper writes eq. (6): the velocity as a function of the force, ``v = phi(F_d)``.
-When ``phi`` is flat (the Bingham band ``|F_d| <= mu_s N_f``) the inverse is
-set-valued, so ``F_d`` cannot be computed from ``v`` and becomes an unknown of
-the differential-algebraic system (8).
+Every constitutive law of a dissipative element here is a graph between the
+element's rate ``u`` (its elongation rate, ``w``) and its tension ``T``:
+off zero rate it slips with ``T = sgn(u) g(|u|)`` (the *slip curve*), at zero
+rate it holds any tension of its *stick interval* ``[-static, static]``.
+:class:`SlipLaw` states what every law provides (the slip curve, the stick
+interval and the slip limit ``g(0+)``, the steepest fall of the curve that a
+backward-Euler step must outweigh, its linear pieces if it has closed forms
+per phase).  A law whose graph falls (static friction above kinetic, a
+Stribeck curve) is picked by a rule in each step
+(:class:`lumped.laws.step_graph.SlipGraph`).
 
-One backward-Euler step (eqs. 13 to 15) reduces to a scalar equation for the
-dashpot force.  With ``eta = m/dt + k*dt`` eq. (15a) reads
+A *dashpot* (:class:`Dashpot`) is a law whose graph is monotone, written the
+way the paper writes eq. (6): the velocity as a function of the force,
+``v = phi(F_d)``.  When ``phi`` is flat (the Bingham band ``|F_d| <= mu_s
+N_f``) the inverse is set-valued, so ``F_d`` cannot be computed from ``v``
+and becomes an unknown of the differential-algebraic system (8).
+
+One backward-Euler step (eqs. 13 to 15) of a dashpot reduces to a scalar
+equation for its force.  With ``eta = m/dt + k*dt`` eq. (15a) reads
 
     F_d + eta * phi(F_d) = F~,          v = (F~ - F_d) / eta,
 
 that is ``F_d = (I + eta*phi)^{-1}(F~)``: the *resolvent* of the monotone graph
-``phi`` applied to the predictor ``F~`` of eq. (15b).  Each law provides that
-resolvent; Algorithm 1 is its closed form for the Bingham graph
+``phi`` applied to the predictor ``F~`` of eq. (15b).  Each dashpot provides
+that resolvent; Algorithm 1 is its closed form for the Bingham graph
 (:mod:`lumped.laws.bingham`).
 
-This module holds the linear spring of eq. (5), the :class:`Dashpot` base
-class with its numbered extension contract, and the named values a law
-returns (:class:`DashpotState`, :class:`BinghamForm`, :class:`StepBound`).
-The laws themselves are in :mod:`lumped.laws.bingham`,
-:mod:`lumped.laws.monotone` and :mod:`lumped.laws.regularised`.
+This module holds the linear spring of eq. (5), the two contracts with their
+numbered points (:class:`SlipLaw`, :class:`Dashpot`) and the named values a
+law returns (:class:`DashpotState`, :class:`BinghamForm`, :class:`StepBound`,
+:class:`SlipPiece`).  The laws themselves are in :mod:`lumped.laws.bingham`,
+:mod:`lumped.laws.monotone`, :mod:`lumped.laws.regularised`,
+:mod:`lumped.laws.stribeck` and :mod:`lumped.laws.slip`.
 """
 
 from __future__ import annotations
@@ -35,8 +47,9 @@ import numpy as np
 
 from lumped.laws import monotone_graph
 from lumped.numerics import validate
+from lumped.numerics.roots import brentq
 
-__all__ = ["LinearSpring", "Dashpot", "DashpotState", "BinghamForm", "StepBound"]
+__all__ = ["LinearSpring", "SlipLaw", "SlipPiece", "Dashpot", "DashpotState", "BinghamForm", "StepBound"]
 
 
 @dataclass(frozen=True)
@@ -101,7 +114,113 @@ class StepBound(NamedTuple):
     parameter: str
 
 
-class Dashpot(ABC):
+class SlipPiece(NamedTuple):
+    """A linear piece of a slip curve: ``g(s) = a + b s`` for ``lo <= s <= hi`` (speeds, m/s)."""
+
+    lo: float
+    hi: float
+    a: float
+    b: float
+
+
+class SlipLaw(ABC):
+    """A friction law: a graph in (rate ``u``, tension ``T``), symmetric (``T(-u) = -T(u)``).
+
+    A new law must provide:
+
+    1. ``static`` (N, >= 0): the stick interval at ``u = 0`` is ``[-static, static]``, the largest
+       tension a stuck contact holds.
+    2. ``slip(speed)``: the slip curve ``g(s)`` (N) at speeds ``s > 0`` (m/s), vectorised over NumPy
+       arrays, finite and ``>= 0``; off zero rate ``T(u) = sgn(u) g(|u|)``.  Its limit at ``0+``
+       (``slip_limit``, point 3) must not exceed ``static``.
+    3. ``slip_limit``: ``g(0+)`` (N), the tension just after breaking away.
+    4. ``fall``: the steepest fall of the slip curve, ``sup_s max(0, -g'(s))`` (N s/m): the bound
+       that a backward-Euler step needs for uniqueness (one mass: ``m/dt + k dt > fall``;
+       :func:`lumped.solvers.uniqueness.check_step`).  ``0`` for a curve that never falls.
+    5. ``pieces()``: the slip curve as :class:`SlipPiece` s, in increasing speed, the last reaching
+       ``inf``, if it is piecewise linear (so each phase has a closed form); ``None`` otherwise.
+
+    What a solver may ask beyond points 1 to 5 is a method here with a default that any law meeting
+    them satisfies; a law overrides one only to be faster or more exact.  No solver asks a law for
+    its class.
+
+    6. ``bingham_form()``: the :class:`~lumped.laws.BinghamForm` ``(tau, c)`` if the graph *is* the
+       Bingham graph of eq. (6) (``g(s) = static + c s``), else ``None``.  Such a contact is run as
+       the Bingham element it equals, bit for bit.
+    7. ``slip_speed(z, sigma)``: the speed ``s > 0`` with ``g(s) + sigma s = z``, for ``z >
+       slip_limit`` and ``sigma > fall`` (where it is unique): the slip step of a contact whose
+       resolvent variable is ``z``.  The default is the linear pieces' closed form, else Brent's
+       method on the bracket ``(0, z/sigma]`` (``g >= 0``).
+    8. ``kernel_form()``: ``(code, parameters)`` for the compiled one-mass loop, or ``None`` (the
+       default: the Python step runs it).
+    """
+
+    static: float
+
+    @abstractmethod
+    def slip(self, speed: np.ndarray | float) -> np.ndarray | float:
+        """The slip curve ``g(s)`` (N) at speeds ``s > 0`` (point 2)."""
+
+    @property
+    @abstractmethod
+    def slip_limit(self) -> float:
+        """``g(0+)`` (N), point 3."""
+
+    @property
+    @abstractmethod
+    def fall(self) -> float:
+        """The steepest fall of the slip curve (N s/m), point 4."""
+
+    def pieces(self) -> tuple[SlipPiece, ...] | None:
+        """The slip curve's linear pieces, or ``None`` (point 5)."""
+        return None
+
+    def tension(self, rate: np.ndarray | float) -> np.ndarray | float:
+        """``T(u) = sgn(u) g(|u|)`` off zero rate, ``0`` at ``u = 0`` (for plots)."""
+        u = np.asarray(rate, dtype=float)
+        out = np.where(u != 0, np.sign(u) * self.slip(np.where(u != 0, np.abs(u), 1.0)), 0.0)
+        return float(out) if np.ndim(rate) == 0 else out
+
+    def force_interval(self, rate: float) -> tuple[float, float]:
+        """The tensions compatible with ``rate``: the stick interval at 0, the slip tension elsewhere."""
+        if rate == 0:
+            return (-self.static, self.static)
+        t = float(self.tension(rate))
+        return (t, t)
+
+    def bingham_form(self) -> BinghamForm | None:
+        """``(tau, c)`` if the graph is the Bingham graph (point 6), else ``None``."""
+        pieces = self.pieces()
+        if pieces is None or len(pieces) != 1 or pieces[0].a != self.static:
+            return None
+        c = pieces[0].b
+        return BinghamForm(self.static, c)
+
+    def slip_speed(self, z: float, sigma: float) -> float:
+        """The speed ``s > 0`` of ``g(s) + sigma s = z`` (point 7); ``z > slip_limit``, ``sigma > 0``."""
+        pieces = self.pieces()
+        if pieces is not None:
+            for p in pieces:
+                s = (z - p.a) / (p.b + sigma)
+                if s <= p.hi:
+                    return max(s, p.lo)
+            return s  # the last piece reaches inf
+        g = self.slip
+        return brentq(lambda s: float(g(s)) + sigma * s - z, 0.0, z / sigma)
+
+    def kernel_form(self) -> tuple[int, tuple[float, ...]] | None:
+        """``(code, parameters)`` of the compiled one-mass loop, or ``None`` (point 8)."""
+        return None
+
+    @staticmethod
+    def check(value: object, name: str) -> SlipLaw:
+        """``value`` if it is a friction law, else a ``ValueError`` (the one test of "is this a law?")."""
+        if not isinstance(value, SlipLaw):
+            raise ValueError(f"{name} must be a lumped.laws.SlipLaw, got {type(value).__name__}")
+        return value
+
+
+class Dashpot(SlipLaw):
     """A dashpot given by its velocity-force graph ``v = phi(F_d)``.
 
     A new dashpot law must provide:
@@ -153,9 +272,39 @@ class Dashpot(ABC):
        |v|^n``) overrides it.
 
     The public :meth:`resolvent` checks its arguments and calls the hook.
+
+    A dashpot is the monotone case of the law contract :class:`SlipLaw`,
+    whose points it answers from the ones above: its stick interval and its
+    slip limit are both the threshold, its slip curve is :meth:`slip_force`,
+    it never falls, and it is piecewise linear where it has a Bingham form.
     """
 
     threshold: float
+
+    # -- SlipLaw's points 1 to 5, from the dashpot's own -----------------------------------------
+    @property
+    def static(self) -> float:  # type: ignore[override]
+        """The stick interval's half-width, the threshold (point 1 of :class:`SlipLaw`)."""
+        return self.threshold
+
+    def slip(self, speed: np.ndarray | float) -> np.ndarray | float:
+        """``g(s) = slip_force(s)`` (point 2 of :class:`SlipLaw`; the law is odd)."""
+        return self.slip_force(speed)
+
+    @property
+    def slip_limit(self) -> float:
+        """The threshold: a monotone law slips on from the edge of its band (point 3)."""
+        return self.threshold
+
+    @property
+    def fall(self) -> float:
+        """``0``: a monotone law never falls (point 4)."""
+        return 0.0
+
+    def pieces(self) -> tuple[SlipPiece, ...] | None:
+        """One piece ``tau + c s`` where the law has a Bingham form, else ``None`` (point 5)."""
+        form = self.bingham_form()
+        return None if form is None else (SlipPiece(0.0, math.inf, form.threshold, form.viscosity),)
 
     @abstractmethod
     def velocity(self, force: np.ndarray | float) -> np.ndarray | float:

@@ -24,11 +24,10 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import ClassVar, NamedTuple
 
-from lumped.laws.contract import Dashpot
-from lumped.laws.slip import SlipLaw
+from lumped.laws.contract import Dashpot, SlipLaw
 from lumped.laws.step_graph import Piece
 
-__all__ = ["GROUND", "MAX_NAME_LENGTH", "NAME_PATTERN", "Element", "KernelForm", "check_name"]
+__all__ = ["Element", "KernelForm", "GROUND", "NAME_PATTERN", "MAX_NAME_LENGTH", "check_name"]
 
 #: The name of the fixed point at ``x = 0``.
 GROUND = "ground"
@@ -47,7 +46,7 @@ def check_name(what: str, value: object) -> str:
     if not isinstance(value, str) or not NAME_PATTERN.match(value):
         raise ValueError(
             f"{what} must be 1 to {MAX_NAME_LENGTH} ASCII letters, digits, '_', '.', '-' "
-            f"starting with a letter or '_', got {value!a:.40}"
+            f"starting with a letter or '_', got {ascii(value):.40}"
         )
     return value
 
@@ -137,8 +136,9 @@ class Element(ABC):
         leave out, which then take the dataclass field's default (``()`` by
         default: every parameter is written).
     12. ``slip_law()``: the friction law (:class:`lumped.laws.SlipLaw`) of a
-        contact, whose slip phases a method may integrate (the
-        ``event-driven`` method); ``None`` by default (no friction contact).
+        contact, which a method asks through that law's contract (its
+        ``static``, ``slip_limit``, ``pieces()``), or ``None`` (the default:
+        the element is not a friction contact).
     """
 
     kind: ClassVar[str] = ""
@@ -212,15 +212,15 @@ class Element(ABC):
         """The dashpot law a single-mass method runs for this element (point 8), else ``None``."""
         return None
 
-    def slip_law(self) -> SlipLaw | None:
-        """The friction law of a contact (point 12), else ``None``."""
-        return None
-
     @property
     def auto_one_mass(self) -> bool:
         """True if ``solver="auto"`` runs one mass, one spring and this dashpot by
         :func:`lumped.backward_euler` (point 8); False by default."""
         return False
+
+    def slip_law(self) -> SlipLaw | None:
+        """The contact's friction law (point 12), or ``None``: not a friction contact."""
+        return None
 
     def kernel_form(self) -> KernelForm | None:
         """The element as ``_network_kernel.c`` reads it, or ``None`` (point 9)."""

@@ -18,7 +18,7 @@ from typing import ClassVar
 
 from lumped.laws.bingham import BinghamDashpot
 from lumped.laws.element import Element, KernelForm
-from lumped.laws.slip import SlipLaw
+from lumped.laws.contract import SlipLaw
 from lumped.laws.step_graph import (
     SLIP_BACK,
     SLIP_FORWARD,
@@ -85,7 +85,7 @@ class SlipElement:
         return self.law.fall
 
     def slip_law(self) -> SlipLaw:
-        """The contact's law (point 12 of :class:`~lumped.laws.element.Element`)."""
+        """The contact's law (point 12 of the element contract)."""
         return self.law
 
     def one_mass_law(self) -> BinghamDashpot | None:

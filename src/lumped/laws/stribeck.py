@@ -22,7 +22,7 @@ from typing import ClassVar
 import numpy as np
 
 from lumped.laws.element import Element
-from lumped.laws.slip import SlipLaw, SlipPiece
+from lumped.laws.contract import SlipLaw, SlipPiece
 from lumped.laws.slip_elements import SlipElement
 from lumped.numerics import validate
 

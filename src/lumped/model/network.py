@@ -31,7 +31,7 @@ __all__ = [
 ]
 
 #: Largest network accepted (masses, elements, loads).  A backward-Euler step of
-#: :func:`~lumped.drivers.network.simulate_network` costs about 14 us per mass
+#: :func:`lumped.solve` (backward Euler) costs about 14 us per mass
 #: for a chain with a spring and a Bingham element on every mass (0.14 s a step
 #: at 10,000 masses, measured on one core), so 10,000 masses run a thousand
 #: steps in minutes; a million masses (issue 19) took 4 minutes and 4.1 GB

@@ -132,8 +132,10 @@ class Trajectory:
         save_every: int = 1,
         final_rest: tuple[float, float] | None = None,
         events: tuple = (),
+        solver: str | None = None,
     ) -> Trajectory:
-        """A one-mass run of ``oscillator`` from its columns (:data:`COLUMNS`).
+        """A one-mass run of ``oscillator`` from its columns (:data:`COLUMNS`); ``solver`` names
+        its path where the method has several (``method`` by default).
 
         The system is :func:`~lumped.model.problem.oscillator_network`'s (the
         spring's force is ``F_s``, the dashpot's ``F_d``, both unchanged), with
@@ -158,7 +160,7 @@ class Trajectory:
             states=states,
             rigid=rigid,
             final_rest=rest,
-            solver=method,
+            solver=method if solver is None else solver,
             events=events,
         )
 

@@ -8,7 +8,7 @@ Python (:func:`_run_python`) or, block by block, in the compiled kernel
 (:mod:`lumped.solvers.network_compiled`).
 
 :func:`march` takes arguments already checked at the boundary
-(:func:`lumped.drivers.network.simulate_network`: the grid, the output's size,
+(:func:`lumped.drivers.network.run_network`: the grid, the output's size,
 the run time, the path); it does not check them again.
 """
 

@@ -91,13 +91,16 @@ def _admissible(net: Network) -> object:
 
 
 def largest_step(net: Network, dt: float) -> float:
-    """The largest ``dt' <= dt`` whose steps are all unique for every smaller step (bisection to 1e-12
-    relative; the test holds for ``dt' -> 0``, where ``M/dt'`` dominates)."""
+    """The edge below ``dt`` (a step that fails the test) where the test starts to fail: ``dt`` halved
+    until the test holds (it does as ``dt -> 0``, where ``M/dt`` dominates), then bisected to 1e-12
+    relative between that admissible step and its double."""
     test = _admissible(net)
-    lo, hi = 0.0, dt
-    while test(hi / 2**20) is False:  # far below: every fall is outweighed long before
-        hi /= 2**20
-    lo = hi / 2**20
+    lo = dt
+    for _ in range(2100):  # 2^-2100 underflows: the test holds long before
+        if test(lo):
+            break
+        lo /= 2
+    hi = min(2 * lo, dt)
     while hi - lo > 1e-12 * hi:
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if test(mid) else (lo, mid)
