@@ -11,7 +11,9 @@ numbers bit for bit, at the compiled kernel's speed.  With a
 ``herschel-bulkley`` element instead it goes to the same function, whose
 step is then the law's resolvent (a root solve).  Every other network takes
 the active-set step, in C (:mod:`lumped.solvers.network_compiled`) when its elements
-are piecewise linear and its links form a forest or close one loop, else in Python.
+are piecewise linear and its links form a forest or close one loop, else, for one
+mass with a friction contact (a block on a belt), in the compiled friction loop
+(:mod:`lumped.solvers.friction_compiled`), else in Python.
 """
 
 from __future__ import annotations
@@ -23,6 +25,7 @@ from lumped.model.network import Network
 from lumped.model.problem import OneMass, one_mass_form
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
+from lumped.solvers import friction_compiled as friction
 from lumped.solvers import network_compiled as kernel
 from lumped.solvers.backward_euler_network import march
 from lumped.solvers.uniqueness import check_step
@@ -36,7 +39,8 @@ SOLVERS = NETWORK_SOLVERS
 #: Measured on this project's 2-core machine, shared and busy
 #: (benchmarks/bench_network.py, chains): Python about 2e-5 + 1e-5 per
 #: element; compiled about 1e-6 + 4e-8 to 1e-7 per element; a margin of 2.
-_COST = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7)}
+#: The one-mass friction loop: about 3e-8 s a step (benchmarks/bench_belt.py), a margin of 10.
+_COST = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7), friction.PATH: (3e-7, 0.0)}
 
 
 def _paper_form(net: Network) -> OneMass | None:
@@ -81,9 +85,13 @@ def simulate_network(
         other network through the active-set step; ``"active-set"`` always
         takes the active-set step.  Both run it compiled when
         :func:`lumped.solvers.network_compiled.ineligible` allows (every element
-        piecewise linear, the link graph a forest or one loop, the kernel built) and in
+        piecewise linear, the link graph a forest or one loop, the kernel built), in
+        the compiled one-mass friction loop when
+        :func:`lumped.solvers.friction_compiled.ineligible` allows (one mass, linear
+        springs and dashpots, one friction contact of a ``kernel_form``, drivers at
+        constant velocities; ``Trajectory.solver`` is then ``"one-mass-friction"``), and in
         Python otherwise.  ``"compiled"`` and ``"python"`` force one path
-        (``"compiled"`` refuses a network it cannot run).
+        (``"compiled"`` refuses a network neither compiled loop can run).
 
     Returns
     -------
@@ -116,10 +124,15 @@ def simulate_network(
 
 
 def _path(net: Network, solver: str) -> str:
-    """``"compiled"`` or ``"python"``: the active-set step's path for ``solver``."""
+    """``"compiled"``, :data:`lumped.solvers.friction_compiled.PATH` (one mass with a friction contact
+    that the network kernel cannot run) or ``"python"``: the active-set step's path for ``solver``."""
     if solver == "python":
         return "python"
     reason = kernel.ineligible(net)
-    if solver == "compiled" and reason is not None:
+    if reason is None:
+        return "compiled"
+    if friction.ineligible(net) is None:
+        return friction.PATH
+    if solver == "compiled":
         raise ValueError(f"solver: 'compiled' cannot run this network: {reason}")
-    return "python" if reason is not None else "compiled"
+    return "python"

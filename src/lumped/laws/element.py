@@ -135,6 +135,9 @@ class Element(ABC):
     11. ``optional`` (a class attribute): the parameters a system file may
         leave out, which then take the dataclass field's default (``()`` by
         default: every parameter is written).
+    12. ``slip_law``: the :class:`lumped.laws.SlipLaw` of a friction contact, whose
+        ``kernel_form()`` the compiled one-mass friction loop reads
+        (:mod:`lumped.solvers.friction_compiled`); ``None`` by default (not a contact).
     """
 
     kind: ClassVar[str] = ""
@@ -198,6 +201,11 @@ class Element(ABC):
     def steepest_fall(self) -> float:
         """How steeply the force may fall with the rate (N s/m, point 10); ``0.0`` by default."""
         return 0.0
+
+    @property
+    def slip_law(self) -> object | None:
+        """The friction law of a contact (a :class:`lumped.laws.SlipLaw`, point 12); ``None`` by default."""
+        return None
 
     @property
     def linear_stiffness(self) -> float | None:

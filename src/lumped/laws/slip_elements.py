@@ -84,6 +84,11 @@ class SlipElement:
     def steepest_fall(self) -> float:
         return self.law.fall
 
+    @property
+    def slip_law(self) -> SlipLaw:
+        """The contact's law (point 12 of the element contract)."""
+        return self.law
+
     def one_mass_law(self) -> BinghamDashpot | None:
         """The Bingham law this contact equals, if it is one (the paper's methods run it), else ``None``."""
         form = self.law.bingham_form()
