@@ -1,4 +1,4 @@
-/* Argument checks of the compiled kernels' bindings (_kernel.c, _network_kernel.c).
+/* Argument checks of the compiled kernels' bindings (_kernel.c, _network_kernel.c, _friction_kernel.c).
  *
  * The bindings are private (the drivers in timestepping and network.integrate
  * call them with arrays they built), but a wrong length, item type or count
@@ -75,14 +75,19 @@ static Py_ssize_t items(const Py_buffer *b) { return b->len / b->itemsize; }
 static int check_real(const char *name, double x, double lo, int strict, int inf_ok) {
     const int in_range = strict ? x > lo : x >= lo;
     if (in_range && (isfinite(x) || (inf_ok && x > 0))) return 0;
-    PyObject *value = PyFloat_FromDouble(x);
-    if (value == NULL) return -1;
+    PyObject *value = PyFloat_FromDouble(x), *bound = PyFloat_FromDouble(lo); /* PyErr_Format has no %g */
+    if (value == NULL || bound == NULL) {
+        Py_XDECREF(value);
+        Py_XDECREF(bound);
+        return -1;
+    }
     if (isinf(lo))
         PyErr_Format(PyExc_ValueError, "%s must be finite, got %R", name, value);
     else
-        PyErr_Format(PyExc_ValueError, "%s must be %s %g%s, got %R", name, strict ? ">" : ">=", lo,
+        PyErr_Format(PyExc_ValueError, "%s must be %s %R%s, got %R", name, strict ? ">" : ">=", bound,
                      inf_ok ? " (inf allowed)" : " and finite", value);
     Py_DECREF(value);
+    Py_DECREF(bound);
     return -1;
 }
 

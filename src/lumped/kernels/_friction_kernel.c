@@ -55,6 +55,8 @@ typedef struct {
     law_t law;
     double inertia, dt;
     double *a, *b, *w, *f; /* each element's piece f = a + b w and its rate and force (n_el each) */
+    double speed[3];       /* the contact's last slip speeds on a Stribeck branch, newest first */
+    int known;             /* how many of them follow one another (0 after a stick) */
 } sys_t;
 
 /* ---- the slip curve of a Stribeck law (lumped.laws.stribeck) ---------------- */
@@ -74,22 +76,31 @@ static double slip_curve(const law_t *l, double s, double *slope) {
     return l->kin + l->visc * s + drop * d;
 }
 
-/* The s > 0 with g(s) + E s = y, for y > static = g(0+) and E above the curve's steepest fall (so
- * that the left side increases): Newton's method from the tangent at 0, any iterate that leaves the
- * bracket (lo, hi) replaced by the bisection; stops when a step moves s by at most 2 ulps or the
- * bracket is that narrow.  g >= 0 puts the root in (0, y/E]. */
-static double slip_speed(const law_t *l, double y, double E) {
+/* The s > 0 with h(s) = g(s) + E s - y = 0, for y > static = g(0+) and E above the curve's steepest
+ * fall (so that h increases): Newton's method from `guess` (the last step's slip speed on this
+ * branch, or the tangent at 0 if it is not in the bracket), any iterate that leaves the bracket
+ * (lo, hi) replaced by the bisection; g >= 0 puts the root in (0, y/E].  It stops after a Newton
+ * step ds whose successor would move s by at most half an ulp, M2 ds^2 / (2 h') <= eps s / 2 (M2 >= |g''|:
+ * the decay's |d''| is at most 1 (exponential) or 2, over v_s^2), which saves the evaluation that
+ * would only confirm it; or after a step of at most 2 ulps, or on a bracket that narrow. */
+static double slip_speed(const law_t *l, double y, double E, double guess) {
     double lo = 0.0, hi = y / E, slope;
-    slip_curve(l, 0.0, &slope);
-    double s = (y - l->stat) / (E + slope);
+    const double m2 = (l->stat - l->kin) / (l->vs * l->vs) * (l->code == 1 ? 1.0 : 2.0);
+    double s = guess;
+    if (!(s > lo && s < hi)) {
+        slip_curve(l, 0.0, &slope);
+        s = (y - l->stat) / (E + slope);
+    }
     if (!(s > lo && s < hi)) s = 0.5 * (lo + hi);
     for (int it = 0; it < 200; it++) {
         const double h = slip_curve(l, s, &slope) + E * s - y;
         if (h == 0.0) return s;
         if (h < 0.0) lo = s;
         else hi = s;
-        double next = s - h / (slope + E);
+        const double ds = h / (slope + E);
+        double next = s - ds;
         if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+        else if (m2 * ds * ds <= DBL_EPSILON * next * (slope + E)) return next;
         if (fabs(next - s) <= 2.0 * DBL_EPSILON * next || hi - lo <= 2.0 * DBL_EPSILON * hi) return next;
         s = next;
     }
@@ -156,6 +167,16 @@ static double slip_linear(sys_t *q, double rhs, int direction, int *mode) {
     return v;
 }
 
+/* Newton's start: the last slip speeds extrapolated by the parabola through them (the step changes
+ * s by O(dt); the parabola's error is O(dt^3), within the reach of one Newton step at dt = 1e-3 on the
+ * belt: benchmarks/bench_belt.py), or -1 after a stick (slip_speed then starts from the tangent at 0). */
+static double guess(const sys_t *q) {
+    const double *s = q->speed;
+    if (q->known == 3) return 3.0 * (s[0] - s[1]) + s[2];
+    if (q->known == 2) return 2.0 * s[0] - s[1];
+    return q->known == 1 ? s[0] : -1.0;
+}
+
 /* The contact slipping in `direction` on a Stribeck branch: the step's slip speed (slip_speed), or
  * STICK when the branch has no point (y at most g(0+) = static). */
 static double slip_curve_step(sys_t *q, double rhs, int direction, int *mode) {
@@ -173,7 +194,9 @@ static double slip_curve_step(sys_t *q, double rhs, int direction, int *mode) {
         return 0.0;
     }
     double slope;
-    const double s = slip_speed(&q->law, y, E);
+    const double s = slip_speed(&q->law, y, E, guess(q));
+    q->speed[2] = q->speed[1], q->speed[1] = q->speed[0], q->speed[0] = s;
+    q->known += q->known < 3;
     q->f[c] = direction * slip_curve(&q->law, s, &slope);
     const double v = (load - q->sign[c] * q->f[c]) / E;
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
@@ -247,6 +270,7 @@ static void march(sys_t *q, march_t *m, const record_t *o, const double *table, 
             return;
         }
         if (iterations > cnt[3]) cnt[3] = iterations;
+        if (mode == STICK) q->known = 0;
         m->v[0] = v;
         m->x[0] = m->x[0] + q->dt * v;
         for (Py_ssize_t e = 0; e < q->n_el; e++) { /* Element.next_state */
