@@ -131,8 +131,11 @@ def _path(net: Network, solver: str) -> str:
     reason = kernel.ineligible(net)
     if reason is None:
         return "compiled"
-    if friction.ineligible(net) is None:
+    other = friction.ineligible(net)
+    if other is None:
         return friction.PATH
     if solver == "compiled":
+        if any(el.slip_law is not None for el in net.elements):  # the friction loop's reason too
+            reason = f"{reason} (the network kernel); {other} (the one-mass friction loop)"
         raise ValueError(f"solver: 'compiled' cannot run this network: {reason}")
     return "python"

@@ -288,25 +288,6 @@ static void march(sys_t *q, march_t *m, const record_t *o, const double *table, 
 
 /* ---- the Python binding ------------------------------------------------------ */
 
-/* The items of a tuple of `count` arrays, or NULL with ValueError naming it. */
-static PyObject *const *tuple_items(PyObject *obj, const char *name, Py_ssize_t count) {
-    if (!PyTuple_Check(obj) || PyTuple_GET_SIZE(obj) != count) {
-        PyErr_Format(PyExc_ValueError, "%s must be a tuple of %zd arrays", name, count);
-        return NULL;
-    }
-    return &PyTuple_GET_ITEM(obj, 0);
-}
-
-/* Take a tuple of arrays of the given names, item types and counts into h. */
-static int take_tuple(held_t *h, PyObject *obj, const char *name, int n, const char *const *names, const char *types,
-                      const Py_ssize_t *counts, int writable, Py_buffer **out) {
-    PyObject *const *a = tuple_items(obj, name, n);
-    if (a == NULL) return -1;
-    for (int i = 0; i < n; i++)
-        if (!(out[i] = take(h, a[i], names[i], types[i], counts[i], writable))) return -1;
-    return 0;
-}
-
 /* The system's checks: roles 0..2 with exactly one contact, signs +-1, finite parameters and shifts. */
 static int check_plan(sys_t *q) {
     q->contact = -1;

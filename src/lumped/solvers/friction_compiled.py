@@ -77,16 +77,18 @@ def ineligible(net: Network) -> str | None:
     if KERNEL != "compiled":
         return "the compiled friction kernel was not built"
     if len(net.masses) != 1:
-        return "it runs one mass"
+        return f"the network has {len(net.masses)} masses"
     contacts = [el for el in net.elements if el.slip_law is not None]
-    if len(contacts) != 1 or contacts[0].slip_law.kernel_form() is None:
-        return "it runs one friction contact whose law has a kernel form"
+    if len(contacts) != 1:
+        return f"the network has {len(contacts)} friction contacts"
+    if contacts[0].slip_law.kernel_form() is None:
+        return f"the slip curve of {contacts[0].name!r} has no kernel form"
     first, second = net.incidence()
     for e, el in enumerate(net.elements):
         if (first[e] == 0) == (second[e] == 0):
             return f"element {el.name!r} does not join the mass to the ground or a driven point"
         if el.slip_law is None and _role(el) is None:
-            return f"element {el.name!r} is neither a linear spring nor a linear dashpot"
+            return f"element {el.name!r} is neither a linear spring, a linear dashpot nor a friction contact"
     for d in net.driven():
         if net.drivers[d.driver].constant_velocity is None:
             return f"driven point {net.drivers[d.driver].name!r} does not move at a constant velocity"
