@@ -32,7 +32,8 @@ CONFIG_TEXT = yaml.safe_dump(dict(config), sort_keys=True)
 #: notebook stem -> figure stems: the paper's in its numbering (figNN_<slug>),
 #: then the tutorial's extensions (extNN_<slug>, notebooks 06 to 08) and the
 #: accuracy study (accNN_<slug>, notebook 09) and the studies (stNN_<slug>, notebook 10;
-#: spNN_<slug>, notebook 12; rcNN_<slug>, notebook 13; fitNN_<slug>, notebook 14).
+#: spNN_<slug>, notebook 12; rcNN_<slug>, notebook 13; fitNN_<slug>, notebook 14;
+#: frNN_<slug>, notebook 15).
 NOTEBOOK_FIGURES = {
     "01_governing_equations": [],
     "02_sgn_zero_failure": [],
@@ -72,6 +73,7 @@ NOTEBOOK_FIGURES = {
     "12_stops_per_cycle": ["sp01_stops_map", "sp02_stop_histories"],
     "13_response_curves": ["rc01_response_curves", "rc02_two_mass_response"],
     "14_sensitivities_and_fit": ["fit01_rest_kinks", "fit02_free_decay_fit"],
+    "15_friction_on_a_belt": ["fr01_belt_phase_portrait", "fr02_smoothing_creep"],
 }
 
 #: notebook stem -> the data files it reads (rules/studies.smk, rules/accuracy.smk).
@@ -99,6 +101,7 @@ CATEGORY = {
     "12_stops_per_cycle": "Study - stops per cycle of the forced Coulomb oscillator (sp01-sp02)",
     "13_response_curves": "Tutorial - response curves by shooting and continuation (rc01-rc02)",
     "14_sensitivities_and_fit": "Tutorial - sensitivities through stick and slip, and a fit (fit01-fit02)",
+    "15_friction_on_a_belt": "Tutorial - friction on a belt, static above kinetic (fr01-fr02)",
 }
 
 #: Every figure file the pipeline makes.

@@ -19,7 +19,9 @@
   pad of the summed threshold, rests where the closed form says, and its pads'
   intervals are what each one's threshold leaves the other;
   ``two_mass_response.toml`` without friction has the linear two-degree-of-
-  freedom response (``tests/test_response_network.py``).
+  freedom response (``tests/test_response_network.py``); ``belt.toml`` meets
+  the closed-form stick-slip cycle and ``stribeck_belt.toml`` the linearised
+  motion about steady sliding (``tests/test_friction_cli.py``).
 * ``scripts/ground_record.py`` writes the committed record, byte for byte.
 """
 
@@ -50,6 +52,8 @@ TESTS = {
     "building": "test_examples.py::test_the_building_with_locked_dampers_is_the_linear_shear_frame",
     "figure2_beside_dashpot": "test_examples.py::test_figure2_beside_the_dashpot_holds_at_the_strings_length",
     "friction_pads": "test_examples.py::test_two_pads_move_as_one_and_share_the_held_force",
+    "belt": "test_friction_cli.py::test_the_belt_example_meets_the_closed_form_cycle",
+    "stribeck_belt": "test_friction_cli.py::test_the_stribeck_example_is_the_linearised_motion",
     "two_mass_response": (
         "test_response_network.py::test_without_friction_the_example_is_the_linear_two_degree_of_freedom_response"
     ),
@@ -114,6 +118,7 @@ def test_an_example_says_what_it_is_and_runs_as_it_says(path: Path, runs: dict[s
         assert run["omega"][0] == start and run["omega"][-1] == stop
         return
     columns = ["t"] + [f"{q}_{n}" for q in ("x", "v") for n in names]
+    columns += [f"{q}_{d.name}" for q in ("x", "v") for d in network.drivers]  # the driven points' motion
     for n in network.element_names:
         shared = n in INTERVALS.get(path.stem, [])
         columns += [f"F_{n}", f"force_min_{n}", f"force_max_{n}"] if shared else [f"F_{n}"]

@@ -266,6 +266,12 @@ FIGURES = {
     "sp02": lambda: plotting.stop_histories([("a", REST_X0, REST_X0, [(0.0, 0.5)]), ("b", REST_X0, -REST_X0, [])]),
     "fit01": lambda: plotting.summary_kinks(REST_X0, 0.01 * REST_X0, 0.01 * np.sign(REST_X0), [(0.0, -0.01, 0.01)]),
     "fit02": lambda: plotting.fit_record(_fit()),
+    "fr01": lambda: plotting.belt_phase_portrait(
+        {"backward Euler": (REST_X0, 0.2 * np.cos(REST_X0))}, (REST_X0, 0.2 * np.sin(REST_X0)), (0.0, 1.0, 0.2)
+    ),
+    "fr02": lambda: plotting.smoothing_creep(
+        (REST_X0, 0.2 * np.cos(REST_X0)), {r"$\varepsilon$": (REST_X0, 0.2 + 1e-3 * REST_X0)}, 0.2, [(0.0, 0.5)]
+    ),
 }
 
 

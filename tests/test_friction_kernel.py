@@ -118,7 +118,7 @@ def step_tolerance(net, tr, n):
     forces differ by at most ``(24 + 16 + 2) eps |y| E / (E - fall) + 6 eps E s``, which is below
     ``64 eps Y E / (E - fall)`` with ``Y = |f| + E (|v| + |belt|)``.
     """
-    law = net.elements[1].slip_law
+    law = net.elements[1].slip_law()
     inertia = 1.0 / DT
     e = (
         inertia
@@ -179,7 +179,7 @@ def test_the_python_step_lies_on_a_flat_stribeck_branch():
     )
     tr = lumped.simulate_network(net, 3 * 1e-3, 1e-3, solver="python")
     u = tr.velocities[1:, 0] - 0.2
-    curve = -net.elements[1].slip_law.slip(np.abs(u))
+    curve = -net.elements[1].slip_law().slip(np.abs(u))
     assert np.all(np.abs(tr.forces[1:, 1] - curve) <= 64 * EPS * 1e3 * np.abs(u))
 
 

@@ -22,6 +22,7 @@ from lumped import (  # noqa: E402
     plotting,  # noqa: E402
     simulate_network,
 )
+from lumped.laws.stribeck import StribeckLaw  # noqa: E402
 from lumped.plotting import textbook as textbook_plots  # noqa: E402
 from lumped.solvers.textbook import TextbookModel, integrate_adaptive, integrate_fixed  # noqa: E402
 
@@ -70,6 +71,11 @@ def oscillator_network_with_names() -> Network:
     )
 
 
+_T = np.linspace(0.0, 1.0, 11)
+#: Made-up arguments of the belt helpers (notebook 15): runs, closed form and stick segment; the creep's.
+BELT = ({"run": (_T, 0.2 * np.cos(_T))}, (_T, 0.2 * np.sin(_T)), (0.0, 1.0, 0.2))
+CREEP = ((_T, 0.2 * np.cos(_T)), {"eps": (_T, 0.2 + 1e-3 * _T)}, 0.2, [(0.0, 0.3), (0.7, 1.0)])
+
 #: Every helper that draws a legend, as a call taking ``ax``.
 LEGENDS = {
     "time_history": lambda ax: plotting.time_history(TRAJ, EXACT, "x", ax=ax),
@@ -80,12 +86,16 @@ LEGENDS = {
     "network_history": lambda ax: plotting.network_history({"run": NET}, "x", "m", ax=ax),
     "network_panels": lambda ax: plotting.network_panels({"run": NET}, [("x", "m"), ("v", "m")], axes=[ax] * 2),
     "fit_record": lambda ax: plotting.fit_record(_fit(), axes=[ax] * 2),
+    "friction_graph": lambda ax: plotting.friction_graph({"law": StribeckLaw(1.0, 0.5, 0.01)}, 0.05, ax=ax),
+    "belt_phase_portrait": lambda ax: plotting.belt_phase_portrait(*BELT, ax=ax),
+    "smoothing_creep": lambda ax: plotting.smoothing_creep(*CREEP, axes=[ax] * 2),
 }
 #: Helpers whose ``ax=None`` call is spelled differently (they take ``axes``).
 WHOLE = {
     "time_history_panels": lambda: plotting.time_history_panels(TRAJ, EXACT),
     "network_panels": lambda: plotting.network_panels({"run": NET}, [("x", "m"), ("v", "m")]),
     "fit_record": lambda: plotting.fit_record(_fit()),
+    "smoothing_creep": lambda: plotting.smoothing_creep(*CREEP),
 }
 
 

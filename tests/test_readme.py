@@ -171,11 +171,10 @@ def test_a_quick_start_block_runs_and_prints_what_the_readme_shows(
 def test_the_example_system_file_is_the_papers_figure_3() -> None:
     """examples/figure3.toml runs through Algorithm 1 and gives its arrays bit for bit (free vibration, x0 = 0.5)."""
     import lumped as L
-    from lumped.drivers.network import simulate_network
     from lumped.model.files import load_system
 
     network = load_system(ROOT / "examples" / "figure3.toml")
-    run = simulate_network(network, 4.0, 1e-4)
+    run = L.solve(L.Problem(network, 4.0), 1e-4)
     reference = L.backward_euler(L.Oscillator.bingham(mass=1, stiffness=100, threshold=1, gamma=1), 4.0, 1e-4, x0=0.5)
     assert np.array_equal(run.positions[:, 0], reference.x) and np.array_equal(run.velocities[:, 0], reference.v)
     assert np.array_equal(run.forces[:, 1], reference.F_d) and np.array_equal(run.F_d, reference.F_d)

@@ -57,6 +57,7 @@ def test_a_caption_splits_at_its_first_sentence(path):
         "sp": f"Study figure sp{number}",
         "rc": f"Tutorial figure rc{number}",
         "fit": f"Tutorial figure fit{number}",
+        "fr": f"Tutorial figure fr{number}",
     }[kind]
     assert caption.title.startswith(expected)
     flat = " ".join(caption.text.split())

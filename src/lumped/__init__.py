@@ -10,19 +10,29 @@ below it: :mod:`~lumped.numerics` (validation, the sine, the root finder),
 :mod:`~lumped.model` (the oscillator, networks, loads, parameters,
 trajectories), :mod:`~lumped.kernels` (the compiled loops),
 :mod:`~lumped.solvers` (one module per method), :mod:`~lumped.drivers`
-(:func:`solve`, which runs any :class:`Problem` by any method, with
-:func:`simulate` for one oscillator and :func:`simulate_network` for
-backward Euler's choice of step solver; the method registry; the sweep; the response curves, :func:`response_curve`), :mod:`~lumped.studies`, :mod:`~lumped.plotting` and
-:mod:`~lumped.cli`.  The names below are the public API.
+(:func:`solve`, the one entry point, which runs any :class:`Problem` by any
+method of :data:`METHODS` and returns one :class:`Trajectory`; the sweep; the
+response curves, :func:`response_curve`), :mod:`~lumped.studies`,
+:mod:`~lumped.plotting` and :mod:`~lumped.cli`.  The names below are the
+public API.
+
+The other ways to start a run that users know are shims over :func:`solve`,
+each documented with the call it stands for and what it adds:
+:func:`simulate` (one oscillator, given as its parts) and
+:func:`simulate_network` (backward Euler with its ``solver``) add nothing;
+the one-mass solvers that ``solve`` runs for the paper's system
+(:func:`backward_euler`, alias :func:`algorithm1`; :func:`solve_exact`;
+:func:`solve_event_driven`; :func:`event_capturing`; :func:`theta_method`)
+add what a :class:`Trajectory` does not carry (the solution in continuous
+time, the located events, a ``kernel`` or ``theta`` of one's own).
 """
 
 from lumped.drivers.fit import FitResult, fit
 from lumped.drivers.methods import METHODS
-from lumped.drivers.network import simulate_network
+from lumped.drivers.simulation import simulate, simulate_network, solve
 from lumped.drivers.response import continue_orbits, find_orbit
 from lumped.drivers.response.curve import response_curve
 from lumped.drivers.sensitivity import one_sided_sensitivities, system_sensitivities
-from lumped.drivers.simulation import simulate, solve
 from lumped.drivers.steady_sensitivity import steady_amplitude_sensitivities
 from lumped.laws import (
     Bingham,

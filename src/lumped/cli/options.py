@@ -98,7 +98,7 @@ def method_options(args: argparse.Namespace) -> dict[str, object]:
     """The options of ``--method`` given on the command line (``--rtol``), checked by the registry."""
     method = METHODS[args.method]
     given = {name: getattr(args, name, None) for name in OPTIONS if getattr(args, name, None) is not None}
-    method.takes(given)  # refuses an option the method does not take, before its value is read
+    method.takes(given, command_line=True)  # refuses an option the method does not take, before its value is read
     return method.check_options({name: validate.parse_float(name, text) for name, text in given.items()})
 
 

@@ -118,10 +118,15 @@ def _piecewise(network: object, method: str, path: str) -> bool:
 
 
 def _one_mass(network: object, args: argparse.Namespace) -> None:
-    """Refuse a network that the single-mass ``--method`` cannot run (not one mass, or a law
-    the method does not take), naming the file."""
+    """Refuse a network that the single-mass ``--method`` cannot run (driven points, a graph that is not
+    monotone, not one mass, or a law the method does not take), naming the file."""
     from lumped.model.problem import one_mass_form
 
+    try:  # a driven point or a falling graph, named as such (not as "not one mass")
+        network.refuse_drivers(f"method {args.method!r}")  # type: ignore[attr-defined]
+        network.refuse_non_monotone(f"method {args.method!r}")  # type: ignore[attr-defined]
+    except ValueError as err:
+        raise ValueError(f"{err} ({args.system})") from None
     try:
         form = one_mass_form(network)  # type: ignore[arg-type]
     except ValueError as err:

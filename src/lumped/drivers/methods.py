@@ -2,10 +2,10 @@
 
 Each method is declared here once, with what it can run and its options.
 Everything that chooses a method by name reads this table:
-:func:`lumped.simulate` (one mass), the command line (``--method``'s choices
+:func:`lumped.solve` (the one entry point: a method's options, the
+``solver`` of the method that runs any network), the command line (``--method``'s choices
 and help, the option flags such as ``--rtol``, which methods run a
-``--system`` network), :mod:`lumped.drivers.sweep` (the methods a sweep runs),
-:func:`lumped.simulate_network` (the step solvers of a network run) and the
+``--system`` network), :mod:`lumped.drivers.sweep` (the methods a sweep runs) and the
 studies (:mod:`lumped.studies.accuracy` compares every method, grouped by
 ``fixed_step`` and ``bingham_only``; :mod:`lumped.studies.rest` two of them).
 
@@ -25,7 +25,8 @@ Adding a method
    :meth:`~lumped.model.forcing.Forcing.sine`),
    its solver of the networks whose every phase is linear, if it has one
    (``piecewise_networks``: run for a network that is not of the one-mass
-   form), and its :class:`Option` s.
+   form), whether it runs friction whose graph is not monotone and driven
+   points (``runs_friction``), and its :class:`Option` s.
 
 A method asked to run what it cannot says so in one line that names the
 method and the reason (:meth:`Method.refusal`).  What ``--help`` and the
@@ -54,7 +55,7 @@ from lumped.solvers.exact import ExactSolution, solve_exact
 from lumped.solvers.exact_network import solve_exact_network
 from lumped.solvers.moreau_jean import BINGHAM_REASON, DEFAULT_THETA, moreau_jean, validate_theta
 from lumped.solvers.network_phase import _TAKES as PIECEWISE_TAKES  # the one wording of what they take
-from lumped.solvers.network_phase import refusal
+from lumped.solvers.network_phase import SLIP_TAKES, refusal
 from lumped.solvers.theta import theta_method
 
 __all__ = ["ALIASES", "METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", "NETWORK_SOLVERS", "OPTIONS"]
@@ -62,6 +63,8 @@ __all__ = ["ALIASES", "METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", 
 Force = SwitchedSine | Callable[[np.ndarray], np.ndarray] | None
 #: A one-mass solver: ``(osc, t_end, dt, x0, v0, force, save_every, **options) -> Trajectory``.
 Solver = Callable[..., Trajectory]
+#: The keyword that picks a method's step solver of networks (:attr:`Method.network_solvers`).
+SOLVER = "solver"
 
 
 @dataclass(frozen=True)
@@ -106,7 +109,7 @@ class Method:
     bingham_only: bool = False
     #: True if a sweep runs it (a batch of rows).
     batch: bool = False
-    #: The step solvers (``simulate_network``'s ``solver``) by which it runs any network,
+    #: The step solvers by which it runs any network (the option ``solver`` of :func:`lumped.solve`),
     #: the default first; empty if it runs one-mass networks only, as an oscillator.
     network_solvers: tuple[str, ...] = ()
     options: tuple[Option, ...] = ()
@@ -121,7 +124,8 @@ class Method:
     #: True if its forcing must be a sine on from ``t = 0`` (its closed forms or its events use the formula,
     #: asked of the load by :func:`~lumped.model.forcing.as_sine`); false if it takes any callable of time.
     sine_forcing: bool = False
-    #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots),
+    #: Its solver of piecewise-linear networks (springs, Bingham, Coulomb, linear dashpots; with
+    #: ``piecewise_slip``, friction contacts with a linear slip curve and points driven at constant velocities),
     #: ``(network, t_end, dt, *, save_every) -> Trajectory``, which refuses any other network in one
     #: line (:meth:`network_refusal`); ``None`` if it runs one-mass networks only (or any network, by
     #: ``network_solvers``).
@@ -130,8 +134,15 @@ class Method:
     #: and constants (its closed forms carry them).  A one-mass system whose load the one-mass solver
     #: refuses then runs through it.
     piecewise_any_load: bool = False
+    #: True if that solver also runs friction contacts whose slip curve is linear (static above kinetic,
+    #: a viscous part) and points driven at constant velocities (:func:`~lumped.solvers.network_phase.refusal`'s
+    #: ``slip``).
+    piecewise_slip: bool = False
     #: Former names that still select it (``METHODS[alias]`` is this method; ``--help`` and a note on use say so).
     aliases: tuple[str, ...] = ()
+    #: True if it runs friction contacts whose graph is not monotone (static above kinetic, a falling slip
+    #: curve: point 12 of :class:`~lumped.laws.element.Element`) and driven points, on any network.
+    runs_friction: bool = False
 
     def __call__(self, *args: object, **options: object) -> Trajectory:
         return self.run(*args, **options)
@@ -158,8 +169,15 @@ class Method:
         elif self.piecewise_networks is not None:
             takes = PIECEWISE_TAKES.split(" under ")[0] + (" under any load" if self.piecewise_any_load else "")
             networks = "networks of " + (takes if self.piecewise_any_load else PIECEWISE_TAKES)
+            if self.piecewise_slip:
+                networks = networks.replace(" under ", f", {SLIP_TAKES} under ")
         else:
             networks = "no network of more than one mass"
+        if self.runs_friction:
+            networks += (
+                ", with friction whose static force is above its kinetic one or whose slip curve falls "
+                "(the step's dt bounded so that it is unique) and driven points (belts)"
+            )
         return f"one mass with {law} under {load}; {networks}"
 
     @property
@@ -190,7 +208,7 @@ class Method:
         or load), or ``None`` if it can; a method without one refuses every network in one line."""
         if self.piecewise_networks is None:
             return f"method {self.name!r} runs one-mass systems only"
-        return refusal(network, self.name, any_load=self.piecewise_any_load)
+        return refusal(network, self.name, any_load=self.piecewise_any_load, slip=self.piecewise_slip)
 
     def by_network(self, force: object, network: Network) -> bool:
         """True if the one-mass solver refuses ``force`` (a table, ground motion) but the solver of
@@ -198,19 +216,34 @@ class Method:
         refused = self.force_refusal(force) is not None  # a constant from t = 0 runs as its sine (as_sine)
         return self.piecewise_any_load and refused and self.network_refusal(network) is None
 
-    def takes(self, names: object) -> None:
-        """Refuse the first of ``names`` that is not one of this method's options."""
-        own = [o.name for o in self.options]
+    @property
+    def option_names(self) -> tuple[str, ...]:
+        """The keywords :func:`lumped.solve` takes for it: its :attr:`options`, and ``solver`` (one of
+        :attr:`network_solvers`) if it runs any network.  ``solver`` is the API's alone: the command
+        line and a sweep offer the :data:`OPTIONS` flags, and a network run from them takes ``"auto"``."""
+        return tuple(o.name for o in self.options) + ((SOLVER,) if self.runs_networks else ())
+
+    def takes(self, names: object, *, command_line: bool = False) -> None:
+        """Refuse the first of ``names`` that is not one of this method's options; from the
+        ``command_line``, the message lists only the options it offers as flags (not ``solver``)."""
+        own = self.option_names
+        shown = tuple(o.name for o in self.options) if command_line else own
         for name in names:  # type: ignore[attr-defined]
             if name not in own:
-                takes = f"its options are {', '.join(own)}" if own else "it takes none"
+                takes = f"its options are {', '.join(shown)}" if shown else "it takes none"
                 raise ValueError(f"{name}: method {self.name!r} takes no option {name!r} ({takes})")
 
     def check_options(self, options: Mapping[str, object]) -> dict[str, object]:
         """``options`` checked and cleaned, or a ``ValueError`` naming the first it does not take or refuses."""
         self.takes(options)
-        own = {o.name: o for o in self.options}
-        return {name: own[name].check(value) for name, value in options.items()}
+        own = {o.name: o.check for o in self.options} | {SOLVER: self._check_solver}
+        return {name: own[name](value) for name, value in options.items()}
+
+    def _check_solver(self, solver: object) -> str:
+        """``solver`` if it is one of :attr:`network_solvers`, else a ``ValueError`` naming them."""
+        if not isinstance(solver, str) or solver not in self.network_solvers:
+            raise ValueError(f"solver must be one of {', '.join(self.network_solvers)}; got {solver!r}")
+        return solver
 
 
 def _backward_euler(
@@ -298,6 +331,7 @@ METHODS: Mapping[str, Method] = _Registry(
                 "Algorithm 1 (backward Euler)",
                 batch=True,
                 network_solvers=("auto", "active-set", "compiled", "python"),
+                runs_friction=True,
             ),
             Method(
                 "exact",
@@ -308,6 +342,7 @@ METHODS: Mapping[str, Method] = _Registry(
                 solution=solve_exact,
                 sine_forcing=True,
                 piecewise_networks=solve_exact_network,
+                piecewise_slip=True,
             ),
             Method(
                 "event-driven",
@@ -353,7 +388,7 @@ METHODS: Mapping[str, Method] = _Registry(
 ALIASES: Mapping[str, str] = MappingProxyType({a: m.name for m in METHODS.values() for a in m.aliases})
 #: Views of the registry.  The methods a sweep runs (``batch``; backward Euler in the batched kernel):
 SWEEP_METHODS = tuple(name for name, m in METHODS.items() if m.batch)
-#: The step solvers of a network run (``simulate_network``'s ``solver``), of the method that runs any network:
+#: The step solvers of a network run (``solve``'s option ``solver``), of the method that runs any network:
 NETWORK_SOLVERS = next(m.network_solvers for m in METHODS.values() if m.runs_networks)
 #: Every option of a method, by name, with the methods that take it.
 OPTIONS: Mapping[str, tuple[Option, tuple[str, ...]]] = MappingProxyType(

@@ -1,6 +1,8 @@
-"""Backward Euler for a network: problem in, :class:`~lumped.model.trajectory.Trajectory` out.
+"""Backward Euler for a network: the method ``"backward-euler"`` of :func:`lumped.solve`.
 
-This driver checks the arguments once (the grid, the output's size, the
+:func:`run_network` is what :func:`lumped.solve` runs for that method (and
+:func:`lumped.simulate_network`, a shim over :func:`lumped.solve`, with it).
+It checks the arguments once (the grid, the output's size, the
 estimated run time), picks the path and hands the run to a solver; the time
 loop itself is :func:`lumped.solvers.backward_euler_network.march`.
 
@@ -30,9 +32,9 @@ from lumped.solvers import network_compiled as kernel
 from lumped.solvers.backward_euler_network import march
 from lumped.solvers.uniqueness import check_step
 
-__all__ = ["simulate_network", "SOLVERS"]
+__all__ = ["run_network", "SOLVERS"]
 
-#: Step solvers by name (see :func:`simulate_network`): a view of the registry
+#: Step solvers by name (see :func:`run_network`): a view of the registry
 #: (:data:`lumped.drivers.methods.NETWORK_SOLVERS`, those of the method that runs any network).
 SOLVERS = NETWORK_SOLVERS
 #: Estimated cost (s) of a step, a constant and a part per element, by path.
@@ -66,14 +68,11 @@ def _via_algorithm1(net: Network, form: OneMass, t_end: float, dt: float, save_e
     m = net.masses[0]
     force = sine_form(one_force([load.force for load in net.loads]))
     tr = backward_euler(form.oscillator, t_end, dt, x0=m.x0, v0=m.v0, force=force, save_every=save_every)
-    solver = "algorithm1" if form.oscillator.dashpot.bingham_form() is not None else "resolvent"  # as backward_euler
-    return network_trajectory(net, form, tr, solver)
+    return network_trajectory(net, form, tr, tr.solver)  # "algorithm1", or "resolvent" for another law
 
 
-def simulate_network(
-    network: Network, t_end: float, dt: float, *, save_every: int = 1, solver: str = "auto"
-) -> Trajectory:
-    """Integrate a network with backward Euler on the grid ``t_n = n*dt``.
+def run_network(network: Network, t_end: float, dt: float, *, save_every: int = 1, solver: str = "auto") -> Trajectory:
+    """Integrate a network with backward Euler on the grid ``t_n = n*dt`` (``solve``'s ``"backward-euler"``).
 
     Parameters
     ----------
@@ -135,7 +134,7 @@ def _path(net: Network, solver: str) -> str:
     if other is None:
         return friction.PATH
     if solver == "compiled":
-        if any(el.slip_law is not None for el in net.elements):  # the friction loop's reason too
+        if any(el.slip_law() is not None for el in net.elements):  # the friction loop's reason too
             reason = f"{reason} (the network kernel); {other} (the one-mass friction loop)"
         raise ValueError(f"solver: 'compiled' cannot run this network: {reason}")
     return "python"

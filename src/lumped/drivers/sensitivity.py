@@ -106,6 +106,11 @@ def plan(
     ``None``.
     """
     params = system_parameters(network, parameters, what)
+    try:  # before the one-mass form, which would call a driven point "not the ground"
+        network.refuse_drivers("the exact sensitivities")
+        network.refuse_non_monotone("the exact sensitivities")
+    except ValueError as err:
+        raise ValueError(f"{what}: {err}") from None
     try:
         return (params, *_one_mass(network, params, what))
     except ValueError as err:

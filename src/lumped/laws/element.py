@@ -24,7 +24,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import ClassVar, NamedTuple
 
-from lumped.laws.contract import Dashpot
+from lumped.laws.contract import Dashpot, SlipLaw
 from lumped.laws.step_graph import Piece
 
 __all__ = ["Element", "KernelForm", "GROUND", "NAME_PATTERN", "MAX_NAME_LENGTH", "check_name"]
@@ -135,9 +135,18 @@ class Element(ABC):
     11. ``optional`` (a class attribute): the parameters a system file may
         leave out, which then take the dataclass field's default (``()`` by
         default: every parameter is written).
-    12. ``slip_law``: the :class:`lumped.laws.SlipLaw` of a friction contact, whose
-        ``kernel_form()`` the compiled one-mass friction loop reads
-        (:mod:`lumped.solvers.friction_compiled`); ``None`` by default (not a contact).
+    12. ``slip_law()``: the friction law (:class:`lumped.laws.SlipLaw`) of a
+        contact, which a method asks through that law's contract (its
+        ``static``, ``slip_limit``, ``pieces()``), or ``None`` (the default:
+        the element is not a friction contact).
+    13. ``monotone``: True (the default) if the element's graph is maximal
+        monotone for every state; False for a graph that falls (a friction
+        contact with ``static`` above its slip limit, a slip curve falling
+        with speed, a curve invertible neither way), whose step a rule picks
+        (point 6 of :class:`lumped.laws.step_graph.StepGraph`).  The methods
+        written for monotone graphs (the period map, the exact
+        sensitivities, the one-mass schemes) refuse such an element
+        (:meth:`lumped.model.network.Network.refuse_non_monotone`).
     """
 
     kind: ClassVar[str] = ""
@@ -203,9 +212,9 @@ class Element(ABC):
         return 0.0
 
     @property
-    def slip_law(self) -> object | None:
-        """The friction law of a contact (a :class:`lumped.laws.SlipLaw`, point 12); ``None`` by default."""
-        return None
+    def monotone(self) -> bool:
+        """True if the graph is maximal monotone for every state (point 12); True by default."""
+        return True
 
     @property
     def linear_stiffness(self) -> float | None:
@@ -221,6 +230,10 @@ class Element(ABC):
         """True if ``solver="auto"`` runs one mass, one spring and this dashpot by
         :func:`lumped.backward_euler` (point 8); False by default."""
         return False
+
+    def slip_law(self) -> SlipLaw | None:
+        """The contact's friction law (point 12), or ``None``: not a friction contact."""
+        return None
 
     def kernel_form(self) -> KernelForm | None:
         """The element as ``_network_kernel.c`` reads it, or ``None`` (point 9)."""

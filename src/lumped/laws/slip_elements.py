@@ -84,10 +84,14 @@ class SlipElement:
     def steepest_fall(self) -> float:
         return self.law.fall
 
-    @property
     def slip_law(self) -> SlipLaw:
         """The contact's law (point 12 of the element contract)."""
         return self.law
+
+    @property
+    def monotone(self) -> bool:
+        """True if the slip curve starts at ``static`` and never falls (the Bingham graph among them)."""
+        return self.law.slip_limit >= self.law.static and self.law.fall == 0
 
     def one_mass_law(self) -> BinghamDashpot | None:
         """The Bingham law this contact equals, if it is one (the paper's methods run it), else ``None``."""

@@ -9,12 +9,15 @@ CSV file ``t,F`` read by :func:`lumped.model.tables.read_table`, relative to
 the system file); an optional ``[ground]`` table whose ``acceleration`` is
 one of the same kinds (a table's columns ``t,a``), applied as the load
 ``-m a_g(t)`` on every mass, whose positions and velocities are then
-relative to the ground.  Several forces on one mass add.  ``x0``, ``v0``,
+relative to the ground; ``[[driver]]`` tables with ``name`` and
+``velocity``, a number (m/s) or one of the same kinds (a table's columns
+``t,v``), points whose motion is prescribed (a belt), which elements name in
+``between`` as they name the ground or a mass.  Several forces on one mass add.  ``x0``, ``v0``,
 ``phase`` and ``from`` default to 0 and ``until`` to ``inf``.  Every problem
 is a ``ValueError`` of one line naming the file, the entry and the problem
 (non-ASCII characters in it escaped).
 
-Names of masses and elements are 1 to 64 ASCII letters, digits, ``_``,
+Names of masses, drivers and elements are 1 to 64 ASCII letters, digits, ``_``,
 ``.`` and ``-``, starting with a letter or ``_``
 (:data:`~lumped.laws.element.NAME_PATTERN`): they become column names
 of the output.  A file holds at most
@@ -78,7 +81,8 @@ def load_system(path: str | Path) -> Network:
 
 def table_files(path: str | Path) -> list[tuple[str, Path]]:
     """The table files that the system file ``path`` names, as ``(entry, file)``: ``("[[force]] 2", folder /
-    file)`` or ``("[ground] acceleration", ...)``, each resolved as :func:`load_system` reads it.
+    file)``, ``("[ground] acceleration", ...)`` or ``("[[driver]] 1 velocity", ...)``, each resolved as
+    :func:`load_system` reads it.
 
     What cannot be read is left out (a file that is not TOML names none): :func:`load_system` refuses it.
     """
@@ -89,9 +93,11 @@ def table_files(path: str | Path) -> list[tuple[str, Path]]:
         data = tomllib.loads(path.read_text(encoding="utf-8"))
     except (OSError, UnicodeError, tomllib.TOMLDecodeError, RecursionError):
         return []
-    forces = data.get("force", [])
+    forces, drivers = data.get("force", []), data.get("driver", [])
     ground = data.get("ground", {})
     entries = [(f"[[force]] {i}", raw) for i, raw in enumerate(forces if isinstance(forces, list) else [], 1)]
+    for i, raw in enumerate(drivers if isinstance(drivers, list) else [], 1):
+        entries.append((f"[[driver]] {i} velocity", raw.get("velocity") if isinstance(raw, dict) else None))
     if isinstance(ground, dict):
         entries.append(("[ground] acceleration", ground.get("acceleration")))
     return [

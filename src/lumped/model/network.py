@@ -31,7 +31,7 @@ __all__ = [
 ]
 
 #: Largest network accepted (masses, elements, loads).  A backward-Euler step of
-#: :func:`~lumped.drivers.network.simulate_network` costs about 14 us per mass
+#: :func:`lumped.solve` (backward Euler) costs about 14 us per mass
 #: for a chain with a spring and a Bingham element on every mass (0.14 s a step
 #: at 10,000 masses, measured on one core), so 10,000 masses run a thousand
 #: steps in minutes; a million masses (issue 19) took 4 minutes and 4.1 GB
@@ -250,13 +250,16 @@ class Network:
             raise ValueError("masses: a network needs at least one mass")
 
     def _check_names(self) -> None:
-        for what, items in (("mass", self.masses + self.drivers), ("element", self.elements)):
+        for what, items in (("mass", self.masses), ("driver", self.drivers), ("element", self.elements)):
             seen: set[str] = set()
             for item in items:
                 if item.name in seen:
                     raise ValueError(f"{what} {item.name!r}: the name is used twice")
                 seen.add(item.name)
         masses = {m.name for m in self.masses}
+        for d in self.drivers:
+            if d.name in masses:
+                raise ValueError(f"driver {d.name!r}: the name is a mass's; a driven point needs a name of its own")
         known = masses | {GROUND} | {d.name for d in self.drivers}
         for el in self.elements:
             for point in el.between:
@@ -268,7 +271,12 @@ class Network:
             if not masses & set(el.between):
                 raise ValueError(f"element {el.name!r}: joins {el.between[0]!r} and {el.between[1]!r}, neither a mass")
         for load in self.loads:
-            if load.on not in known - {GROUND}:
+            if load.on in known - masses - {GROUND}:
+                raise ValueError(
+                    f"force on {load.on!r}: {load.on!r} is a driven point, whose motion is prescribed; "
+                    "forces act on masses"
+                )
+            if load.on not in masses:
                 raise ValueError(f"force on {load.on!r}: there is no mass of that name")
 
     # -- indices ------------------------------------------------------------
@@ -301,6 +309,17 @@ class Network:
                 f"{what} cannot run a system with driven points ({listed([d.name for d in self.drivers])}); "
                 "backward-euler runs it"
             )
+
+    def refuse_non_monotone(self, what: str) -> None:
+        """A ``ValueError`` saying that ``what`` cannot run the first element whose graph is not monotone
+        (point 12 of :class:`~lumped.laws.element.Element`: friction with static above kinetic, a falling
+        slip curve), if there is one."""
+        for el in self.elements:
+            if not el.monotone:
+                raise ValueError(
+                    f"{what} cannot run element {el.name!r} of kind {el.kind!r}: its graph is not monotone "
+                    "(static above kinetic, or a slip curve that falls with speed); backward-euler runs it"
+                )
 
     def index_of(self, el: Element) -> tuple[int, int]:
         """``(first, second)`` point indices of an element."""

@@ -52,7 +52,9 @@ def one_mass_form(net: Network) -> OneMass:
         raise ValueError(f"has {len(net.masses)} masses")
     for el in net.elements:
         if GROUND not in el.between:
-            raise ValueError(f"element {el.name!r} does not join the mass to the ground")
+            driven = [d.name for d in net.drivers if d.name in el.between]
+            joins = f"joins the mass to the driven point {driven[0]!r}, not" if driven else "does not join the mass"
+            raise ValueError(f"element {el.name!r} {joins} to the ground")
         if el.linear_stiffness is None and el.one_mass_law() is None:
             raise ValueError(f"element {el.name!r} of kind {el.kind!r} is not a spring or a dashpot")
     springs = tuple(el for el in net.elements if el.linear_stiffness is not None)

@@ -133,8 +133,10 @@ class Trajectory:
         save_every: int = 1,
         final_rest: tuple[float, float] | None = None,
         events: tuple = (),
+        solver: str | None = None,
     ) -> Trajectory:
-        """A one-mass run of ``oscillator`` from its columns (:data:`COLUMNS`).
+        """A one-mass run of ``oscillator`` from its columns (:data:`COLUMNS`); ``solver`` names
+        its path where the method has several (``method`` by default).
 
         The system is :func:`~lumped.model.problem.oscillator_network`'s (the
         spring's force is ``F_s``, the dashpot's ``F_d``, both unchanged), with
@@ -159,7 +161,7 @@ class Trajectory:
             states=states,
             rigid=rigid,
             final_rest=rest,
-            solver=method,
+            solver=method if solver is None else solver,
             events=events,
         )
 
@@ -190,9 +192,14 @@ class Trajectory:
 
         Where some forces are not unique, ``force_min`` and ``force_max`` too
         (``.npz``), or ``force_min_<element>`` and ``force_max_<element>``
-        beside ``F_<element>`` for each element concerned (``.csv``).
+        beside ``F_<element>`` for each element concerned (``.csv``).  With
+        driven points, their positions and velocities at the saved times
+        (:meth:`driver_motion`): ``driver_x``, ``driver_v`` and
+        ``driver_names`` (``.npz``), or ``x_<driver>`` and ``v_<driver>``
+        after the masses' (``.csv``).
         """
         net = self.network
+        drive_x, drive_v = self.driver_motion()
         if suffix == ".npz":
             out = {
                 "t": self.t,
@@ -205,10 +212,14 @@ class Trajectory:
             }
             if self.force_min is not None and self.force_max is not None:
                 out |= {"force_min": self.force_min, "force_max": self.force_max}
+            if net.drivers:
+                out |= {"driver_x": drive_x, "driver_v": drive_v, "driver_names": np.array(self.driver_names)}
             return out
         out = {"t": self.t}
         out |= {f"x_{n}": self.positions[:, i] for i, n in enumerate(net.mass_names)}
         out |= {f"v_{n}": self.velocities[:, i] for i, n in enumerate(net.mass_names)}
+        out |= {f"x_{n}": drive_x[:, i] for i, n in enumerate(self.driver_names)}
+        out |= {f"v_{n}": drive_v[:, i] for i, n in enumerate(self.driver_names)}
         for i, n in enumerate(net.element_names):
             out[f"F_{n}"] = self.forces[:, i]
             if i in self.undetermined:
@@ -216,6 +227,26 @@ class Trajectory:
                 out[f"force_max_{n}"] = self.force_max[:, i]  # type: ignore[index]
         out |= {f"load_{n}": self.applied[:, i] for i, n in enumerate(net.mass_names)}
         return out
+
+    @property
+    def driver_names(self) -> list[str]:
+        """The names of the system's driven points, in order (none without ``[[driver]]`` s)."""
+        return [d.name for d in self.network.drivers]
+
+    def driver_motion(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each driven point's position (m) and velocity (m/s) at the saved times: two ``(N, drivers)`` arrays.
+
+        The position is the integral of the prescribed velocity from 0
+        (:meth:`lumped.model.network.Driver.position`), the displacement a
+        backward-Euler step moves the point by, so a contact stuck to it
+        keeps its elongation.
+        """
+        shape = (self.t.size, len(self.network.drivers))
+        x, v = np.zeros(shape), np.zeros(shape)
+        for i, d in enumerate(self.network.drivers):
+            x[:, i] = d.position(self.t)
+            v[:, i] = d.velocity_at(self.t)
+        return x, v
 
     @property
     def undetermined(self) -> list[int]:

@@ -25,6 +25,7 @@ from lumped.plotting.figures import (
     string_spring_triptych,
 )
 from lumped.plotting.fit import fit_record, summary_kinks
+from lumped.plotting.friction import belt_phase_portrait, friction_graph, smoothing_creep
 from lumped.plotting.histories import (
     difference,
     exact_fine,
@@ -48,6 +49,7 @@ from lumped.plotting.studies import (
 __all__ = [
     "STYLE",
     "accuracy_convergence",
+    "belt_phase_portrait",
     "bingham_pair",
     "bingham_pictorial",
     "chain_positions",
@@ -58,6 +60,7 @@ __all__ = [
     "exact_fine",
     "exact_on_grid",
     "fit_record",
+    "friction_graph",
     "legend_above",
     "locking_graph",
     "network_history",
@@ -71,6 +74,7 @@ __all__ = [
     "rest_positions",
     "save_figure",
     "sci_tex",
+    "smoothing_creep",
     "step_label",
     "stick_map",
     "stop_histories",

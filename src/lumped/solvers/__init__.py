@@ -7,7 +7,9 @@
 * :mod:`~lumped.solvers.grid`: what those two fixed-step schemes share (the
   grid's checks);
 * :mod:`~lumped.solvers.exact`: the ``exact`` piecewise solution, with its
-  closed-form slip phases in :mod:`~lumped.solvers.closed_form`;
+  closed-form slip phases in :mod:`~lumped.solvers.closed_form` (and
+  :mod:`~lumped.solvers.closed_form_belt`, the closed-form stick-slip cycle
+  of a block on a belt that ``exact`` and backward Euler are tested against);
 * :mod:`~lumped.solvers.event_driven`: the ``event-driven`` method (slip
   phases integrated, events located);
 * :mod:`~lumped.solvers.events`: the one event machinery (events, phases,

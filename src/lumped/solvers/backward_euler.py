@@ -265,6 +265,13 @@ def backward_euler(
 ) -> Trajectory:
     """Integrate the DAE (8) with Algorithm 1 on the grid ``t_n = n*dt``.
 
+    A shim of the one entry point, kept for the name users know:
+    ``lumped.solve(Problem.oscillator(oscillator, t_end, x0=x0, v0=v0,
+    force=force), dt, method="backward-euler")`` runs this function for the
+    paper's system (Algorithm 1's kernel is chosen inside) and gives the same
+    numbers, with each element's force.  Called directly it adds ``kernel``
+    (the compiled or the Python loop).  ``lumped.algorithm1`` is this function.
+
     Parameters
     ----------
     oscillator : Oscillator
@@ -317,8 +324,9 @@ def backward_euler(
     _march(oscillator, dt, n_steps, stride, force, kernel, state, counters, out)
     rest = int(counters[1])
     final_rest = (rest * dt, float(out[-1, 1])) if state[1] == 0 else (math.nan, math.nan)
+    path = "algorithm1" if oscillator.dashpot.bingham_form() is not None else "resolvent"
     return Trajectory.from_array(
-        out, oscillator, method="backward-euler", dt=dt, save_every=save_every, final_rest=final_rest
+        out, oscillator, method="backward-euler", dt=dt, save_every=save_every, final_rest=final_rest, solver=path
     )
 
 

@@ -9,7 +9,7 @@ Python (:func:`_run_python`) or, block by block, in the compiled kernel
 contact in the compiled friction loop (:mod:`lumped.solvers.friction_compiled`).
 
 :func:`march` takes arguments already checked at the boundary
-(:func:`lumped.drivers.network.simulate_network`: the grid, the output's size,
+(:func:`lumped.drivers.network.run_network`: the grid, the output's size,
 the run time, the path); it does not check them again.
 """
 

@@ -254,6 +254,12 @@ def event_capturing(
 ) -> CapturedRun:
     """Integrate the DAE (8) by trapezoidal steps within modes, switching at located events.
 
+    A shim of the one entry point, kept for what it adds:
+    ``lumped.solve(Problem.oscillator(oscillator, t_end, x0=x0, v0=v0,
+    force=force), dt, method="event-locating")`` gives its ``trajectory``;
+    called directly it returns the :class:`CapturedRun`, with the located
+    events beside the grid.
+
     Parameters
     ----------
     force : SwitchedSine or None

@@ -340,6 +340,13 @@ def solve_event_driven(
 ) -> IntegratedSolution:
     """Event-driven solution of the DAE (8) for any monotone dashpot law.
 
+    A shim of the one entry point, kept for what it adds:
+    ``lumped.solve(Problem.oscillator(oscillator, t_end, x0=x0, v0=v0,
+    force=force), dt, method="event-driven", rtol=rtol)`` samples this
+    solution on a grid; called directly it returns the solution in continuous
+    time (its events, the motion at any time) and takes ``max_events`` and
+    ``max_steps``.
+
     Parameters
     ----------
     oscillator : Oscillator

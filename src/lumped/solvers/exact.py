@@ -310,6 +310,13 @@ def solve_exact(
 ) -> ExactSolution:
     """Exact solution of the DAE (8) for a Bingham or Coulomb dashpot.
 
+    A shim of the one entry point, kept for what it adds:
+    ``lumped.solve(Problem.oscillator(oscillator, t_end, x0=x0, v0=v0,
+    force=force), dt, method="exact")`` samples this solution on a grid
+    (:meth:`ExactSolution.sample`); called directly it returns the solution in
+    continuous time (its phases and events, the motion at any time), which
+    the sensitivities and the studies read, and takes ``max_events``.
+
     Parameters
     ----------
     oscillator : Oscillator

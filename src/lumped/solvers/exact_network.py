@@ -1,16 +1,19 @@
 """The ``exact`` method for networks: closed forms per phase, events located, modes chosen.
 
-A network of linear springs, Bingham and Coulomb elements and linear
-dashpots under constant and sine loads (:func:`lumped.solvers.network_phase.refusal`
+A network of linear springs, Bingham and Coulomb elements, linear
+dashpots and friction contacts whose slip curve is linear (static above
+kinetic, a viscous part), with points driven at constant velocities, under
+constant and sine loads (:func:`lumped.solvers.network_phase.refusal`
 says what else blocks it) moves, between events, by the linear ODE of its
 mode (:mod:`lumped.solvers.network_phase`: the matrix exponential of the
-first-order system with the loads' generators).  :func:`solve_exact_network`
+first-order system with the loads' generators and, with driven points, the
+ramp ``t - start``).  :func:`solve_exact_network`
 marches from phase to phase:
 
 1. within a phase, every event function is a linear map of the state ``z``:
    a slipping element's rate times its direction (a *stop* when it reaches
    0), a sticking element's ``threshold -+ force`` (a *breakaway* when
-   either reaches 0); they are tabulated on a sub-grid of a fiftieth of the
+   either reaches 0; a contact's threshold is its static force); they are tabulated on a sub-grid of a fiftieth of the
    phase's shortest period, ``z_{j+1} = expm(A h) z_j``, and the first sign
    change is located by :func:`lumped.numerics.roots.brentq` on
    ``expm(A (t - t_j)) z_j``;
@@ -18,7 +21,10 @@ marches from phase to phase:
    phase too (a *switch*);
 3. at an event the new mode is chosen among the elements at zero rate
    (:func:`lumped.solvers.network_modes.select`, shared with the
-   ``event-locating`` method).
+   ``event-locating`` method): a contact that stops sticks if its holding
+   force is within its static bound, and else slips on, the other way, at
+   once; one that breaks away slips in the direction of its force, against
+   its kinetic force.
 
 Each mass's final rest is the start of the last run of phases in which a
 path of sticking elements holds it to the ground (as the independent
@@ -162,7 +168,7 @@ def solve_exact_network(
         For a bad argument, or a network whose phases have no closed form
         (one line naming the element or load that blocks it).
     """
-    index, dt, save_every = grid_rows(network, "exact", t_end, dt, save_every, any_load=False)
+    index, dt, save_every = grid_rows(network, "exact", t_end, dt, save_every, any_load=False, slip=True)
     p = parts(network)
     x0, v0 = (a[:-1] for a in network.initial_positions())
     phases, events = march(p, x0, v0, float(index[-1] * dt), network.element_names, max_events)

@@ -5,7 +5,7 @@ The system it runs: one mass; linear springs (``linear_stiffness``, point 8 of
 ``kernel_form()``, point 9), each between the mass and the ground or a driven
 point; one friction contact whose law has a ``kernel_form()``
 (:class:`~lumped.laws.StribeckLaw`: static above kinetic with or without a
-Stribeck fall, a viscous part), found through the element's ``slip_law``
+Stribeck fall, a viscous part), found through the element's ``slip_law()``
 (point 12), to the ground or a driven point; any loads on the mass; every
 driven point it touches at a constant velocity.  The block on a belt is the
 example.  The step is the Python step's (:func:`lumped.solvers.network_step.solve_step`
@@ -78,16 +78,16 @@ def ineligible(net: Network) -> str | None:
         return "the compiled friction kernel was not built"
     if len(net.masses) != 1:
         return f"the network has {len(net.masses)} masses"
-    contacts = [el for el in net.elements if el.slip_law is not None]
+    contacts = [el for el in net.elements if el.slip_law() is not None]
     if len(contacts) != 1:
         return f"the network has {len(contacts)} friction contacts"
-    if contacts[0].slip_law.kernel_form() is None:
+    if contacts[0].slip_law().kernel_form() is None:
         return f"the slip curve of {contacts[0].name!r} has no kernel form"
     first, second = net.incidence()
     for e, el in enumerate(net.elements):
         if (first[e] == 0) == (second[e] == 0):
             return f"element {el.name!r} does not join the mass to the ground or a driven point"
-        if el.slip_law is None and _role(el) is None:
+        if el.slip_law() is None and _role(el) is None:
             return f"element {el.name!r} is neither a linear spring, a linear dashpot nor a friction contact"
     for d in net.driven():
         if net.drivers[d.driver].constant_velocity is None:
@@ -102,9 +102,9 @@ def plan(net: Network) -> FrictionPlan:
     _, second = net.incidence()
     law = None
     for e, el in enumerate(net.elements):
-        if el.slip_law is not None:
+        if el.slip_law() is not None:
             role[e] = _CONTACT
-            code, parameters = el.slip_law.kernel_form()
+            code, parameters = el.slip_law().kernel_form()
             law = (int(code), *(float(p) for p in parameters))
         else:
             role[e], par[e] = _role(el)  # type: ignore[misc]

@@ -1,7 +1,8 @@
 """The modes of a piecewise-linear network and their switches, shared by its ``exact`` and ``event-locating`` methods.
 
-A friction element (one that can stick: Bingham, Coulomb) is in one of
-three modes: sticking (0) or slipping one way (+-1); the mode of the network
+A friction element (one that can stick: Bingham, Coulomb, a friction
+contact with a linear slip curve) is in one of three modes: sticking (0) or
+slipping one way (+-1); the mode of the network
 fixes its linear phase (:func:`lumped.solvers.network_phase.phase`).  This
 module holds what both methods do at the boundaries of phases:
 
@@ -29,7 +30,7 @@ import numpy as np
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
-from lumped.solvers.network_phase import Parts, Phase, phase, refusal
+from lumped.solvers.network_phase import Parts, Phase, generator_one, phase, refusal
 
 __all__ = [
     "BAND",
@@ -59,9 +60,15 @@ class NetworkEvent:
     mode: tuple[int, ...]
 
 
+def rates(p: Parts, v: np.ndarray) -> np.ndarray:
+    """The elements' rates (m/s, (E,)) at the masses' velocities ``v``, driven points' included."""
+    w = p.b.T @ v
+    return w if p.drive is None else w + p.drive
+
+
 def initial_mode(p: Parts, v: np.ndarray) -> tuple[np.ndarray, list[int]]:
     """Slip in the direction of the initial rate; friction elements at zero rate are to be chosen."""
-    w = p.b.T @ v
+    w = rates(p, v)
     mode = np.where(p.friction, np.sign(w), 0).astype(int)
     return mode, [int(e) for e in np.flatnonzero(p.friction & (w == 0))]
 
@@ -110,6 +117,9 @@ def event_rows(p: Parts, ph: Phase) -> tuple[np.ndarray, np.ndarray, list[tuple[
     """The event functions of ``ph`` as rows on ``z`` (each starts positive) and on a further load ``F``
     (``rows @ z + feed @ F``), with ``(element, kind)``."""
     w = p.b.T @ ph.rows("v")
+    one = generator_one(p, ph.a.shape[0])
+    if p.drive is not None:
+        w[:, one] += p.drive
     f, f_in = ph.rows("f"), ph.feed[3 * ph.n :]
     rows, feed, what = [], [], []
     for e in np.flatnonzero(p.friction):
@@ -119,7 +129,7 @@ def event_rows(p: Parts, ph: Phase) -> tuple[np.ndarray, np.ndarray, list[tuple[
             what.append((int(e), "stop"))
         else:
             unit = np.zeros(ph.a.shape[0])
-            unit[-1 - 2 * (len(p.omegas))] = p.tau[e]  # the generator "1"
+            unit[one] = p.tau[e]  # the generator "1"
             rows += [unit - f[e], unit + f[e]]
             feed += [-f_in[e], f_in[e]]
             what += [(int(e), "breakaway")] * 2
@@ -128,8 +138,9 @@ def event_rows(p: Parts, ph: Phase) -> tuple[np.ndarray, np.ndarray, list[tuple[
 
 def zero_set(p: Parts, ph: Phase, v: np.ndarray, fired: list[int]) -> list[int]:
     """Friction elements sticking, just fired, or slipping at a rate within 1e-9 of the speeds."""
-    w = p.b.T @ v
-    tol = 1e-9 * float(np.max(np.abs(v), initial=0.0))
+    w = rates(p, v)
+    speeds = np.abs(v) if p.drive is None else np.concatenate((np.abs(v), np.abs(p.drive)))
+    tol = 1e-9 * float(np.max(speeds, initial=0.0))
     return [int(e) for e in np.flatnonzero(p.friction) if ph.mode[e] == 0 or e in fired or abs(w[e]) <= tol]
 
 
@@ -145,13 +156,14 @@ def final_rest(phases: list[Phase], x_end: np.ndarray) -> tuple[np.ndarray, np.n
 
 
 def grid_rows(
-    network: object, method: str, t_end: float, dt: float, save_every: int, *, any_load: bool
+    network: object, method: str, t_end: float, dt: float, save_every: int, *, any_load: bool, slip: bool = False
 ) -> tuple[np.ndarray, float, int]:
     """``(index, dt, save_every)``: the saved grid indices ``n`` of ``t_n = n*dt`` (the last always kept)
-    and the checked arguments, after the method's refusal of ``network`` (one line naming what blocks it)."""
+    and the checked arguments, after the method's refusal of ``network`` (one line naming what blocks it;
+    ``any_load`` and ``slip`` as :func:`~lumped.solvers.network_phase.refusal`'s)."""
     if not isinstance(network, Network):
         raise ValueError(f"network must be a Network, got {type(network).__name__}")
-    if (reason := refusal(network, method, any_load=any_load)) is not None:
+    if (reason := refusal(network, method, any_load=any_load, slip=slip)) is not None:
         raise ValueError(reason)
     t_end, dt, save_every, n = validate.grid(t_end, dt, save_every)
     validate.output_size(n, save_every)

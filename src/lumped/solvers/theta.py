@@ -83,6 +83,11 @@ def theta_method(
 ) -> Trajectory:
     """Integrate the DAE (8) with the θ-method (:func:`theta_step`) on ``t_n = n*dt``.
 
+    A shim of the one entry point, kept for what it adds:
+    ``lumped.solve(Problem.oscillator(oscillator, t_end, x0=x0, v0=v0,
+    force=force), dt, method="theta")`` runs it at ``theta = 1/2``; called
+    directly it takes any ``theta`` in ``[1/2, 1]``.
+
     Parameters
     ----------
     theta : float

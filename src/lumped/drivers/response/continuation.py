@@ -45,7 +45,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, Scales, find_orbit
+from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, Scales, check_system, find_orbit
 from lumped.drivers.response.systems import Family, LoadedNetwork, omega_family, period_map
 from lumped.model.oscillator import Oscillator
 from lumped.numerics import validate
@@ -301,7 +301,7 @@ def continue_orbits(
     """
     points = check_points(points)
     start, stop = validate.finite("start", start), validate.finite("stop", stop)
-    family = family or omega_family(system, amplitude)
+    family = family or omega_family(check_system(system), amplitude)
     branch = _Branch(family)
     w0, w1 = start / family.unit, stop / family.unit
     first = branch.point(start_orbit or find_orbit(*family.member(start)), start)

@@ -203,6 +203,18 @@ def least_norm_step(pm: PeriodMap | NetworkPeriodMap, z: np.ndarray) -> np.ndarr
     return w @ (scale * y)
 
 
+def check_system(system: object) -> Oscillator | LoadedNetwork:
+    """``system`` if the period map runs it, else one ``ValueError`` (a :class:`~lumped.model.network.Network`
+    is first made one by :func:`~lumped.drivers.response.systems.response_system`, which refuses what the
+    period map cannot run: driven points, friction whose graph is not monotone, ...)."""
+    if not isinstance(system, (Oscillator, LoadedNetwork)):
+        raise ValueError(
+            f"system must be an Oscillator or a LoadedNetwork (a network made one by response_system), "
+            f"got {type(system).__name__}"
+        )
+    return system
+
+
 def find_orbit(
     system: Oscillator | LoadedNetwork,
     amplitude: float,
@@ -234,8 +246,7 @@ def find_orbit(
         (:func:`least_norm_step`), and the message says so (an undamped system at ``omega = omega_n/j``, whose
         periodic motion is not unique, or a fold).
     """
-    if not isinstance(system, (Oscillator, LoadedNetwork)):
-        raise ValueError(f"system must be an Oscillator or a LoadedNetwork, got {type(system).__name__}")
+    check_system(system)
     amplitude, omega = validate.positive("force_amplitude", amplitude), validate.positive("force_omega", omega)
     scales = Scales.of(system, amplitude)
     z = _settle(system, amplitude, omega, scales) if guess is None else np.asarray(guess, dtype=float)

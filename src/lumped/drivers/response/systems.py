@@ -146,6 +146,11 @@ def response_system(network: Network, mass: str) -> Oscillator | LoadedNetwork:
         raise ValueError(f"force_on: no mass named {mass!r} in the system (its masses: {', '.join(names)})")
     if network.loads:
         raise ValueError("system: the file has loads of its own; the response command applies the one sine load")
+    try:  # before the forms below, which would see a driven point as the ground
+        network.refuse_drivers("the period map")
+        network.refuse_non_monotone("the period map")
+    except ValueError as err:
+        raise ValueError(f"system: {err}") from None
     try:
         osc = one_mass_form(network).oscillator
     except ValueError:

@@ -58,9 +58,10 @@ def _batched(spec: SweepSpec, p: Mapping[str, np.ndarray], progress: Callable[[i
 
 
 def _one_by_one(spec: SweepSpec, p: Mapping[str, np.ndarray], progress: Callable[[int, int], None] | None) -> dict:
-    """Rows of ``exact`` or ``event-driven``: a single run each, through :func:`lumped.drivers.simulation.simulate`."""
-    from lumped.drivers.simulation import simulate
+    """Rows of ``exact`` or ``event-driven``: a single run each, through :func:`lumped.drivers.simulation.solve`."""
+    from lumped.drivers.simulation import solve
     from lumped.model.forcing import SwitchedSine
+    from lumped.model.problem import Problem
 
     n = p["mass"].size
     start = window_start(p, spec.n_steps * spec.dt, spec.periods)
@@ -68,16 +69,10 @@ def _one_by_one(spec: SweepSpec, p: Mapping[str, np.ndarray], progress: Callable
     for j in range(n):
         row = {name: float(v[j]) for name, v in p.items()}
         force = SwitchedSine(row["force_amplitude"], row["force_omega"], row["force_phase"], row["force_until"])
-        traj = simulate(
-            row_oscillator(row),
-            spec.t_end,
-            spec.dt,
-            x0=row["x0"],
-            v0=row["v0"],
-            force=None if force.is_zero else force,
-            method=spec.method,
-            **spec.options,
+        problem = Problem.oscillator(
+            row_oscillator(row), spec.t_end, x0=row["x0"], v0=row["v0"], force=None if force.is_zero else force
         )
+        traj = solve(problem, spec.dt, method=spec.method, **spec.options)
         out[j] = summarize(traj, float(start[j]), spec.periods)
         if progress is not None and (j % 64 == 63 or j == n - 1):
             progress(j + 1, n)

@@ -1,0 +1,129 @@
+"""The closed-form stick-slip cycle of a block on a moving belt: the one home of its formulas.
+
+A block of mass ``m`` on a spring ``k`` to the ground rides a belt moving at
+a constant ``V > 0`` through a friction contact whose static force ``S`` is
+at least its kinetic force ``K`` (no viscous part, no Stribeck velocity).
+Its limit cycle has a closed form (:func:`belt_cycle`), which the tests of
+the ``exact`` and ``backward-euler`` methods and notebook 15 meet; nothing
+else derives it.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import NamedTuple
+
+from lumped.numerics import validate
+
+__all__ = ["BeltCycle", "belt_cycle"]
+
+
+class BeltCycle(NamedTuple):
+    """The stick-slip limit cycle of :func:`belt_cycle` (positions from the spring's unstretched length)."""
+
+    #: The cycle's period (s): ``stick_time + slip_time``.
+    period: float
+    #: How long the block rides the belt in each cycle (s).
+    stick_time: float
+    #: How long it slips in each cycle (s).
+    slip_time: float
+    #: The largest position (m), reached while slipping.
+    x_max: float
+    #: The smallest position (m), reached while slipping.
+    x_min: float
+    #: The smallest velocity (m/s), reached while slipping (negative: the block moves back).
+    v_min: float
+    #: Where the block breaks away from the belt, ``S/k`` (m).
+    break_position: float
+    #: Where it sticks to the belt again, ``(2K - S)/k`` (m).
+    stick_position: float
+
+
+def belt_cycle(mass: float, stiffness: float, static: float, kinetic: float, velocity: float) -> BeltCycle:
+    """The stick-slip limit cycle of a block on a spring, riding a belt through static/kinetic friction.
+
+    Parameters
+    ----------
+    mass : float, kg
+        ``m > 0``.
+    stiffness : float, N/m
+        ``k > 0``, the spring from the ground to the block.
+    static : float, N
+        ``S > 0``, the largest force the stuck contact holds.
+    kinetic : float, N
+        ``K``, the sliding force, ``0 <= K <= S``.
+    velocity : float, m/s
+        ``V > 0``, the belt's speed.
+
+    Returns
+    -------
+    BeltCycle
+
+    Raises
+    ------
+    ValueError
+        For a parameter out of its range (named).
+
+    Notes
+    -----
+    With ``x`` the block's position (the spring's elongation), the contact
+    joins the belt to the block, so its rate is ``x' - V`` and the block
+    feels ``m x'' = -k x - T`` with ``T`` the contact's tension.
+
+    *Stick.*  The block moves with the belt, ``x' = V``, and the contact
+    holds ``T = -k x`` while ``|k x| <= S``: the spring loads at the belt's
+    speed until ``x = S/k`` (``break_position``), where the contact breaks
+    away.
+
+    *Slip.*  The block is slower than the belt (the rate ``x' - V`` turns
+    negative, because ``m x'' = -k x + K < 0`` at ``x = S/k`` when
+    ``S > K``), so ``T = -K`` and ``m x'' = -k x + K``: a harmonic motion
+    about ``K/k`` at ``omega = sqrt(k/m)``.  With ``y = x - K/k`` it keeps
+    ``y^2 + (x'/omega)^2 = R^2``, from ``y_0 = (S - K)/k`` and ``x' = V``:
+
+        R = sqrt(y_0^2 + (V/omega)^2).
+
+    In the plane ``(y, x'/omega)`` the point turns clockwise on that circle
+    from the angle ``theta_0 = atan2(V/omega, y_0)`` (in ``(0, pi/2]``).  The
+    rate ``x' - V`` is back at zero where ``x' = V`` again, at ``y = -y_0``
+    (angle ``pi - theta_0``); on the way the point passes the angles ``0``
+    (``x_max = K/k + R``), ``-pi/2`` (``v_min = -omega R``) and ``-pi``
+    (``x_min = K/k - R``).  The angle swept is ``pi + 2 theta_0``, so
+
+        slip_time = (pi + 2 theta_0) / omega.
+
+    *Stick again.*  At ``x = (2K - S)/k`` (``stick_position``) the block moves
+    with the belt; the holding force ``|k x| = |2K - S|`` is within ``S``, so
+    the contact sticks, and the spring loads from there to ``S/k`` in
+
+        stick_time = (S/k - (2K - S)/k) / V = 2 (S - K) / (k V).
+
+    The cycle repeats with ``period = stick_time + slip_time``.  With
+    ``S = K`` there is no stick (``stick_time = 0``): the block oscillates
+    harmonically about ``K/k`` with amplitude ``V/omega`` and period
+    ``2 pi/omega``, touching the belt's speed once a period.
+    """
+    m = validate.positive("mass", mass)
+    k = validate.positive("stiffness", stiffness)
+    s = validate.positive("static", static)
+    kin = validate.non_negative("kinetic", kinetic)
+    if kin > s:
+        raise ValueError(f"kinetic = {kin!r} N must not exceed static = {s!r} N")
+    v = validate.positive("velocity", velocity)
+    omega = math.sqrt(k / m)
+    y0 = (s - kin) / k
+    radius = math.hypot(y0, v / omega)
+    theta0 = math.atan2(v / omega, y0)
+    slip_time = (math.pi + 2 * theta0) / omega
+    stick_time = 2 * (s - kin) / (k * v)
+    centre = kin / k
+    return BeltCycle(
+        period=stick_time + slip_time,
+        stick_time=stick_time,
+        slip_time=slip_time,
+        x_max=centre + radius,
+        x_min=centre - radius,
+        v_min=-omega * radius,
+        break_position=s / k,
+        stick_position=(2 * kin - s) / k,
+    )
