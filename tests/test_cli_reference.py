@@ -87,7 +87,7 @@ def test_no_help_says_a_network_needs_backward_euler() -> None:
     text = _flat(_help("simulate"))
     assert "needs one mass" not in text
     networks = [n for n, m in METHODS.items() if m.runs_networks or m.piecewise_networks is not None]
-    assert networks == ["backward-euler", "exact", "event-locating"]
+    assert networks == ["backward-euler", "exact", "event-driven", "event-locating"]
     for name in networks:
         assert re.search(rf" {name} .*?Runs one mass [^.]*; (any network|networks of )", text), name
 

@@ -271,7 +271,7 @@ def test_command_line_one_mass_system_file(tmp_path, capsys):
         (
             ["--method", "event-driven"],
             HB_SYSTEM + '[[mass]]\nname = "m2"\nmass = 1.0\n[[mass]]\nname = "m3"\nmass = 1.0\n',
-            "--method event-driven needs a one-mass system; ",
+            "method 'event-driven' needs a one-mass system; the network has 3 masses",
         ),
     ],
 )
@@ -289,7 +289,7 @@ def test_command_line_bad_inputs_one_line_status_2(tmp_path, capsys, extra, syst
     assert len(err.splitlines()) == 1 and message in err
     assert not out.exists() and not list(tmp_path.glob("*.part"))
     if "masses" in message:
-        assert err.endswith("s.toml has 3 masses")
+        assert err.endswith("has 3 masses (" + str(tmp_path / "s.toml") + ")")  # the file is named
 
 
 def test_any_monotone_law_through_its_inverted_graph():

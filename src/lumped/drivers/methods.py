@@ -51,6 +51,9 @@ from lumped.solvers.backward_euler import backward_euler
 from lumped.solvers.event_capturing import event_capturing
 from lumped.solvers.event_capturing_network import solve_capturing_network
 from lumped.solvers.event_driven import DEFAULT_RTOL, solve_event_driven, validate_rtol
+from lumped.solvers.event_driven_network import TAKES as EVENT_DRIVEN_TAKES
+from lumped.solvers.event_driven_network import refusal as event_driven_refusal
+from lumped.solvers.event_driven_network import solve_event_driven_network
 from lumped.solvers.exact import ExactSolution, solve_exact
 from lumped.solvers.exact_network import solve_exact_network
 from lumped.solvers.moreau_jean import BINGHAM_REASON, DEFAULT_THETA, moreau_jean, validate_theta
@@ -58,7 +61,7 @@ from lumped.solvers.network_phase import _TAKES as PIECEWISE_TAKES  # the one wo
 from lumped.solvers.network_phase import SLIP_TAKES, refusal
 from lumped.solvers.theta import theta_method
 
-__all__ = ["ALIASES", "METHODS", "Method", "Option", "Solver", "SWEEP_METHODS", "NETWORK_SOLVERS", "OPTIONS"]
+__all__ = ["ALIASES", "METHODS", "NETWORK_SOLVERS", "OPTIONS", "SWEEP_METHODS", "Method", "Option", "Solver"]
 
 Force = SwitchedSine | Callable[[np.ndarray], np.ndarray] | None
 #: A one-mass solver: ``(osc, t_end, dt, x0, v0, force, save_every, **options) -> Trajectory``.
@@ -138,6 +141,10 @@ class Method:
     #: a viscous part) and points driven at constant velocities (:func:`~lumped.solvers.network_phase.refusal`'s
     #: ``slip``).
     piecewise_slip: bool = False
+    #: The refusal of that solver, ``(network) -> str | None``, and what it runs in words, when they are not the
+    #: piecewise-linear networks' (:func:`~lumped.solvers.network_phase.refusal`, ``PIECEWISE_TAKES``).
+    piecewise_refusal: Callable[[Network], str | None] | None = None
+    piecewise_takes: str | None = None
     #: Former names that still select it (``METHODS[alias]`` is this method; ``--help`` and a note on use say so).
     aliases: tuple[str, ...] = ()
     #: True if it runs friction contacts whose graph is not monotone (static above kinetic, a falling slip
@@ -166,6 +173,8 @@ class Method:
             load += " (any load with a Bingham or Coulomb law)"
         if self.runs_networks:
             networks = "any network"
+        elif self.piecewise_takes is not None:
+            networks = f"networks of {self.piecewise_takes}, and no network of more than one mass"
         elif self.piecewise_networks is not None:
             takes = PIECEWISE_TAKES.split(" under ")[0] + (" under any load" if self.piecewise_any_load else "")
             networks = "networks of " + (takes if self.piecewise_any_load else PIECEWISE_TAKES)
@@ -208,6 +217,8 @@ class Method:
         or load), or ``None`` if it can; a method without one refuses every network in one line."""
         if self.piecewise_networks is None:
             return f"method {self.name!r} runs one-mass systems only"
+        if self.piecewise_refusal is not None:
+            return self.piecewise_refusal(network)
         return refusal(network, self.name, any_load=self.piecewise_any_load, slip=self.piecewise_slip)
 
     def by_network(self, force: object, network: Network) -> bool:
@@ -347,12 +358,15 @@ METHODS: Mapping[str, Method] = _Registry(
             Method(
                 "event-driven",
                 _event_driven,
-                "Event-driven integration for any monotone dashpot law (DOP853 slip phases, exact stick), "
-                "sampled on the grid",
+                "Event-driven integration for any monotone dashpot law or friction contact (DOP853 slip phases, "
+                "exact stick), sampled on the grid",
                 batch=True,
                 options=(_RTOL,),
                 solution=solve_event_driven,
                 sine_forcing=True,
+                piecewise_networks=solve_event_driven_network,
+                piecewise_refusal=event_driven_refusal,
+                piecewise_takes=EVENT_DRIVEN_TAKES,
             ),
             Method(
                 "event-locating",

@@ -115,7 +115,7 @@ def solve(
         form = problem.one_mass()
     except ValueError as err:
         if run.piecewise_networks is not None:  # its phases solved in turn, or a refusal naming the element
-            return run.piecewise_networks(problem.system, problem.t_end, dt, save_every=save_every)
+            return run.piecewise_networks(problem.system, problem.t_end, dt, save_every=save_every, **options)
         raise ValueError(f"method {method!r} needs a one-mass system; the network {err}") from None
     if run.by_network(problem.force, problem.system):  # a load its one-mass solver lacks
         return run.piecewise_networks(problem.system, problem.t_end, dt, save_every=save_every)  # type: ignore[misc]

@@ -37,6 +37,7 @@ __all__ = [
     "NetworkEvent",
     "event_rows",
     "final_rest",
+    "grid_index",
     "grid_rows",
     "initial_mode",
     "select",
@@ -165,6 +166,12 @@ def grid_rows(
         raise ValueError(f"network must be a Network, got {type(network).__name__}")
     if (reason := refusal(network, method, any_load=any_load, slip=slip)) is not None:
         raise ValueError(reason)
+    return grid_index(t_end, dt, save_every)
+
+
+def grid_index(t_end: float, dt: float, save_every: int) -> tuple[np.ndarray, float, int]:
+    """``(index, dt, save_every)``: the saved grid indices ``n`` of ``t_n = n*dt`` (the last always kept) and
+    the checked arguments (:func:`lumped.numerics.validate.grid`, the output's size)."""
     t_end, dt, save_every, n = validate.grid(t_end, dt, save_every)
     validate.output_size(n, save_every)
     index = np.arange(0, n + 1, save_every)

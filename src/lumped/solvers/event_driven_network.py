@@ -1,0 +1,479 @@
+"""The ``event-driven`` method for one mass on a friction contact of any slip curve, on the ground or on a belt.
+
+The system is one mass ``m`` with linear springs and linear dashpots, each
+to the ground or to a driven point moving at a constant velocity, and one
+friction contact (any :class:`lumped.laws.SlipLaw`, or a Bingham or Coulomb
+element, whose graph is one) to the ground or to such a point, moving at
+``V``, under a sine or a constant load from ``t = 0``.  With ``u = v - V``
+(the contact's slip rate, seen from the mass) the equation of motion is
+
+    x' = u + V,    m u' = S(t, x, u) - T,    S = F(t) - K x + A t - C u + gamma,
+
+with ``K``, ``C`` the sums of the stiffnesses and viscosities, ``A = sum
+k_i V_i`` and ``gamma = sum c_i (V_i - V)`` (``V_i`` the velocity of the
+element's other point), and ``T`` the contact's force on the mass,
+resisting the slip: ``T = sgn(u) g(|u|)`` off zero rate, any value in
+``[-static, static]`` at ``u = 0``.  The motion is a sequence of phases:
+
+* **stick** (``u = 0``, ``x = x_s + V (t - t_s)``): ``T = S(t, x, 0)``, a sine
+  plus a linear function of ``t`` (of slope ``beta = A - K V``), which holds while ``|T| <= static``.  The
+  *breakaway* (``|S|`` reaches ``static``) is found between the critical
+  points of ``S`` (in closed form), on each of which ``S`` is monotone, by
+  Brent's method: no sign change is missed, whatever the length of the stick;
+* **slip** with direction ``s = +-1``: ``m u' = S - s g(max(s u, 0))``
+  integrated by DOP853 (:class:`lumped.solvers.event_driven.IntegratedSlip`,
+  the integrator of the one-mass method, on the state ``(x, u)``); the clipped
+  speed keeps the right-hand side continuous where the step passes the stop,
+  whose time is found on the step's dense output by Brent's method.  At the
+  stop the rule of :class:`lumped.laws.step_graph.SlipGraph` decides: the
+  contact sticks if the holding force ``S`` lies within ``[-static,
+  static]``, else it slips the other way (a *reversal*).
+
+The load's switch-off ends a phase too (a *switch*).  Every event is a
+:class:`~lumped.solvers.network_modes.NetworkEvent` naming the contact, with
+the mode after it (the contact's ``0`` or ``+-1`` in its own orientation).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import NamedTuple
+
+import numpy as np
+
+from lumped.laws import sticks
+from lumped.model.forcing import as_sine, kind_of, one_force
+from lumped.model.network import Network, listed
+from lumped.model.trajectory import Trajectory
+from lumped.numerics import validate
+from lumped.numerics.roots import brentq
+from lumped.solvers.event_driven import (
+    _ATOL_FACTOR,
+    DEFAULT_RTOL,
+    IntegratedSlip,
+    _Budget,
+    _Settings,
+    validate_rtol,
+)
+from lumped.solvers.events import OFF, STICK, Phase, Piece
+from lumped.solvers.network_modes import NetworkEvent, grid_index
+
+__all__ = ["TAKES", "March", "refusal", "solve_contact", "solve_event_driven_network"]
+
+METHOD = "event-driven"
+#: What it runs, in words (the refusals, ``--help``).
+TAKES = (
+    "one mass, one friction contact of any slip curve, linear springs and linear dashpots (each to the ground "
+    "or to a driven point at a constant velocity) under a sine or a constant load from t = 0"
+)
+#: Bounds of a run: events, and integrator steps over the whole run.
+MAX_EVENTS, MAX_STEPS = 100_000, 1_000_000
+
+
+class Link(NamedTuple):
+    """An element seen from the mass: its index, ``k`` or ``c``, the velocity ``V_i`` of its other point (m/s)
+    and its orientation (``+1`` if the mass is its ``second`` point: its elongation is ``x - V_i t``; ``-1``)."""
+
+    element: int
+    coefficient: float
+    velocity: float
+    orientation: float
+
+
+@dataclass(frozen=True)
+class Contact:
+    """The friction contact: its element (:class:`Link`, coefficient unused), ``static`` (N), its slip curve
+    ``g`` (N, of the speed ``> 0``) and ``g(0+)``."""
+
+    link: Link
+    static: float
+    g: Callable[[float], float]
+    slip_limit: float
+
+    def slip_force(self, s: int, u: float) -> float:
+        """``s g(max(s u, 0))``: the sliding force of a phase of direction ``s``, continuous through its stop."""
+        speed = s * u
+        return s * (self.g(speed) if speed > 0 else self.slip_limit)
+
+
+@dataclass(frozen=True)
+class Model:
+    """The equation of motion (module docstring): ``m``, ``K``, ``C``, ``A``, ``beta = A - K V``, ``gamma``,
+    the contact, its other point's velocity ``V``, and the elements as :class:`Link` s."""
+
+    m: float
+    K: float
+    C: float
+    A: float
+    beta: float
+    gamma: float
+    contact: Contact
+    V: float
+    springs: tuple[Link, ...]
+    dashpots: tuple[Link, ...]
+
+    def smooth(self, t: float, x: float, u: float, p: Piece) -> float:
+        """``S(t, x, u)`` (N): every force on the mass but the contact's, with the load's piece ``p``."""
+        force = p.amplitude * math.sin(p.omega * t + p.phase) if p.amplitude else 0.0
+        return force - self.K * x + self.A * t - self.C * u + self.gamma
+
+    def held(self, t: float, start: float, x_start: float, p: Piece) -> float:
+        """``S`` on the contact stuck since ``start`` at ``x_start``: the force it holds (N)."""
+        return self.smooth(t, x_start + self.V * (t - start), 0.0, p)
+
+
+def _classify(network: Network) -> tuple[list[Link], list[Link], list[Contact], str | None]:
+    """Springs, dashpots and contacts of a one-mass network, or the refusal of the first other element."""
+    mass = network.masses[0].name
+    speeds = {d.name: d.constant_velocity for d in network.drivers}
+    springs, dashpots, contacts = [], [], []
+    for e, el in enumerate(network.elements):
+        other = el.between[0] if el.between[1] == mass else el.between[1]
+        link = Link(e, 0.0, speeds.get(other, 0.0), 1.0 if el.between[1] == mass else -1.0)
+        law, dashpot = el.slip_law(), el.one_mass_law()
+        form = dashpot.bingham_form() if dashpot is not None else None
+        if el.linear_stiffness is not None:
+            springs.append(link._replace(coefficient=el.linear_stiffness))
+        elif law is not None:
+            g = lambda s, law=law: float(law.slip(s))
+            contacts.append(Contact(link, law.static, g, law.slip_limit))
+        elif form is not None and form.threshold == 0:
+            dashpots.append(link._replace(coefficient=form.viscosity))
+        elif form is not None:  # the Bingham graph: a contact with g(s) = tau + c s
+            tau, c = form.threshold, form.viscosity
+            contacts.append(Contact(link, tau, lambda s, tau=tau, c=c: tau + c * s, tau))
+        else:
+            return (
+                springs,
+                dashpots,
+                contacts,
+                f"method {METHOD!r} cannot run element {el.name!r} of kind {el.kind!r}: its networks are {TAKES}",
+            )
+    return springs, dashpots, contacts, None
+
+
+def refusal(network: Network) -> str | None:
+    """Why the method cannot run ``network`` (one line naming the method and what blocks it), or ``None``."""
+    if len(network.masses) != 1:
+        return f"method {METHOD!r} needs a one-mass system; the network has {len(network.masses)} masses"
+    for d in network.drivers:
+        if d.constant_velocity is None:
+            return f"method {METHOD!r} runs driven points at a constant velocity; driver {d.name!r} has {kind_of(d.velocity)}"
+    *_, contacts, reason = _classify(network)
+    if reason is not None:
+        return reason
+    if len(contacts) != 1:
+        names = [network.elements[c.link.element].name for c in contacts]
+        found = f"it has {len(contacts)}" + (f" ({listed(names)})" if names else "")
+        return f"method {METHOD!r} runs one mass with exactly one friction contact; {found}"
+    force = one_force([load.force for load in network.loads])
+    if force is not None and as_sine(force) is None:
+        return f"method {METHOD!r} cannot run the load on {network.masses[0].name!r}, {kind_of(force)}: its networks are {TAKES}"
+    return None
+
+
+def model(network: Network) -> Model:
+    """The :class:`Model` of a network that :func:`refusal` accepts."""
+    springs, dashpots, (contact,), _ = _classify(network)
+    V = contact.link.velocity
+    K, C = sum(s.coefficient for s in springs), sum(d.coefficient for d in dashpots)
+    A = sum(s.coefficient * s.velocity for s in springs)
+    gamma = sum(d.coefficient * (d.velocity - V) for d in dashpots)
+    m = network.masses[0].mass
+    return Model(m, K, C, A, A - K * V, gamma, contact, V, tuple(springs), tuple(dashpots))
+
+
+class ContactSlip(IntegratedSlip):
+    """A slip phase of direction ``s`` on the state ``(x, u)``: :class:`IntegratedSlip` with this system's
+    right-hand side (its stop is the zero of ``u``, the second component)."""
+
+    def __init__(self, mdl: Model, s: int, p: Piece, start: tuple[float, float, float], settings: _Settings):
+        super().__init__(mdl.m, mdl.K, s * mdl.contact.static, (p.amplitude, p.omega, p.phase), start, settings)
+        self.model, self.s, self.piece = mdl, s, p
+
+    def rhs(self, t: float, y: list[float]) -> tuple[float, float]:
+        """``(x', u')``: ``u + V`` and ``(S - s g(max(s u, 0)))/m``."""
+        x, u = y
+        mdl = self.model
+        return u + mdl.V, (mdl.smooth(t, x, u, self.piece) - mdl.contact.slip_force(self.s, u)) / mdl.m
+
+
+def breakaway(mdl: Model, t0: float, t_lim: float, x0: float, p: Piece) -> tuple[float, int]:
+    """First time in ``[t0, t_lim]`` at which the holding force of a stick from ``(t0, x0)`` leaves ``[-static, static]``
+    and its sign, or ``(t_lim, 0)``.
+
+    ``S = P sin(w t + ph) + beta t + c0`` is monotone between its critical points,
+    where ``P w cos(w t + ph) = -beta``; the first knot outside the band brackets the crossing.
+    """
+    P, w, ph, band = p.amplitude, p.omega, p.phase, mdl.contact.static
+    knots = [t0, t_lim]
+    if P * w > abs(mdl.beta):
+        theta = math.acos(-mdl.beta / (P * w))
+        lo, hi = math.floor((w * t0 + ph - theta) / (2 * math.pi)), math.ceil((w * t_lim + ph + theta) / (2 * math.pi))
+        turns = 2 * math.pi * np.arange(lo, hi + 1)
+        crit = (np.concatenate((turns + theta, turns - theta)) - ph) / w
+        knots = [t0, *np.sort(crit[(crit > t0) & (crit < t_lim)]).tolist(), t_lim]
+    held = lambda t: mdl.held(t, t0, x0, p)
+    values = np.array([held(t) for t in knots])
+    out = np.flatnonzero(np.abs(values[1:]) > band)
+    if not out.size:
+        return t_lim, 0
+    i = int(out[0]) + 1
+    sign = 1 if values[i] > 0 else -1
+    edge = lambda t: held(t) - sign * band
+    if sign * edge(knots[i - 1]) > 0:  # already beyond the band (round-off at a stop): break away at once
+        return knots[i - 1], sign
+    return brentq(edge, knots[i - 1], knots[i]), sign
+
+
+@dataclass
+class March:
+    """The march from phase to phase (the module docstring's rule), recording phases and events."""
+
+    mdl: Model
+    pieces: tuple[Piece, ...]
+    t_end: float
+    settings: _Settings
+    max_events: int
+    names: tuple[str, str]  # the contact's name, the method's
+    n_elements: int
+
+    def __post_init__(self) -> None:
+        self.phases: list[Phase] = []
+        self.events: list[NetworkEvent] = []
+
+    def state(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """The mass's position (m) and velocity (m/s) at the times ``t`` (in ``[0, t_end]``)."""
+        t = np.asarray(t, dtype=float)
+        x, u, _, _ = _sample(self, t)
+        return x, u + self.mdl.V
+
+    def piece(self, t: float) -> Piece:
+        return next(p for p in self.pieces if t < p.end)
+
+    def event(self, t: float, kind: str, mode: int) -> None:
+        link = self.mdl.contact.link
+        modes = [0] * self.n_elements
+        modes[link.element] = int(mode * link.orientation)
+        self.events.append(NetworkEvent(t, kind, (self.names[0],) if kind != "switch" else (), tuple(modes)))
+        if len(self.events) > self.max_events:
+            raise ValueError(
+                f"t_end: more than the {self.max_events} events a run may have before t_end = {self.t_end:g} s; "
+                "shorten t_end or use backward Euler"
+            )
+
+    def mode(self, t: float, x: float, u: float) -> int:
+        """STICK or the slip direction at ``(t, x, u)``: the sign of ``u``, else the stick test on ``S``."""
+        if u != 0:
+            return 1 if u > 0 else -1
+        net = self.mdl.smooth(t, x, 0.0, self.piece(t))
+        if sticks(net, -self.mdl.contact.static, self.mdl.contact.static):
+            return STICK
+        return 1 if net > 0 else -1
+
+    def run(self, x: float, u: float) -> None:
+        t, nxt, stalled = 0.0, None, 0
+        while t < self.t_end:
+            p = self.piece(t)
+            t_lim = min(p.end, self.t_end)
+            nxt = self.mode(t, x, u) if nxt is None else nxt
+            t_before = t
+            if nxt == STICK:
+                t, nxt = self.stick(t, t_lim, x, p)
+                x = x + self.mdl.V * (t - t_before)
+            else:
+                t, x, u, nxt = self.slip(t, t_lim, x, u, nxt, p)
+            if t < self.t_end and t == p.end:  # the load goes off: the mode after it, from the state
+                nxt = self.mode(t, x, u) if nxt is None else nxt
+                self.event(t, "switch", nxt)
+            stalled = stalled + 1 if t == t_before else 0
+            if stalled > 8:
+                raise ValueError(
+                    f"x0: the {METHOD} method makes no progress at t = {t!r} s: the contact's holding force stays "
+                    "on the edge of its static bound to round-off; perturb x0 or the load"
+                )
+
+    def stick(self, t: float, t_lim: float, x: float, p: Piece) -> tuple[float, int | None]:
+        t_b, direction = breakaway(self.mdl, t, t_lim, x, p)
+        self.phases.append(Phase(t, t_b, "stick", x))
+        if direction:
+            self.event(t_b, "breakaway", direction)
+        return t_b, direction or None
+
+    def slip(
+        self, t: float, t_lim: float, x: float, u: float, s: int, p: Piece
+    ) -> tuple[float, float, float, int | None]:
+        motion = ContactSlip(self.mdl, s, p, (t, x, u), self.settings)
+        t_stop = motion.first_stop(t_lim, s)
+        if t_stop is None:
+            x_end, u_end = (float(a) for a in motion.state(t_lim))
+            self.phases.append(Phase(t, t_lim, "slip", x, motion))
+            return t_lim, x_end, u_end, None
+        x_stop = float(motion.state(t_stop)[0])
+        self.phases.append(Phase(t, t_stop, "slip", x, motion))
+        net = self.mdl.smooth(t_stop, x_stop, 0.0, p)
+        reverses = -s * net > self.mdl.contact.static
+        self.event(t_stop, "reversal" if reverses else "stop", -s if reverses else 0)
+        return t_stop, x_stop, 0.0, -s if reverses else STICK
+
+
+def _forcing(network: Network) -> tuple[Piece, ...]:
+    """The load as pieces: ``P sin(w t + ph)`` (canonical) until ``t_off``, then nothing."""
+    sine = as_sine(one_force([load.force for load in network.loads]))
+    if sine is None or sine.is_zero:
+        return (OFF,)
+    on = Piece(*sine.canonical(), sine.until)
+    return (on, OFF) if math.isfinite(sine.until) else (on,)
+
+
+def _scales(mdl: Model, pieces: tuple[Piece, ...], t_end: float, x0: float, u0: float) -> tuple[float, float]:
+    """Displacement (m) and speed (m/s) scales of the motion, for the absolute tolerance: the band of the
+    forces ``static + P`` over the stiffness (speeds: over ``sqrt(k m)``, and the belt's), or without a spring
+    the motion those forces give over ``t_end``; at least the initial state."""
+    force = mdl.contact.static + max(p.amplitude for p in pieces)
+    if mdl.K > 0:
+        x, v = force / mdl.K, force / math.sqrt(mdl.K * mdl.m)
+    else:
+        v = force * t_end / mdl.m
+        x = v * t_end
+    return max(x, abs(x0)), max(v, abs(mdl.V), abs(u0))
+
+
+def _options(options: dict[str, object]) -> tuple[float, int, int]:
+    """``rtol``, ``max_events`` and ``max_steps`` from ``options``, checked; any other refused in one line."""
+    known = {"rtol", "max_events", "max_steps"}
+    for name in options:
+        if name not in known:
+            raise ValueError(f"{name}: method {METHOD!r} takes no option {name!r} (its options are rtol)")
+    rtol = validate_rtol(options.get("rtol", DEFAULT_RTOL))
+    max_events = validate.positive_int("max_events", options.get("max_events", MAX_EVENTS))
+    max_steps = validate.positive_int("max_steps", options.get("max_steps", MAX_STEPS))
+    return rtol, max_events, max_steps
+
+
+def solve_event_driven_network(
+    network: Network, t_end: float, dt: float, *, save_every: int = 1, **options: object
+) -> Trajectory:
+    """The motion of one mass on a friction contact (the module docstring), sampled on ``t_n = n*dt``.
+
+    Parameters
+    ----------
+    network : Network
+        One mass, one friction contact, linear springs and dashpots (:data:`TAKES`).
+    t_end, dt : float, s
+        The span and the grid step (the phases and events do not depend on ``dt``).
+    save_every : int
+        Stride between the grid and the saved points.
+    **options
+        ``rtol`` (DOP853's relative tolerance, :data:`~lumped.solvers.event_driven.RTOL_RANGE`),
+        ``max_events`` and ``max_steps`` (bounds on the run).
+
+    Raises
+    ------
+    ValueError
+        One line: a bad argument (named), a network the method does not run
+        (:func:`refusal`), or a bound on events or steps that would be passed.
+    """
+    if not isinstance(network, Network):
+        raise ValueError(f"network must be a Network, got {type(network).__name__}")  # noqa: TRY004 (the API's one error type)
+    if (reason := refusal(network)) is not None:
+        raise ValueError(reason)
+    rtol, max_events, max_steps = _options(options)
+    index, dt, save_every = grid_index(t_end, dt, save_every)
+    march = _march(network, float(index[-1] * dt), rtol, max_events, max_steps)
+    return _trajectory(network, march, index, dt, save_every)
+
+
+def solve_contact(network: Network, t_end: float, **options: object) -> March:
+    """The motion to ``t_end`` in continuous time: its phases, its events and :meth:`March.state` at any time.
+
+    Takes what :func:`solve_event_driven_network` takes but the grid, and raises as it does.
+    """
+    if not isinstance(network, Network):
+        raise ValueError(f"network must be a Network, got {type(network).__name__}")  # noqa: TRY004 (the API's one error type)
+    if (reason := refusal(network)) is not None:
+        raise ValueError(reason)
+    rtol, max_events, max_steps = _options(options)
+    return _march(network, validate.positive("t_end", t_end), rtol, max_events, max_steps)
+
+
+def _march(network: Network, t_end: float, rtol: float, max_events: int, max_steps: int) -> March:
+    """The :class:`March` of an accepted network from its initial state to ``t_end``."""
+    mdl, pieces = model(network), _forcing(network)
+    mass = network.masses[0]
+    x0, u0 = mass.x0, mass.v0 - mdl.V
+    x_scale, v_scale = _scales(mdl, pieces, t_end, x0, u0)
+    atol = (_ATOL_FACTOR * rtol * x_scale, _ATOL_FACTOR * rtol * v_scale)
+    settings = _Settings(None, rtol, atol, _Budget(max_steps, max_steps))  # type: ignore[arg-type]
+    name = network.elements[mdl.contact.link.element].name
+    march = March(mdl, pieces, t_end, settings, max_events, (name, METHOD), len(network.elements))
+    march.run(x0, u0)
+    return march
+
+
+def _sample(march: March, times: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """``x``, ``u``, the contact's force on the mass ``T`` and the stick flags at ``times``."""
+    mdl, phases = march.mdl, march.phases
+    which = np.searchsorted([ph.start for ph in phases], times, side="right") - 1
+    x, u, T = (np.empty(times.size) for _ in range(3))
+    stuck = np.zeros(times.size, dtype=bool)
+    for i, ph in enumerate(phases):
+        at = np.flatnonzero(which == i)
+        if not at.size:
+            continue
+        if ph.motion is None:
+            x[at], u[at], stuck[at] = ph.x_start + mdl.V * (times[at] - ph.start), 0.0, True
+            T[at] = [mdl.held(float(t), ph.start, ph.x_start, march.piece(float(t))) for t in times[at]]
+            continue
+        x[at], u[at] = ph.motion.state(times[at])
+        T[at] = [mdl.contact.slip_force(ph.motion.s, float(w)) for w in u[at]]
+    return x, u, T, stuck
+
+
+def _trajectory(network: Network, march: March, index: np.ndarray, dt: float, save_every: int) -> Trajectory:
+    """The :class:`Trajectory`: positions, velocities, every element's tension, the events and the rest."""
+    mdl, times = march.mdl, index * dt
+    x, u, T, stuck = _sample(march, times)
+    v = u + mdl.V
+    forces = np.zeros((times.size, len(network.elements)))
+    for s in mdl.springs:
+        forces[:, s.element] = s.coefficient * s.orientation * (x - s.velocity * times)
+    for d in mdl.dashpots:
+        forces[:, d.element] = d.coefficient * d.orientation * (v - d.velocity)
+    link = mdl.contact.link
+    forces[:, link.element] = link.orientation * T
+    rigid = np.zeros_like(forces, dtype=bool)
+    rigid[:, link.element] = stuck
+    rigid[0] = False
+    states = np.zeros_like(forces)
+    for s in mdl.springs:
+        states[:, s.element] = forces[:, s.element]
+    return Trajectory(
+        t=times,
+        positions=x[:, None],
+        velocities=v[:, None],
+        forces=forces,
+        applied=network.load_table(times),
+        network=network,
+        method=METHOD,
+        dt=dt,
+        save_every=save_every,
+        states=states,
+        rigid=rigid,
+        final_rest=_final_rest(march, float(x[-1])),
+        solver=METHOD,
+        events=tuple(march.events),
+    )
+
+
+def _final_rest(march: March, x_end: float) -> tuple[np.ndarray, np.ndarray]:
+    """The start and place of the last stick, if it lasts to the end on a contact at rest (``nan`` otherwise)."""
+    start = math.nan
+    if march.mdl.V == 0:
+        for ph in reversed(march.phases):
+            if ph.kind != "stick":
+                break
+            start = ph.start
+    return np.array([start]), np.array([math.nan if math.isnan(start) else x_end])
