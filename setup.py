@@ -2,11 +2,12 @@
 
 Everything else is in pyproject.toml.  The kernels are Algorithm 1's loop
 (``_kernel.c``), the same loop over many parameter sets at once
-(``_batch_kernel.c``, with OpenMP) and the network step on a forest of links
-or one loop of links (``_network_kernel.c``).  If the C compiler is missing, the extensions are
+(``_batch_kernel.c``, with OpenMP), the network step on a forest of links
+or one loop of links (``_network_kernel.c``) and backward Euler for one mass
+with a friction contact (``_friction_kernel.c``).  If the C compiler is missing, the extensions are
 skipped (``optional=True``) and ``lumped`` runs the pure-Python loops:
 Algorithm 1's gives the same numbers, the network step's the same up to the
-rounding of its linear solve.
+rounding of its linear solve, the friction loop's the same up to its root solve.
 
 ``config/config.yaml`` stays the one file holding the paper's values (the
 Snakefile and the users edit it); :class:`build_py` copies it into the built
@@ -55,6 +56,7 @@ setup(
                 "_kernel",
                 ["src/lumped/kernels/_binding_checks.h", "src/lumped/kernels/_sine.h", "src/lumped/kernels/_stick.h"],
             ),
+            ("_friction_kernel", ["src/lumped/kernels/_binding_checks.h"]),
             (
                 "_network_kernel",
                 [

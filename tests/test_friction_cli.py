@@ -219,7 +219,7 @@ assert "\n[[driver]]" not in STUCK
 
 
 @pytest.mark.parametrize("system", SYSTEMS, ids=str)
-@pytest.mark.parametrize("method", ["event-driven", "theta", "moreau-jean"])
+@pytest.mark.parametrize("method", ["theta", "moreau-jean"])  # event-driven runs them (test_friction_event_driven.py)
 def test_the_one_mass_methods_refuse_a_belt_and_falling_friction(tmp_path: Path, system: str, method: str) -> None:
     """Not "needs a one-mass system; element 'fric' does not join the mass to the ground": the reason."""
     text, reason = SYSTEMS[system]

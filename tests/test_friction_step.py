@@ -187,7 +187,10 @@ def test_drivers_are_checked_at_the_boundary():
 
 
 def test_methods_that_do_not_run_drivers_refuse_them():
-    net = one_mass(Friction("d", ("m", "belt"), static=1.0, kinetic=1.0), drivers=[Driver("belt", 0.2)])
+    """The network kernel runs no driven point; the one-mass friction loop runs only constant velocities
+    (a belt at a constant speed is its to run: tests/test_friction_kernel.py)."""
+    swaying = Driver("belt", lumped.SwitchedSine(0.2, 1.0))
+    net = one_mass(Friction("d", ("m", "belt"), static=1.0, kinetic=1.0), drivers=[swaying])
     with pytest.raises(ValueError, match="driven points"):
         lumped.simulate_network(net, 1.0, 1e-3, solver="compiled")
 

@@ -13,7 +13,9 @@ numbers bit for bit, at the compiled kernel's speed.  With a
 ``herschel-bulkley`` element instead it goes to the same function, whose
 step is then the law's resolvent (a root solve).  Every other network takes
 the active-set step, in C (:mod:`lumped.solvers.network_compiled`) when its elements
-are piecewise linear and its links form a forest or close one loop, else in Python.
+are piecewise linear and its links form a forest or close one loop, else, for one
+mass with a friction contact (a block on a belt), in the compiled friction loop
+(:mod:`lumped.solvers.friction_compiled`), else in Python.
 """
 
 from __future__ import annotations
@@ -25,6 +27,7 @@ from lumped.model.network import Network
 from lumped.model.problem import OneMass, one_mass_form
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
+from lumped.solvers import friction_compiled as friction
 from lumped.solvers import network_compiled as kernel
 from lumped.solvers.backward_euler_network import march
 from lumped.solvers.uniqueness import check_step
@@ -38,7 +41,8 @@ SOLVERS = NETWORK_SOLVERS
 #: Measured on this project's 2-core machine, shared and busy
 #: (benchmarks/bench_network.py, chains): Python about 2e-5 + 1e-5 per
 #: element; compiled about 1e-6 + 4e-8 to 1e-7 per element; a margin of 2.
-_COST = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7)}
+#: The one-mass friction loop: about 3e-8 s a step (benchmarks/bench_belt.py), a margin of 10.
+_COST = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7), friction.PATH: (3e-7, 0.0)}
 
 
 def _paper_form(net: Network) -> OneMass | None:
@@ -80,9 +84,13 @@ def run_network(network: Network, t_end: float, dt: float, *, save_every: int = 
         other network through the active-set step; ``"active-set"`` always
         takes the active-set step.  Both run it compiled when
         :func:`lumped.solvers.network_compiled.ineligible` allows (every element
-        piecewise linear, the link graph a forest or one loop, the kernel built) and in
+        piecewise linear, the link graph a forest or one loop, the kernel built), in
+        the compiled one-mass friction loop when
+        :func:`lumped.solvers.friction_compiled.ineligible` allows (one mass, linear
+        springs and dashpots, one friction contact of a ``kernel_form``, drivers at
+        constant velocities; ``Trajectory.solver`` is then ``"one-mass-friction"``), and in
         Python otherwise.  ``"compiled"`` and ``"python"`` force one path
-        (``"compiled"`` refuses a network it cannot run).
+        (``"compiled"`` refuses a network neither compiled loop can run).
 
     Returns
     -------
@@ -115,10 +123,18 @@ def run_network(network: Network, t_end: float, dt: float, *, save_every: int = 
 
 
 def _path(net: Network, solver: str) -> str:
-    """``"compiled"`` or ``"python"``: the active-set step's path for ``solver``."""
+    """``"compiled"``, :data:`lumped.solvers.friction_compiled.PATH` (one mass with a friction contact
+    that the network kernel cannot run) or ``"python"``: the active-set step's path for ``solver``."""
     if solver == "python":
         return "python"
     reason = kernel.ineligible(net)
-    if solver == "compiled" and reason is not None:
+    if reason is None:
+        return "compiled"
+    other = friction.ineligible(net)
+    if other is None:
+        return friction.PATH
+    if solver == "compiled":
+        if any(el.slip_law() is not None for el in net.elements):  # the friction loop's reason too
+            reason = f"{reason} (the network kernel); {other} (the one-mass friction loop)"
         raise ValueError(f"solver: 'compiled' cannot run this network: {reason}")
-    return "python" if reason is not None else "compiled"
+    return "python"

@@ -1,4 +1,4 @@
-/* Argument checks of the compiled kernels' bindings (_kernel.c, _network_kernel.c).
+/* Argument checks of the compiled kernels' bindings (_kernel.c, _network_kernel.c, _friction_kernel.c).
  *
  * The bindings are private (the drivers in timestepping and network.integrate
  * call them with arrays they built), but a wrong length, item type or count
@@ -71,18 +71,42 @@ static Py_buffer *take(held_t *h, PyObject *obj, const char *name, char type, Py
 /* The number of items of a buffer taken by take(). */
 static Py_ssize_t items(const Py_buffer *b) { return b->len / b->itemsize; }
 
+/* The items of a tuple of `count` arrays, or NULL with ValueError naming it. */
+static inline PyObject *const *tuple_items(PyObject *obj, const char *name, Py_ssize_t count) {
+    if (!PyTuple_Check(obj) || PyTuple_GET_SIZE(obj) != count) {
+        PyErr_Format(PyExc_ValueError, "%s must be a tuple of %zd arrays", name, count);
+        return NULL;
+    }
+    return &PyTuple_GET_ITEM(obj, 0);
+}
+
+/* Take a tuple of n arrays of the given names, item types and counts (writable if asked) into h. */
+static inline int take_tuple(held_t *h, PyObject *obj, const char *name, int n, const char *const *names, const char *types,
+                             const Py_ssize_t *counts, int writable, Py_buffer **out) {
+    PyObject *const *a = tuple_items(obj, name, n);
+    if (a == NULL) return -1;
+    for (int i = 0; i < n; i++)
+        if (!(out[i] = take(h, a[i], names[i], types[i], counts[i], writable))) return -1;
+    return 0;
+}
+
 /* 0 if lo <= x (lo < x if strict) and x is finite (or +inf if inf_ok); else -1 with ValueError. */
 static int check_real(const char *name, double x, double lo, int strict, int inf_ok) {
     const int in_range = strict ? x > lo : x >= lo;
     if (in_range && (isfinite(x) || (inf_ok && x > 0))) return 0;
-    PyObject *value = PyFloat_FromDouble(x);
-    if (value == NULL) return -1;
+    PyObject *value = PyFloat_FromDouble(x), *bound = PyFloat_FromDouble(lo); /* PyErr_Format has no %g */
+    if (value == NULL || bound == NULL) {
+        Py_XDECREF(value);
+        Py_XDECREF(bound);
+        return -1;
+    }
     if (isinf(lo))
         PyErr_Format(PyExc_ValueError, "%s must be finite, got %R", name, value);
     else
-        PyErr_Format(PyExc_ValueError, "%s must be %s %g%s, got %R", name, strict ? ">" : ">=", lo,
+        PyErr_Format(PyExc_ValueError, "%s must be %s %R%s, got %R", name, strict ? ">" : ">=", bound,
                      inf_ok ? " (inf allowed)" : " and finite", value);
     Py_DECREF(value);
+    Py_DECREF(bound);
     return -1;
 }
 

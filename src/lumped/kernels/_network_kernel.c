@@ -100,15 +100,6 @@ static int march(net_t *q, march_t *m, const record_t *o, const double *table, P
  * `kind`, masses from `inertia`, rows from `t`), the kind codes, every index
  * (points, elements, masses, modes) within range and the forest's order. */
 
-/* The items of a tuple of `count` arrays, or NULL with ValueError naming it. */
-static PyObject *const *tuple_items(PyObject *obj, const char *name, Py_ssize_t count) {
-    if (!PyTuple_Check(obj) || PyTuple_GET_SIZE(obj) != count) {
-        PyErr_Format(PyExc_ValueError, "%s must be a tuple of %zd arrays", name, count);
-        return NULL;
-    }
-    return &PyTuple_GET_ITEM(obj, 0);
-}
-
 static const char *const TOPOLOGY[] = {
     "topology[0] (kind)",  "topology[1] (par)",    "topology[2] (first)",      "topology[3] (second)",
     "topology[4] (order)", "topology[5] (parent)", "topology[6] (link_start)", "topology[7] (link_el)",
@@ -198,16 +189,6 @@ static int take_topology(held_t *h, PyObject *obj, net_t *q) {
     return take_chord(q, items(b[7]));
 }
 
-/* Take a tuple of arrays of the given names, item types and counts (writable) into h. */
-static int take_tuple(held_t *h, PyObject *obj, const char *name, int n, const char *const *names, const char *types,
-                      const Py_ssize_t *counts, Py_buffer **out) {
-    PyObject *const *a = tuple_items(obj, name, n);
-    if (a == NULL) return -1;
-    for (int i = 0; i < n; i++)
-        if (!(out[i] = take(h, a[i], names[i], types[i], counts[i], 1))) return -1;
-    return 0;
-}
-
 /* -1 with ValueError unless every warm-start mode is -1 or a piece of its element's graph. */
 static int check_modes(const char *name, const int64_t *modes, const int *pieces, Py_ssize_t n_el) {
     for (Py_ssize_t e = 0; e < n_el; e++)
@@ -236,7 +217,7 @@ static PyObject *network_solve(PyObject *self, PyObject *args) {
         !(counts = take(&h, counts_obj, "counts", 'q', q.n_el, 0)) || !(rhs = take(&h, rhs_obj, "rhs", 'd', q.n_mass, 0)))
         goto fail;
     const Py_ssize_t sizes[] = {q.n_mass, q.n_el, q.n_el, q.n_el, q.n_el};
-    if (take_tuple(&h, sol_obj, "solution", 5, names, "dddqB", sizes, sb) < 0 ||
+    if (take_tuple(&h, sol_obj, "solution", 5, names, "dddqB", sizes, 1, sb) < 0 ||
         check_indices("counts", counts, 1, MAX_PIECES + 1) < 0)
         goto fail;
     const Py_ssize_t n_el = q.n_el;
@@ -302,7 +283,7 @@ static PyObject *network_block(PyObject *self, PyObject *args) {
         goto fail;
     const Py_ssize_t nm = q.n_mass, ne = q.n_el;
     const Py_ssize_t march_sizes[] = {nm, nm, ne, ne, nm, 4};
-    if (take_tuple(&h, march_obj, "marching", 6, march_names, "dddqqq", march_sizes, mb) < 0 ||
+    if (take_tuple(&h, march_obj, "marching", 6, march_names, "dddqqq", march_sizes, 1, mb) < 0 ||
         !(table = take(&h, table_obj, "table", 'd', (n_last - n_first + 1) * q.n_load, 0)) ||
         !(r = tuple_items(rec_obj, "record", 8)) || !(rb[0] = take(&h, r[0], record_names[0], 'd', -1, 1)))
         goto fail;

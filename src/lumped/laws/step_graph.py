@@ -268,13 +268,22 @@ class SlipGraph(StepGraph):
 class CurveSlipGraph(StepGraph):
     """The step graph of a friction contact with any slip curve (a :class:`lumped.laws.SlipLaw`).
 
-    Its mode is :data:`STICK`, or the point ``(s, w, f)`` of the slip branch
-    of direction ``s`` last reached; the piece of a slip mode is the line of
-    slope ``sigma`` through that point and the next point is the branch's
-    resolvent point of ``z = f + sigma w`` (``SlipLaw.slip_speed``), as for a
-    :class:`LawGraph`.  Where the branch has no point (``|z|`` at most the
-    slip limit), the contact stops: the rule of :func:`_slip_rule`.  The mode
-    has settled when the force agrees to a relative 8 ulps.
+    Its mode is :data:`STICK`, or the point ``(s, w, f, sigma, before)`` of
+    the slip branch of direction ``s`` last reached, the scale it was reached
+    with and the ``(w, f)`` of the point before it (``None`` for the first);
+    the piece of a slip mode is the line of slope ``sigma`` through that point
+    and the next point is the branch's resolvent point of ``z = f + sigma w``
+    (``SlipLaw.slip_speed``), as for a :class:`LawGraph`.  Where the branch
+    has no point (``|z|`` at most the slip limit), the contact stops: the rule
+    of :func:`_slip_rule`.  The mode has settled when the point's ``f + sigma
+    w`` agrees to a relative 8 ulps term by term, ``|df| + sigma |dw| <= 8 eps
+    (|f| + |f'| + sigma (|w| + |w'|))`` (the step's force lies on the line
+    through the old point, ``sigma |dw|`` off the branch, so the force alone
+    agreeing is not enough where the branch is flat: a Stribeck curve at
+    speeds well above ``v_s``), or when the new point is the one before the
+    old, a cycle of two points that the rounding of the step's rates keeps
+    apart (on a belt it is ``eps sigma |belt velocity|`` wide, more than 8
+    ulps of ``f + sigma w`` near a stop).
     """
 
     __slots__ = ("law", "start")
@@ -284,23 +293,25 @@ class CurveSlipGraph(StepGraph):
     def __init__(self, law: object, start: int) -> None:
         self.law, self.start = law, start
 
-    def _point(self, direction: float, z: float, sigma: float) -> object:
-        """The point of the branch ``direction`` whose ``f + sigma w`` is ``z``, or :data:`STICK`."""
+    def _point(self, direction: float, z: float, sigma: float, old: object = None) -> object:
+        """The point of the branch ``direction`` whose ``f + sigma w`` is ``z`` (reached from the point
+        ``old``, if any), or :data:`STICK`."""
         if direction * z <= self.law.slip_limit:  # type: ignore[attr-defined]
             return STICK
         s = self.law.slip_speed(direction * z, sigma)  # type: ignore[attr-defined]
-        return (direction, direction * s, direction * float(self.law.slip(s)))  # type: ignore[attr-defined]
+        before = None if old is None else old[1:3]  # type: ignore[index]
+        return (direction, direction * s, direction * float(self.law.slip(s)), sigma, before)  # type: ignore[attr-defined]
 
     def initial_mode(self) -> object:
         if self.start == STICK:
             return STICK
         direction = 1.0 if self.start == SLIP_FORWARD else -1.0
-        return (direction, 0.0, direction * self.law.slip_limit)  # type: ignore[attr-defined]
+        return (direction, 0.0, direction * self.law.slip_limit, 0.0, None)  # type: ignore[attr-defined]
 
     def piece(self, mode: object, sigma: float) -> Piece:
         if mode == STICK:
             return rigid_piece(0.0, -self.law.static, self.law.static)  # type: ignore[attr-defined]
-        _, w0, f0 = mode  # type: ignore[misc]
+        _, w0, f0, _, _ = mode  # type: ignore[misc]
         return Piece(False, f0 - sigma * w0, sigma, -_INF, _INF)
 
     def mode(self, z: float, sigma: float) -> object:
@@ -314,15 +325,16 @@ class CurveSlipGraph(StepGraph):
         direction = old[0]  # type: ignore[index]
         if direction * w <= 0:
             return STICK
-        return self._point(direction, f + sigma * w, sigma)
+        return self._point(direction, f + sigma * w, sigma, old)
 
     def same(self, old: object, new: object) -> bool:
         if old == STICK or new == STICK:
             return old == new
         if old[0] != new[0]:  # type: ignore[index]
             return False
-        scale = abs(new[2]) + abs(old[2]) + 1e-300  # type: ignore[index]
-        return abs(new[2] - old[2]) <= 8 * _EPS * scale  # type: ignore[index]
+        (_, w0, f0, _, before), (_, w1, f1, sigma, _) = old, new  # type: ignore[misc]
+        scale = abs(f1) + abs(f0) + sigma * (abs(w1) + abs(w0)) + 1e-300
+        return abs(f1 - f0) + sigma * abs(w1 - w0) <= 8 * _EPS * scale or before == (w1, f1)
 
 
 class Shifted(StepGraph):

@@ -84,7 +84,8 @@ class Trajectory:
     solver : str
         The path that ran: ``"algorithm1"``, ``"resolvent"`` (a law's
         resolvent), ``"compiled"`` or ``"python"`` (the network's active-set
-        step), or the method's name.
+        step), ``"one-mass-friction"`` (the compiled loop of one mass with a
+        friction contact, :mod:`lumped.solvers.friction_compiled`), or the method's name.
     iterations : int
         Largest number of active-set iterations in a step (0 when none ran).
     events : tuple

@@ -5,7 +5,8 @@ element states), asks every element for its step graph, solves the one-step
 problem (:func:`lumped.solvers.network_step.solve_step`), and advances
 ``x_{n+1} = x_n + dt v_{n+1}`` and each element's state.  The loop runs in
 Python (:func:`_run_python`) or, block by block, in the compiled kernel
-(:mod:`lumped.solvers.network_compiled`).
+(:mod:`lumped.solvers.network_compiled`), or for one mass with a friction
+contact in the compiled friction loop (:mod:`lumped.solvers.friction_compiled`).
 
 :func:`march` takes arguments already checked at the boundary
 (:func:`lumped.drivers.network.run_network`: the grid, the output's size,
@@ -21,6 +22,7 @@ import numpy as np
 
 from lumped.model.network import Network, listed
 from lumped.model.trajectory import Trajectory
+from lumped.solvers import friction_compiled as friction
 from lumped.solvers import network_compiled as kernel
 from lumped.laws.step_graph import shifted
 from lumped.solvers.network_step import StepError, default_bound, solve_step, unsettled
@@ -152,14 +154,15 @@ class _Start(NamedTuple):
 
 def march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, path: str) -> Trajectory:
     """Backward Euler on ``net`` for ``n_steps`` steps of ``dt``, saving every ``save_every``-th
-    (``rows`` rows in all) with the step of ``path`` (``"compiled"`` or ``"python"``)."""
+    (``rows`` rows in all) with the step of ``path`` (``"compiled"``, ``"python"`` or
+    :data:`lumped.solvers.friction_compiled.PATH`)."""
     first, second = net.incidence()
     x, v, state, sol = _initial(net, first, second, path)
     inertia = np.array([m.mass / dt for m in net.masses])
     rec = _Record(rows, len(net.masses), len(net.elements))
     rec.save(0.0, x, v, sol.f, state, False, sol.low, sol.high)
     start = _Start(x, v, state, inertia, _sigma(net, inertia, dt), np.where(v == 0, 0, 1).astype(np.int64))
-    run = _run_compiled if path == "compiled" else _run_python
+    run = {"compiled": _run_compiled, friction.PATH: _run_friction}.get(path, _run_python)
     v, most = run(net, dt, n_steps, save_every, rec, start)
     still = v != 0
     rest_time = np.where(still, np.nan, np.minimum(start.rest, n_steps) * dt)
@@ -258,6 +261,26 @@ def _run_compiled(
         table = net.load_table(np.arange(begin, stop + 1) * dt, loaded)
         steps = (begin, stop, n_steps, save_every)
         kernel.march_block(topology, start.inertia, start.sigma, loaded, marching, record, table, dt, steps)
+        rec.row = int(counters[0])
+        if counters[2]:
+            n = int(counters[1])
+            raise _unsettled(n, dt, len(net.elements)) if counters[2] == 1 else _overflowed(n, dt)
+    return marching[1], int(counters[3])
+
+
+def _run_friction(
+    net: Network, dt: float, n_steps: int, save_every: int, rec: _Record, start: _Start
+) -> tuple[np.ndarray, int]:
+    """The compiled one-mass friction loop (:mod:`lumped.solvers.friction_compiled`), block by block; same contract."""
+    topology, loaded = friction.plan(net), bool(net.loaded_masses())
+    counters = np.array([rec.row, 0, 0, 0], dtype=np.int64)
+    marching = (start.x.copy(), start.v.copy(), np.array(start.state, dtype=float), start.rest, counters)
+    record = (rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid.view(np.uint8))
+    for begin in range(1, n_steps + 1, _BLOCK):
+        stop = min(begin + _BLOCK - 1, n_steps)
+        table = net.load_table(np.arange(begin, stop + 1) * dt)[:, 0] if loaded else np.empty(0)
+        steps = (begin, stop, n_steps, save_every)
+        friction.march_block(topology, float(start.inertia[0]), marching, record, table, dt, steps)
         rec.row = int(counters[0])
         if counters[2]:
             n = int(counters[1])
