@@ -20,7 +20,10 @@ kinetic, Stribeck), picked by a rule where it is not monotone:
   :class:`SlipCurve` (any slip curve, a callable);
 * :mod:`~lumped.laws.stribeck`: static, kinetic, Stribeck and viscous
   friction, the ``friction`` kind, a law in one file;
-* :mod:`~lumped.laws.slip_elements`: a friction law as a network element.
+* :mod:`~lumped.laws.slip_elements`: a friction law as a network element;
+* :mod:`~lumped.laws.curve`: a relation given by points that may fold back in
+  both coordinates (the ``curve`` kind), followed branch by branch, with a
+  jump at each fold.
 
 Elements of a network, each a constitutive graph between its force and its
 elongation:
@@ -36,6 +39,7 @@ Nothing here imports a solver, a driver or the model above it.
 """
 
 from lumped.laws.bingham import BinghamDashpot, bingham_corrector, coulomb, sticks
+from lumped.laws.curve import Curve
 from lumped.laws.contract import BinghamForm, Dashpot, DashpotState, LinearSpring, StepBound
 from lumped.laws.dashpot_elements import Bingham, HerschelBulkley, LawElement, LinearDashpot, LockingBingham, Monotone
 from lumped.laws.element import GROUND, Element
@@ -56,6 +60,7 @@ __all__ = [
     "Bingham",
     "BinghamDashpot",
     "Contact",
+    "Curve",
     "Friction",
     "SlipCurve",
     "SlipElement",
