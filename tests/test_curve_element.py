@@ -27,7 +27,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import EPS
+from conftest import EPS, ROOT
 
 import lumped as L
 from lumped.cli import main
@@ -154,6 +154,23 @@ def test_step_on_a_falling_branch_whatever_the_mode_scale(sigma: float) -> None:
     assert sol.f[0] == pytest.approx(4.0 - sol.v[0], rel=4 * EPS)
 
 
+@pytest.mark.parametrize("dt", [1e-2, 1e-3])
+def test_falling_branch_reaches_its_fold(dt: float) -> None:
+    """From ``u = 1.6`` on branch 2 (F = 2.5, ``u_eq = 1.5``) the rate grows as ``0.1 exp(t/m)`` and reaches the
+    fold at ``u = 2`` after ``m ln 5``; backward Euler's ``0.1 (1 - h)^-n`` passes 0.5 at the first ``n`` with
+    ``(1 - h)^-n > 5``, and the tension jumps to branch 3 there.  ``h/(-ln(1 - h)) - 1`` lies in ``(-h/2 - h^2,
+    -h/2)`` (``1/(1 + h/2 + h^2/3 + ...)``), so the jump's error is in ``(m ln 5 (-h/2 - h^2), -m ln 5 h/2 +
+    dt]``: order 1."""
+    m = 1.0
+    tr = L.simulate_network(pulled(S_POINTS, 2.5, 1.6, 2), 2.0, dt)
+    h = dt / m
+    steps = math.log(5.0) / -math.log1p(-h)
+    assert abs(steps - round(steps)) > 1e-6
+    assert [(j.before, j.after, round(j.time / dt)) for j in tr.jumps][0] == (2, 3, math.floor(steps) + 1)
+    error = tr.jumps[0].time - m * math.log(5.0)
+    assert m * math.log(5.0) * (-h / 2 - h * h) < error <= -m * math.log(5.0) * h / 2 + dt
+
+
 def test_falling_branch_dt_bound_both_sides() -> None:
     """The falling branch (slope -1) needs ``m/dt > 1``: ``dt = 1`` (m = 1) is refused naming the largest
     admissible step, 0.999 runs."""
@@ -225,22 +242,21 @@ def test_jumps_on_a_belt_are_those_on_the_ground() -> None:
     assert np.max(np.abs(tr.velocities[:, 0] - belt - ground.velocities[:, 0])) <= bound
 
 
-def test_command_line_prints_the_jumps(tmp_path, capsys) -> None:
-    system = tmp_path / "s.toml"
-    system.write_text(
-        '[[mass]]\nname = "m"\nmass = 1.0\n[[element]]\nname = "c"\nkind = "curve"\nbetween = ["ground", "m"]\n'
-        'points = [[0, 0], [2, 2], [1, 3], [3, 5]]\n[[force]]\non = "m"\nkind = "constant"\nvalue = 2.5\n'
-    )
-    out = tmp_path / "run.csv"
-    assert main(["simulate", "--system", str(system), "--t-end", "6", "--dt", "1e-2", "--output", str(out)]) == 0
+def test_the_s_curve_example_prints_its_jumps(tmp_path, capsys) -> None:
+    """``examples/s_curve.toml`` is the relaxation oscillation above; its command's one line lists the jumps at
+    the steps of backward Euler's closed form (the first three of four)."""
+    net = L.load_system(ROOT / "examples" / "s_curve.toml")
+    (curve,), (load,) = net.elements, net.loads
+    assert curve.points == tuple((float(u), float(t)) for u, t in S_POINTS) and load.force(1.0) == 2.5
+    out = tmp_path / "s_curve.csv"
+    argv = ["simulate", "--system", str(ROOT / "examples" / "s_curve.toml"), "--t-end", "6", "--dt", "1e-3"]
+    assert main([*argv, "--output", str(out)]) == 0
     err = capsys.readouterr().err
-    h = 1e-2
-    first, then = first_beyond(5.0, h), first_beyond(3.0, h)
-    times = ", ".join(
-        f"t = {k * h:.6g} s {a} -> {b}"
-        for k, (a, b) in zip([first, first + then, first + 2 * then], [(1, 3), (3, 1), (1, 3)])
-    )
-    assert f"'c' jumped 4 times between branches ({times}, ...)" in err and len(err.splitlines()) == 1
+    first, then = first_beyond(5.0, 1e-3), first_beyond(3.0, 1e-3)
+    steps = [first, first + then, first + 2 * then]
+    shown = ", ".join(f"t = {k * 1e-3:.6g} s {a} -> {b}" for k, (a, b) in zip(steps, [(1, 3), (3, 1), (1, 3)]))
+    assert f"; 'c' jumped 4 times between branches ({shown}, ...); wrote" in err and len(err.splitlines()) == 1
+    assert shown == "t = 1.611 s 1 -> 3, t = 2.711 s 3 -> 1, t = 3.811 s 1 -> 3"  # as the example and the guide say
 
 
 # -- the Bingham graph ----------------------------------------------------------------------

@@ -18,6 +18,8 @@
   the hand calculation; ``friction_pads.toml`` moves as Algorithm 1 with one
   pad of the summed threshold, rests where the closed form says, and its pads'
   intervals are what each one's threshold leaves the other;
+  ``s_curve.toml`` jumps between its branches at the steps backward Euler's
+  closed form gives (``tests/test_curve_element.py``);
   ``two_mass_response.toml`` without friction has the linear two-degree-of-
   freedom response (``tests/test_response_network.py``).
 * ``scripts/ground_record.py`` writes the committed record, byte for byte.
@@ -50,6 +52,7 @@ TESTS = {
     "building": "test_examples.py::test_the_building_with_locked_dampers_is_the_linear_shear_frame",
     "figure2_beside_dashpot": "test_examples.py::test_figure2_beside_the_dashpot_holds_at_the_strings_length",
     "friction_pads": "test_examples.py::test_two_pads_move_as_one_and_share_the_held_force",
+    "s_curve": "test_curve_element.py::test_the_s_curve_example_prints_its_jumps",
     "two_mass_response": (
         "test_response_network.py::test_without_friction_the_example_is_the_linear_two_degree_of_freedom_response"
     ),
