@@ -74,6 +74,23 @@ def test_fold_stretch_goes_to_the_branch_it_rises_on() -> None:
     assert (two.lo, two.hi, two.fall, one.above, three.below, two.below, two.above) == (0.0, 1.0, 1.0, 3, 1, 1, 3)
 
 
+def test_branch_beyond_a_fold_on_a_curve_of_four_folds() -> None:
+    """A tension rising along the curve (``u = phi(T)``, rates -inf to 2, back to 1, on to 5, back to 0.5, on to
+    inf): past a fold the jump lands on the first branch that holds the rates beyond, walking towards the end
+    of the jump's sign, where a stiff spring in series would take the tension (up past an upper fold, down past
+    a lower one).  From the middle branch 2's lower fold (u = 1) that is branch 1, not branch 4 beyond its
+    partner 3, which holds those rates at a higher tension."""
+    c = L.Curve("c", ("ground", "m"), points=[[0, 0], [2, 2], [1, 3], [5, 7], [0.5, 8], [3, 10]])
+    assert [(b.lo, b.hi) for b in c.branches] == [(-math.inf, 2), (1, 2), (1, 5), (0.5, 5), (0.5, math.inf)]
+    assert [(b.below, b.above) for b in c.branches] == [(0, 3), (1, 3), (1, 5), (1, 5), (1, 0)]
+    z = L.Curve("c", ("ground", "m"), points=[[1, 2], [-1, 2], [0, 0], [-2, 0]])  # a Z written from u = +inf
+    assert [(b.lo, b.hi, b.below, b.above) for b in z.branches] == [
+        (-1, math.inf, 3, 0),
+        (-1, 0, 3, 1),
+        (-math.inf, 0, 0, 1),
+    ]
+
+
 BAD_POINTS = [
     ([[0, 0]], "points: a curve needs at least 2 points, got 1"),
     ([[0, 0], [1]], "points: point 2 must be a pair [u, T] (m/s, N), got [1]"),
@@ -87,6 +104,7 @@ BAD_POINTS = [
     ([[0, 0], [1, 1], [1, 3], [1, 2], [2, 3]], "points 2 to 4: a vertical stretch folds back on itself at u = 1"),
     ([[0, 0], [1e-300, 1e300], [1, 1e300]], "points 1 and 2: the line through (0, 0) and (1e-300, 1e+300)"),
     ("ab", "points must be a list of [u, T] pairs (m/s, N), got 'ab'"),
+    ([[k, k] for k in range(10_001)], "points: 10001 points, more than the 10000 a curve may have"),
 ]
 
 

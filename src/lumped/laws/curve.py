@@ -18,17 +18,19 @@ rate there.  The element's state is the number of the branch it is on.
 **Jumps: the delay convention.**  The motion follows the branch it is on as
 long as the branch holds it; when the rate reaches a fold and would go on
 past it, the tension jumps at constant rate to the *branch beyond the
-fold*: the first branch, walking along the curve from the fold away from the
-branch left, that holds the rates just past it (if that walk reaches the
-curve's end, the first one walking the other way).  This is the jump rule of
-Sastry and Desoer (IEEE Trans. Circuits Syst. 28 (1981) 1109) for a state that
-cannot jump (the rate, a mass's velocity) and one that can (the tension): a
-curve ``u = phi(T)`` regularised by a stiff spring in series, ``T' =
-kappa (u - phi(T))``, leaves the fold along the vertical line ``u`` fixed in
-the direction of ``u - phi(T)`` and lands on that branch.  In catastrophe
-theory's words this is the *delay* convention (the state stays on its branch
-until the branch ends, so the jumps up and down happen at different rates:
-hysteresis).  The other, the *Maxwell* convention, would put the element
+fold*: the first branch that holds the rates just past it, walking along the
+curve from the branch left towards the curve's end at ``u = +inf`` for a jump
+up in rate, at ``u = -inf`` for a jump down (the curve runs on to that end, so
+there is one).  This is the jump rule of Sastry and Desoer (IEEE Trans.
+Circuits Syst. 28 (1981) 1109) for a state that cannot jump (the rate, a
+mass's velocity) and one that can (the tension): an S whose tension rises
+along it, ``u = phi(T)``, regularised by a stiff spring in series, ``T' =
+kappa (u - phi(T))``, leaves the fold along the vertical line ``u`` fixed,
+its tension rising past an upper fold and falling past a lower one, and
+lands on that branch; a Z (tension falling along it) jumps by the same walk.
+In catastrophe theory's words this is the *delay* convention (the state stays
+on its branch until the branch ends, so the jumps up and down happen at
+different rates: hysteresis).  The other, the *Maxwell* convention, would put the element
 always on one branch chosen by the rate alone and jump both ways at the one
 rate where the areas cut off between the vertical line and the curve are
 equal (Maxwell's construction): no hysteresis, and a jump before the fold.
@@ -59,9 +61,12 @@ from lumped.laws.element import Element, KernelForm
 from lumped.laws.step_graph import Piece, Pieces, bingham_band, free_piece, rigid_piece
 from lumped.numerics import validate
 
-__all__ = ["Branch", "Curve", "FallingBranch", "RisingBranch", "branches"]
+__all__ = ["MAX_POINTS", "Branch", "Curve", "FallingBranch", "RisingBranch", "branches"]
 
 _INF = math.inf
+#: Most points of a curve: finding the branch beyond each fold walks along the curve, at worst from every
+#: fold to an end (a measured S-shaped relation has hundreds).
+MAX_POINTS = 10_000
 _BINGHAM_CODE = 2  # the Bingham element's kind code in ``_network_elements.h``
 
 
@@ -108,6 +113,8 @@ def check_points(points: object) -> tuple[tuple[float, float], ...]:
     """``points`` as a tuple of ``(u, T)`` pairs, or a one-line ``ValueError`` saying what is wrong."""
     if isinstance(points, (str, bytes, dict)) or not hasattr(points, "__len__"):
         raise ValueError(f"points must be a list of [u, T] pairs (m/s, N), got {points!r:.40}")
+    if len(points) > MAX_POINTS:  # type: ignore[arg-type]
+        raise ValueError(f"points: {len(points)} points, more than the {MAX_POINTS} a curve may have")  # type: ignore[arg-type]
     out = tuple(_point(k, p) for k, p in enumerate(points, 1))  # type: ignore[arg-type]
     if len(out) < 2:
         raise ValueError(f"points: a curve needs at least 2 points, got {len(out)}")
@@ -222,15 +229,16 @@ def _branch_pieces(path: list[tuple[float, float]], open_lo: bool, open_hi: bool
     return pieces, leave_below, leave_above
 
 
-def _beyond(spans: list[tuple[float, float]], j: int, toward: int, rate: float, up: bool) -> int:
-    """The branch (index) beyond the fold at ``rate`` of branch ``j`` whose partner is ``j + toward``."""
-    for step in (toward, -toward):
-        k = j + step
-        while 0 <= k < len(spans):
-            lo, hi = spans[k]
-            if (lo <= rate < hi) if up else (lo < rate <= hi):
-                return k
-            k += step
+def _beyond(spans: list[tuple[float, float]], j: int, rate: float, up: bool, step: int) -> int:
+    """The branch (index) beyond the fold at ``rate`` of branch ``j``: the first after ``j`` in the direction
+    ``step`` (towards the curve's end at ``u = +inf`` for a jump ``up``, at ``-inf`` otherwise) that holds the
+    rates just past ``rate``.  The curve runs on from the fold to that end, so one does."""
+    k = j + step
+    while 0 <= k < len(spans):
+        lo, hi = spans[k]
+        if (lo <= rate < hi) if up else (lo < rate <= hi):
+            return k
+        k += step
     raise AssertionError("a curve from u = -inf to u = +inf holds every rate")  # pragma: no cover
 
 
@@ -250,11 +258,11 @@ def branches(points: object) -> tuple[Branch, ...]:
         spans.append((-_INF if open_lo else path[0][0], _INF if open_hi else path[-1][0]))
         fall = max([0.0] + [-p.b for p in pieces if not p.rigid])
         built.append((pieces, leave_below, leave_above, fall))
-    out = []
-    for j, (run, (pieces, leave_below, leave_above, fall)) in enumerate(zip(runs, built)):
+    out, plus = [], runs[-1].sign  # the step along the curve towards its end at u = +inf
+    for j, (pieces, leave_below, leave_above, fall) in enumerate(built):
         lo, hi = spans[j]
-        below = 0 if lo == -_INF else 1 + _beyond(spans, j, -run.sign, lo, up=False)
-        above = 0 if hi == _INF else 1 + _beyond(spans, j, run.sign, hi, up=True)
+        below = 0 if lo == -_INF else 1 + _beyond(spans, j, lo, False, -plus)
+        above = 0 if hi == _INF else 1 + _beyond(spans, j, hi, True, plus)
         out.append(Branch(j + 1, lo, hi, tuple(pieces), leave_below, leave_above, below, above, fall))
     return tuple(out)
 
