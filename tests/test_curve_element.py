@@ -229,6 +229,20 @@ def test_relaxation_oscillation_jump_times(dt: float) -> None:
     assert tr.states[steps[0], 0] == 3.0 and tr.states[steps[0] - 1, 0] == 1.0
 
 
+def test_curve_between_two_masses_jumps_as_their_relative_motion() -> None:
+    """The curve between two masses of 1 kg pulled apart by 2.5 N each: their rate ``w = v2 - v1`` moves as one
+    mass of ``m = 1/2`` pulled by 2.5 N (``w' = 2 (2.5 - T)``), so the jumps come at the closed form's steps
+    with ``h = dt/m = 2 dt``; the centre of mass stays at rest."""
+    dt = 1e-3
+    curve = L.Curve("c", ("a", "b"), points=S_POINTS)
+    loads = [L.Load("a", L.Constant(-2.5)), L.Load("b", L.Constant(2.5))]
+    tr = L.simulate_network(L.Network([L.Mass("a", 1.0), L.Mass("b", 1.0)], [curve], loads), 2.4, dt)
+    first, then = first_beyond(5.0, 2 * dt), first_beyond(3.0, 2 * dt)
+    steps = [first, first + then, first + 2 * then]
+    assert [(j.before, j.after, round(j.time / dt)) for j in tr.jumps] == list(zip([1, 3, 1], [3, 1, 3], steps))
+    assert np.max(np.abs(tr.velocities.sum(axis=1))) <= tr.t.size * 4 * EPS * np.max(np.abs(tr.velocities))
+
+
 def test_jump_to_a_lower_tension() -> None:
     """A Z-shaped curve (branch 1 ``T = 2`` up to ``u = 1``, branch 3 ``T = 0`` from ``u = 0``): a mass pulled
     by 3.3 N accelerates at 1.3 m/s^2 (backward Euler is exact for a constant acceleration) up to the fold,
