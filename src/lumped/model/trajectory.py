@@ -378,14 +378,19 @@ class Trajectory:
         return float(self.energy_balance().dissipated[-1])
 
 
-def _jumps_line(jumps: tuple[Jump, ...], shown: int = 3) -> str:
-    """``; 'c' jumped 4 times between branches (t = 0.694 s 1 -> 3, ...)`` for each element that jumped."""
+def _jumps_line(jumps: tuple[Jump, ...], shown: int = 3, elements: int = 5) -> str:
+    """``; 'c' jumped 4 times between branches (t = 1.611 s 1 -> 3, ...)`` for each of the first ``elements``
+    elements that jumped, their first ``shown`` jumps each."""
+    by: dict[str, list[Jump]] = {}
+    for j in jumps:
+        by.setdefault(j.element, []).append(j)
     out = []
-    for name in dict.fromkeys(j.element for j in jumps):
-        own = [j for j in jumps if j.element == name]
+    for name, own in list(by.items())[:elements]:
         first = ", ".join(f"t = {j.time:.6g} s {j.before} -> {j.after}" for j in own[:shown])
         times = "once" if len(own) == 1 else f"{len(own)} times"
         out.append(f"; {name!r} jumped {times} between branches ({first}{', ...' if len(own) > shown else ''})")
+    if len(by) > elements:
+        out.append(f"; ... and {len(by) - elements} more elements jumped")
     return "".join(out)
 
 
