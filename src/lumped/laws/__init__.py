@@ -39,8 +39,8 @@ Nothing here imports a solver, a driver or the model above it.
 """
 
 from lumped.laws.bingham import BinghamDashpot, bingham_corrector, coulomb, sticks
-from lumped.laws.curve import Curve
 from lumped.laws.contract import BinghamForm, Dashpot, DashpotState, LinearSpring, StepBound
+from lumped.laws.curve import Curve
 from lumped.laws.dashpot_elements import Bingham, HerschelBulkley, LawElement, LinearDashpot, LockingBingham, Monotone
 from lumped.laws.element import GROUND, Element
 from lumped.laws.kinds import KINDS
