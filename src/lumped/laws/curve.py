@@ -42,8 +42,8 @@ wall beyond the branch's tension there (the rate held at the fold, the
 tension on the vertical line of the jump) has reached the fold; the element
 is on the branch beyond from the next step on (:meth:`Curve.next_state`),
 and the run records the jump (:class:`lumped.model.trajectory.Jump`).  The
-jump so lags the exact one by at most a step: order 1, as backward Euler
-is.  A branch whose tension never falls is a maximal monotone step graph (a
+step held at the fold adds at most a step to backward Euler's own lag in
+reaching it: the jump times converge at order 1, as backward Euler does.  A branch whose tension never falls is a maximal monotone step graph (a
 convex step); one that falls is walked piece by piece by the rule of
 :class:`FallingBranch`, unique when ``dt`` meets the bound of
 :mod:`lumped.solvers.uniqueness` for the curve's steepest fall.
