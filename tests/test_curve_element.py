@@ -326,3 +326,12 @@ def test_curve_of_the_bingham_graph_in_more_points_agrees_with_algorithm1() -> N
     assert np.max(np.abs(tr.velocities[:, 0] - ref.v)) <= bound
     assert np.max(np.abs(tr.positions[:, 0] - ref.x)) <= bound
     assert np.array_equal(tr.rigid[1:, 1], ref.v[1:] == 0)  # sticks at the same steps
+
+
+def test_a_curve_is_refused_by_the_methods_written_for_monotone_graphs(tmp_path):
+    """The period map and the exact sensitivities refuse a curve that folds (element point 13), in one line;
+    the Bingham graph's points are monotone and not refused for that."""
+    net = L.load_system(ROOT / "examples" / "s_curve.toml")
+    assert not any(el.monotone for el in net.elements if el.kind == "curve")
+    with pytest.raises(ValueError, match="its graph is not monotone"):
+        net.refuse_non_monotone("the period map")

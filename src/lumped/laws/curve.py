@@ -416,6 +416,11 @@ class Curve(Element):
         return (min(values), max(values))
 
     @property
+    def monotone(self) -> bool:
+        """True only for a curve that is the Bingham graph (one branch, never falling; Element point 13)."""
+        return self.bingham_form() is not None
+
+    @property
     def steepest_fall(self) -> float:
         """The steepest fall of any branch (N s/m): a backward-Euler step must outweigh it on every branch the
         element may reach."""
