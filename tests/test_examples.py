@@ -18,6 +18,8 @@
   the hand calculation; ``friction_pads.toml`` moves as Algorithm 1 with one
   pad of the summed threshold, rests where the closed form says, and its pads'
   intervals are what each one's threshold leaves the other;
+  ``s_curve.toml`` jumps between its branches at the steps backward Euler's
+  closed form gives (``tests/test_curve_element.py``);
   ``two_mass_response.toml`` without friction has the linear two-degree-of-
   freedom response (``tests/test_response_network.py``); ``belt.toml`` meets
   the closed-form stick-slip cycle and ``stribeck_belt.toml`` the linearised
@@ -54,6 +56,7 @@ TESTS = {
     "friction_pads": "test_examples.py::test_two_pads_move_as_one_and_share_the_held_force",
     "belt": "test_friction_cli.py::test_the_belt_example_meets_the_closed_form_cycle",
     "stribeck_belt": "test_friction_cli.py::test_the_stribeck_example_is_the_linearised_motion",
+    "s_curve": "test_curve_element.py::test_the_s_curve_example_prints_its_jumps",
     "two_mass_response": (
         "test_response_network.py::test_without_friction_the_example_is_the_linear_two_degree_of_freedom_response"
     ),

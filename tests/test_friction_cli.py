@@ -200,8 +200,8 @@ def test_the_uniqueness_bound_is_refused_above_and_runs_at_the_printed_step(tmp_
     args = ("simulate", "--system", "s.toml", "--t-end", "1", "--output", "out.csv")
     line = _refused(run_lumped(*args, "--dt", "0.0252", cwd=tmp_path), tmp_path)
     assert line == (
-        "lumped simulate: error: --dt: 0.0252 s is too long for a unique backward-Euler step: the slip curve of "
-        "'fric' falls by up to 39.8 N s/m, more than the masses' m/dt and the springs' k dt outweigh; "
+        "lumped simulate: error: --dt: 0.0252 s is too long for a unique backward-Euler step: the tension of "
+        "'fric' falls with its rate by up to 39.8 N s/m, more than the masses' m/dt and the springs' k dt outweigh; "
         "take dt <= 0.0251 s"
     )
     assert run_lumped(*args, "--dt", "0.0251", cwd=tmp_path).returncode == 0

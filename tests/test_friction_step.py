@@ -156,7 +156,7 @@ def test_a_step_beyond_the_bound_is_refused_by_the_run():
     net = one_mass(stribeck(), mass=0.538, stiffness=6957.0, drivers=[Driver("belt", 0.22)])
     lumped.simulate_network(net, 0.01, 1e-2)  # 53.8 + 69.6 kg/s > 39.8 N s/m
     heavy_fall = one_mass(stribeck(v_s=0.01), mass=0.538, stiffness=6957.0, drivers=[Driver("belt", 0.22)])
-    with pytest.raises(ValueError, match=r"^dt: 0\.01 s is too long .*'f' falls by up to 399\.8 N s/m"):
+    with pytest.raises(ValueError, match=r"^dt: 0\.01 s is too long .*'f' falls with its rate by up to 399\.8 N s/m"):
         lumped.simulate_network(heavy_fall, 0.1, 1e-2)
 
 

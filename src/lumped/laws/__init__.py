@@ -21,7 +21,10 @@ kinetic, Stribeck), picked by a rule where it is not monotone:
 * :mod:`~lumped.laws.slip`: :class:`SlipCurve` (any slip curve, a callable);
 * :mod:`~lumped.laws.stribeck`: static, kinetic, Stribeck and viscous
   friction, the ``friction`` kind, a law in one file;
-* :mod:`~lumped.laws.slip_elements`: a friction law as a network element.
+* :mod:`~lumped.laws.slip_elements`: a friction law as a network element;
+* :mod:`~lumped.laws.curve`: a relation given by points that may fold back in
+  both coordinates (the ``curve`` kind), followed branch by branch, with a
+  jump at each fold.
 
 Elements of a network, each a constitutive graph between its force and its
 elongation:
@@ -38,6 +41,7 @@ Nothing here imports a solver, a driver or the model above it.
 
 from lumped.laws.bingham import BinghamDashpot, bingham_corrector, coulomb, sticks
 from lumped.laws.contract import BinghamForm, Dashpot, DashpotState, LinearSpring, SlipLaw, StepBound
+from lumped.laws.curve import Curve
 from lumped.laws.dashpot_elements import Bingham, HerschelBulkley, LawElement, LinearDashpot, LockingBingham, Monotone
 from lumped.laws.element import GROUND, Element
 from lumped.laws.kinds import KINDS
@@ -57,6 +61,7 @@ __all__ = [
     "Bingham",
     "BinghamDashpot",
     "Contact",
+    "Curve",
     "Friction",
     "SlipCurve",
     "SlipElement",

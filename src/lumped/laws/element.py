@@ -147,10 +147,17 @@ class Element(ABC):
         written for monotone graphs (the period map, the exact
         sensitivities, the one-mass schemes) refuse such an element
         (:meth:`lumped.model.network.Network.refuse_non_monotone`).
+    14. ``jumps`` (a class attribute): True if the state is a branch of the
+        element's graph (a number), so that a change of state between steps is
+        a jump that backward Euler records in the trajectory
+        (:class:`lumped.model.trajectory.Jump`: time, element, branch before,
+        branch after); False by default.
     """
 
     kind: ClassVar[str] = ""
     optional: ClassVar[tuple[str, ...]] = ()
+    #: True if a change of the state is a jump between branches (point 12).
+    jumps: ClassVar[bool] = False
     #: The kind code of ``_network_elements.h`` (point 9), ``None`` if it has none.
     kernel_code: ClassVar[int | None] = None
     name: str

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from lumped.laws.curve import Curve
 from lumped.laws.dashpot_elements import Bingham, HerschelBulkley, LinearDashpot, LockingBingham
 from lumped.laws.element import Element
 from lumped.laws.spring_elements import MaxwellBingham, Spring, SpringString
@@ -12,5 +13,15 @@ __all__ = ["KINDS"]
 #: Element kinds by their name in system files.
 KINDS: dict[str, type[Element]] = {
     cls.kind: cls
-    for cls in (Spring, SpringString, Bingham, MaxwellBingham, LinearDashpot, LockingBingham, HerschelBulkley, Friction)
+    for cls in (
+        Spring,
+        SpringString,
+        Bingham,
+        MaxwellBingham,
+        LinearDashpot,
+        LockingBingham,
+        HerschelBulkley,
+        Friction,
+        Curve,
+    )
 }

@@ -23,7 +23,7 @@ from lumped.model.network import Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import OneMass, one_mass_form, oscillator_network
 
-__all__ = ["COLUMNS", "Trajectory", "EnergyBalance", "sign_changes"]
+__all__ = ["COLUMNS", "Trajectory", "EnergyBalance", "Jump", "sign_changes"]
 
 #: The one-mass output columns, in order: time (s), displacement (m), velocity
 #: (m/s), spring force (N), dashpot force (N), external force (N).
@@ -45,6 +45,21 @@ class EnergyBalance(NamedTuple):
     numerical: np.ndarray
     external_work: np.ndarray
     residual: np.ndarray
+
+
+class Jump(NamedTuple):
+    """An element's jump between the branches of its graph (a ``curve`` at a fold), an event of the trajectory.
+
+    ``time`` (s) is the end of the step that reached the fold (backward Euler:
+    the element is on branch ``after`` from the next step on); ``element``
+    its name; ``before`` and ``after`` the branches' numbers, from 1 along
+    the curve.
+    """
+
+    time: float
+    element: str
+    before: int
+    after: int
 
 
 @dataclass(frozen=True, eq=False)
@@ -91,7 +106,8 @@ class Trajectory:
     events : tuple
         The events the method located (stops, breakaways, reversals, the
         forcing's switch-off), in time order; empty for a method that
-        locates none.
+        locates none.  Backward Euler records each :class:`Jump` of an
+        element between the branches of its graph (:attr:`jumps`).
     force_min, force_max : ndarray, (N, elements), N, or None
         The least and greatest admissible force of each element where rigid
         elements close a loop and their split is not unique (``forces`` then
@@ -255,8 +271,14 @@ class Trajectory:
             return []
         return np.flatnonzero((self.force_min != self.force_max).any(axis=0)).tolist()
 
+    @property
+    def jumps(self) -> tuple[Jump, ...]:
+        """The jumps between branches among the :attr:`events`, in time order."""
+        return tuple(e for e in self.events if isinstance(e, Jump))
+
     def summary(self, shown: int = 10) -> str:
-        """Each mass's rest time and position, or that it still moves (the first ``shown`` masses)."""
+        """Each mass's rest time and position, or that it still moves (the first ``shown`` masses); then the
+        jumps between branches, each element's count and its first three."""
         parts, names = [], self.network.mass_names
         times, places = self.rest_times, self.rest_positions
         for i, name in enumerate(names[:shown]):
@@ -265,7 +287,7 @@ class Trajectory:
             else:
                 parts.append(f"{name} at rest from t = {times[i]:.10g} s at x = {places[i]:.10g} m")
         more = f"; ... and {len(names) - shown} more masses" if len(names) > shown else ""
-        return "; ".join(parts) + more
+        return "; ".join(parts) + more + _jumps_line(self.jumps)
 
     # -- the paper's system: one mass ------------------------------------------
 
@@ -386,6 +408,22 @@ class Trajectory:
     def dissipated_energy(self) -> float:
         """Energy dissipated in the dashpot over the run (J)."""
         return float(self.energy_balance().dissipated[-1])
+
+
+def _jumps_line(jumps: tuple[Jump, ...], shown: int = 3, elements: int = 5) -> str:
+    """``; 'c' jumped 4 times between branches (t = 1.611 s 1 -> 3, ...)`` for each of the first ``elements``
+    elements that jumped, their first ``shown`` jumps each."""
+    by: dict[str, list[Jump]] = {}
+    for j in jumps:
+        by.setdefault(j.element, []).append(j)
+    out = []
+    for name, own in list(by.items())[:elements]:
+        first = ", ".join(f"t = {j.time:.6g} s {j.before} -> {j.after}" for j in own[:shown])
+        times = "once" if len(own) == 1 else f"{len(own)} times"
+        out.append(f"; {name!r} jumped {times} between branches ({first}{', ...' if len(own) > shown else ''})")
+    if len(by) > elements:
+        out.append(f"; ... and {len(by) - elements} more elements jumped")
+    return "".join(out)
 
 
 def _orientation(el: object) -> float:

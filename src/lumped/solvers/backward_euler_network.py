@@ -21,7 +21,7 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.model.network import Network, listed
-from lumped.model.trajectory import Trajectory
+from lumped.model.trajectory import Jump, Trajectory
 from lumped.solvers import friction_compiled as friction
 from lumped.solvers import network_compiled as kernel
 from lumped.laws.step_graph import shifted
@@ -115,6 +115,7 @@ class _Record:
         self.force, self.state = np.empty((rows, elements)), np.empty((rows, elements))
         self.rigid = np.zeros((rows, elements), dtype=bool)
         self.ranges: dict[int, tuple[np.ndarray, np.ndarray]] = {}
+        self.jumps: list[Jump] = []  # the elements' jumps between branches, every step's (Element point 12)
         self.low: np.ndarray | None = None  # the compiled loop's intervals, every row
         self.high: np.ndarray | None = None
         self.row = 0
@@ -187,6 +188,7 @@ def march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, pat
         iterations=most,
         force_min=force_min,
         force_max=force_max,
+        events=tuple(rec.jumps),
     )
 
 
@@ -215,6 +217,7 @@ def _run_python(
     first, second = net.incidence()
     v, x, state, rest = start.v, start.x, start.state, start.rest
     modes, most = None, 0
+    jumping = [e for e, el in enumerate(net.elements) if el.jumps]
     for begin in range(1, n_steps + 1, _BLOCK):
         stop = min(begin + _BLOCK - 1, n_steps)
         times = np.arange(begin, stop + 1) * dt
@@ -231,10 +234,14 @@ def _run_python(
             v, modes, most = sol.v, sol.modes, max(most, sol.iterations)
             x = x + dt * v
             w = sol.w if delta is None else sol.w + delta  # the true rates of elements joined to drivers
+            before = state
             state = [
                 el.next_state(s, dt, float(we), float(fe), r)
-                for el, s, we, fe, r in zip(net.elements, state, w, sol.f, sol.rigid)
+                for el, s, we, fe, r in zip(net.elements, before, w, sol.f, sol.rigid)
             ]
+            for e in jumping:
+                if state[e] != before[e]:
+                    rec.jumps.append(Jump(n * dt, net.elements[e].name, int(before[e]), int(state[e])))
             if not (np.isfinite(v).all() and np.isfinite(sol.f).all()):
                 raise _overflowed(n, dt)
             rest[v != 0] = n + 1

@@ -121,7 +121,7 @@ def check_step(net: Network, dt: float) -> None:
     steepest = max(falling, key=lambda el: el.steepest_fall)
     best = largest_step(net, dt)
     raise ValueError(
-        f"dt: {dt:g} s is too long for a unique backward-Euler step: the slip curve of {steepest.name!r} falls "
+        f"dt: {dt:g} s is too long for a unique backward-Euler step: the tension of {steepest.name!r} falls with its rate "
         f"by up to {steepest.steepest_fall:.4g} N s/m, more than the masses' m/dt and the springs' k dt "
         f"outweigh; take dt <= {_down(best):.3g} s"
     )
