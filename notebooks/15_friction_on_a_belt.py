@@ -34,7 +34,9 @@
 # * a falling curve given as any function (Leine's benchmark), run by the
 #   `event-driven` method beside backward Euler;
 # * steady sliding on a Stribeck belt: stable above the Hopf speed, growing
-#   into stick-slip below it, at the rates of its linearisation.
+#   into stick-slip below it, at the rates of its linearisation;
+# * a curve invertible neither way, and the jumps at its folds (the delay
+#   convention, and what Maxwell's would give).
 #
 # Every statement below is backed by a printed number or an `assert`.
 
@@ -798,6 +800,78 @@ for dt in (1e-4, 1e-5):
           f"{brentq(be_rate, 0.05, 0.3, args=(dt,)):.4f} m/s (exact: {V_hopf:.4f} m/s)")
 
 # %% [markdown]
+# ## Step 8: a curve invertible neither way, and its jumps
+#
+# The `curve` element is a relation between rate and tension given by points
+# along it, which may fold back in both coordinates. The S through $(0, 0)$,
+# $(2, 2)$, $(1, 3)$, $(3, 5)$ has three branches: 1, $T = u$ for $u \le 2$;
+# 2, $T = 4 - u$ for $1 \le u \le 2$ (falling); 3, $T = u + 2$ for $u \ge 1$.
+# Between $u = 1$ and $2$ each rate has three tensions, so neither $T(u)$ nor
+# $u(T)$ is a function, and a mass pulled by a constant $P = 2.5$ N between
+# them cannot settle: on branch 1, $m\dot u = P - u$ carries it to the fold
+# at $u = 2$ after $m\ln 5$; there the tension must jump, at constant rate
+# (a mass's velocity cannot jump), to branch 3, where $m\dot u = P - 2 - u$
+# carries it down to the fold at $u = 1$ after $m\ln 3$, and back to branch 1:
+# a relaxation oscillation. This is the **delay convention** (the element
+# stays on its branch until the branch ends, so it jumps up at $u = 2$ and
+# down at $u = 1$: hysteresis). Backward Euler holds the step that reaches a
+# fold at the fold's rate and puts the element on the branch beyond from the
+# next step; the trajectory records each change of branch as an event:
+
+# %%
+pulled = L.Network(
+    [L.Mass("m", 1.0)], [L.Curve("c", ("ground", "m"), points=[[0, 0], [2, 2], [1, 3], [3, 5]])],
+    [L.Load("m", L.Constant(2.5))],
+)
+dt = 1e-3
+run = L.simulate_network(pulled, 6.0, dt)
+exact_jumps = np.cumsum([math.log(5.0)] + [math.log(3.0)] * (len(run.jumps) - 1))  # m = 1 kg
+for j, t_exact in zip(run.jumps, exact_jumps):
+    print(f"t = {j.time:.3f} s: '{j.element}' jumps from branch {j.before} to {j.after} "
+          f"(exact {t_exact:.4f} s, {(j.time - t_exact) / dt:.2f} dt later)")
+assert [(j.before, j.after) for j in run.jumps] == [(1, 3), (3, 1), (1, 3), (3, 1)]
+
+# %% [markdown]
+# Each jump comes late by backward Euler's own lag on the branches before it
+# (on a piece of slope $b$ its step is $u_{n+1} - u_{eq} = (u_n - u_{eq})/(1 +
+# b\,\Delta t/m)$, slow by a factor $(1 + h/2)$ at first order, $h = \Delta t/m$)
+# and at most one step at each fold: the $k$-th jump is late by between
+# $\Delta t\,(S/2)(1 - h/6)$ and $\Delta t\,(S/2 + k)$, with $S$ the sum of the
+# $\ln r$ of the stretches before it (`tests/test_curve_element.py` derives
+# this and checks the steps exactly):
+
+# %%
+late = np.array([j.time for j in run.jumps]) - exact_jumps
+k_jump = np.arange(1, late.size + 1)
+assert np.all((late > dt * exact_jumps / 2 * (1 - dt / 6)) & (late <= dt * (exact_jumps / 2 + k_jump)))
+print("late by " + ", ".join(f"{e / dt:.2f}" for e in late) + " steps; bands: "
+      + ", ".join(f"({s / 2 * (1 - dt / 6):.2f}, {s / 2 + k:.2f}]" for s, k in zip(exact_jumps, k_jump)))
+
+# %% [markdown]
+# The other convention, **Maxwell's**, would put the element on one branch
+# chosen by the rate alone and jump both ways at the one rate where the areas
+# cut off between the vertical line $u = c$ and the curve are equal. For this
+# S the two areas are $(2 - c)^2$ (between branches 1 and 2) and $(c - 1)^2$
+# (between 2 and 3), equal at $c = 3/2$:
+
+# %%
+c_, T_ = sp.symbols("c T", real=True)
+lower = sp.integrate(T_ - c_, (T_, c_, 2)) + sp.integrate(4 - T_ - c_, (T_, 2, 4 - c_))
+upper = sp.integrate(c_ - (4 - T_), (T_, 4 - c_, 3)) + sp.integrate(c_ - (T_ - 2), (T_, 3, c_ + 2))
+maxwell = sp.solve(sp.Eq(sp.factor(lower), sp.factor(upper)), c_)
+assert maxwell == [sp.Rational(3, 2)]
+print(f"areas {sp.factor(lower)} and {sp.factor(upper)}: equal at c = {maxwell[0]}")
+
+# %% [markdown]
+# There the pulled mass, below $u = 3/2$ on branch 1 (heading for $u = 2.5$)
+# and above it on branch 3 (heading for $u = 0.5$), would be sent back across
+# $u = 3/2$ from either side: no relaxation oscillation and no hysteresis,
+# but a rate held at $3/2$ with the tension switching between its branches
+# (1.5 N and 3.5 N, averaging the pull 2.5 N). The delay convention is the
+# one that a stiff spring in series with the curve gives in the limit
+# (`lumped.laws.curve`'s docstring), and the one the package runs.
+
+# %% [markdown]
 # ## What to take away
 #
 # * A friction contact with static above kinetic, or a Stribeck fall, has a
@@ -827,3 +901,7 @@ for dt in (1e-4, 1e-5):
 #   linear rates (fr03), and below it the growth ends in stick-slip; backward
 #   Euler's numerical damping moves that speed down in proportion to
 #   $\Delta t$.
+# * A `curve` invertible neither way makes the motion jump at its folds; the
+#   package follows the delay convention (each jump at its own fold:
+#   hysteresis), records each change of branch as an event, and backward
+#   Euler's jump times are late by its lag, within the derived bands.
