@@ -402,7 +402,8 @@ assert np.all((-(c0 + 1) * (1 + rho) * dts <= period_err) & (period_err <= -c0 *
 assert np.all(np.abs(xmax_err + c_xmax * dts) <= (rho * c_xmax + omega**2 * R * dts / 8) * dts)
 band = math.log((c0 + 1) / c0) * 4 / (5 * math.log(2))
 assert abs(slopes[0] - 1) <= band and abs(slopes[1] - 1) <= 2 * rho[0]
-print(f"rho at the largest step {rho[0]:.3f}; the period's order is 1 within {band:.2f}, x_max's within {2 * rho[0]:.2f}")
+print(f"rho at the largest step {rho[0]:.3f}; the period's order is 1 within {band:.2f}, "
+      f"x_max's within {2 * rho[0]:.2f}")
 
 # %% [markdown]
 # Both are first order; the period's errors over $\Delta t$ scatter within
@@ -702,7 +703,8 @@ def swings(t, y):
     for where in ((inner > y[:-2]) & (inner >= y[2:]), (inner < y[:-2]) & (inner <= y[2:])):
         i = np.flatnonzero(where) + 1
         a, b, c = y[i - 1], y[i], y[i + 1]
-        extremes.append((t[i] + 0.5 * (a - c) / (a - 2 * b + c) * (t[1] - t[0]), b - (a - c) ** 2 / (8 * (a - 2 * b + c))))
+        curvature = a - 2 * b + c
+        extremes.append((t[i] + 0.5 * (a - c) / curvature * (t[1] - t[0]), b - (a - c) ** 2 / (8 * curvature)))
     (t_top, top), (t_low, low) = extremes
     after = np.searchsorted(t_low, t_top)
     keep = after < t_low.size
