@@ -73,7 +73,7 @@ NOTEBOOK_FIGURES = {
     "12_stops_per_cycle": ["sp01_stops_map", "sp02_stop_histories"],
     "13_response_curves": ["rc01_response_curves", "rc02_two_mass_response"],
     "14_sensitivities_and_fit": ["fit01_rest_kinks", "fit02_free_decay_fit"],
-    "15_friction_on_a_belt": ["fr01_belt_phase_portrait", "fr02_smoothing_creep"],
+    "15_friction_on_a_belt": ["fr01_belt_phase_portrait", "fr02_smoothing_creep", "fr03_stribeck_stability"],
 }
 
 #: notebook stem -> the data files it reads (rules/studies.smk, rules/accuracy.smk).
@@ -101,7 +101,7 @@ CATEGORY = {
     "12_stops_per_cycle": "Study - stops per cycle of the forced Coulomb oscillator (sp01-sp02)",
     "13_response_curves": "Tutorial - response curves by shooting and continuation (rc01-rc02)",
     "14_sensitivities_and_fit": "Tutorial - sensitivities through stick and slip, and a fit (fit01-fit02)",
-    "15_friction_on_a_belt": "Tutorial - friction on a belt, static above kinetic (fr01-fr02)",
+    "15_friction_on_a_belt": "Tutorial - friction on a belt, static above kinetic and Stribeck (fr01-fr03)",
 }
 
 #: Every figure file the pipeline makes.

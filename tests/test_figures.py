@@ -272,6 +272,12 @@ FIGURES = {
     "fr02": lambda: plotting.smoothing_creep(
         (REST_X0, 0.2 * np.cos(REST_X0)), {r"$\varepsilon$": (REST_X0, 0.2 + 1e-3 * REST_X0)}, 0.2, [(0.0, 0.5)]
     ),
+    "fr03": lambda: plotting.stribeck_stability(
+        {"V": ((REST_X0, 1e-5 * np.exp(REST_X0)), (REST_X0, 1e-5 * np.exp(REST_X0)))},
+        (np.array([0.15, 0.25]), np.array([1.0, -1.0])),
+        (np.array([0.1, 0.3]), np.array([2.0, -2.0])),
+        0.2,
+    ),
 }
 
 

@@ -78,6 +78,29 @@ def test_a_contact_that_breaks_away_slides_against_kinetic():
     assert np.all(tr.forces[1:, 1] == kinetic)
 
 
+def test_a_curve_given_as_a_function_settles_where_rounding_cycles_its_points():
+    """Leine's benchmark (``SlipCurve``, ``1/(1 + 3 s)``) on a belt at 0.2 m/s, from rest, at ``dt = 2e-3``: at
+    the step to t = 5.328 s the iteration's slip points cycle through three values of the rate 30 ulps apart
+    (the rounding of the belt's shift), which no 8-ulp test and no two-point cycle catches; a rounding cycle
+    of any length up to ``_CYCLE`` settles.  The run goes on through the slip, and each slipping step's
+    force is on the curve at its rate to the rounding of the step: the force is balanced against the
+    momentum terms ``(m/dt) v`` (``m/dt = 500``, ``v = w + V``) and the settling test allows 8 eps of
+    ``|f| + |f'| + sigma (|w| + |w'|)`` with ``sigma`` of that size, so within ``16 eps (1 + 500 (|w| + V))``
+    (``|f| <= 1``; a cycle's points are 30 ulps of ``w`` apart, inside that)."""
+    law = lumped.SlipCurve(1.0, lambda s: 1.0 / (1.0 + 3.0 * s), fall=3.0)
+    net = Network(
+        [Mass("m", 1.0)],
+        [Spring("k", (G, "m"), 1.0), lumped.Contact("c", ("belt", "m"), law)],
+        drivers=[Driver("belt", 0.2)],
+    )
+    tr = lumped.simulate_network(net, 5.4, 2e-3)
+    slipping = ~tr.rigid[:, 1]
+    assert slipping[tr.t > 5.33].all()
+    w = tr.velocities[slipping, 0] - 0.2
+    curve = np.sign(w) / (1.0 + 3.0 * np.abs(w))
+    assert np.all(np.abs(tr.forces[slipping, 1] - curve) <= 16 * np.finfo(float).eps * (1 + 500 * (np.abs(w) + 0.2)))
+
+
 def test_a_block_stuck_to_a_belt_moves_with_it():
     """A contact that holds more than the spring can pull: the block rides the belt, ``x = V t`` (to the
     rounding of the sum of ``n`` steps), ``v = V`` exactly, and the contact's force balances the spring."""

@@ -265,12 +265,17 @@ class SlipGraph(StepGraph):
         return old == new
 
 
+#: How many earlier points a :class:`CurveSlipGraph` mode remembers: rounding cycles up to this long settle.
+_CYCLE = 8
+
+
 class CurveSlipGraph(StepGraph):
     """The step graph of a friction contact with any slip curve (a :class:`lumped.laws.SlipLaw`).
 
     Its mode is :data:`STICK`, or the point ``(s, w, f, sigma, before)`` of
     the slip branch of direction ``s`` last reached, the scale it was reached
-    with and the ``(w, f)`` of the point before it (``None`` for the first);
+    with and the ``(w, f)`` of the last :data:`_CYCLE` points reached before
+    it (``()`` for the first);
     the piece of a slip mode is the line of slope ``sigma`` through that point
     and the next point is the branch's resolvent point of ``z = f + sigma w``
     (``SlipLaw.slip_speed``), as for a :class:`LawGraph`.  Where the branch
@@ -280,10 +285,11 @@ class CurveSlipGraph(StepGraph):
     (|f| + |f'| + sigma (|w| + |w'|))`` (the step's force lies on the line
     through the old point, ``sigma |dw|`` off the branch, so the force alone
     agreeing is not enough where the branch is flat: a Stribeck curve at
-    speeds well above ``v_s``), or when the new point is the one before the
-    old, a cycle of two points that the rounding of the step's rates keeps
-    apart (on a belt it is ``eps sigma |belt velocity|`` wide, more than 8
-    ulps of ``f + sigma w`` near a stop).
+    speeds well above ``v_s``), or when the new point is one reached before,
+    a cycle of points that the rounding of the step's rates keeps apart (on
+    a belt it is ``eps sigma |belt velocity|`` wide, more than 8 ulps of
+    ``f + sigma w`` near a stop; Leine's curve on a belt at ``dt = 2e-3``
+    cycles through three points 30 ulps of ``w`` apart).
     """
 
     __slots__ = ("law", "start")
@@ -299,14 +305,14 @@ class CurveSlipGraph(StepGraph):
         if direction * z <= self.law.slip_limit:  # type: ignore[attr-defined]
             return STICK
         s = self.law.slip_speed(direction * z, sigma)  # type: ignore[attr-defined]
-        before = None if old is None else old[1:3]  # type: ignore[index]
+        before = () if old is None else (old[4] + (old[1:3],))[-_CYCLE:]  # type: ignore[index,operator]
         return (direction, direction * s, direction * float(self.law.slip(s)), sigma, before)  # type: ignore[attr-defined]
 
     def initial_mode(self) -> object:
         if self.start == STICK:
             return STICK
         direction = 1.0 if self.start == SLIP_FORWARD else -1.0
-        return (direction, 0.0, direction * self.law.slip_limit, 0.0, None)  # type: ignore[attr-defined]
+        return (direction, 0.0, direction * self.law.slip_limit, 0.0, ())  # type: ignore[attr-defined]
 
     def piece(self, mode: object, sigma: float) -> Piece:
         if mode == STICK:
@@ -332,9 +338,9 @@ class CurveSlipGraph(StepGraph):
             return old == new
         if old[0] != new[0]:  # type: ignore[index]
             return False
-        (_, w0, f0, _, before), (_, w1, f1, sigma, _) = old, new  # type: ignore[misc]
+        (_, w0, f0, _, _), (_, w1, f1, sigma, before) = old, new  # type: ignore[misc]
         scale = abs(f1) + abs(f0) + sigma * (abs(w1) + abs(w0)) + 1e-300
-        return abs(f1 - f0) + sigma * abs(w1 - w0) <= 8 * _EPS * scale or before == (w1, f1)
+        return abs(f1 - f0) + sigma * abs(w1 - w0) <= 8 * _EPS * scale or (w1, f1) in before
 
 
 class Shifted(StepGraph):

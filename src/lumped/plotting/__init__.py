@@ -25,7 +25,7 @@ from lumped.plotting.figures import (
     string_spring_triptych,
 )
 from lumped.plotting.fit import fit_record, summary_kinks
-from lumped.plotting.friction import belt_phase_portrait, friction_graph, smoothing_creep
+from lumped.plotting.friction import belt_phase_portrait, friction_graph, smoothing_creep, stribeck_stability
 from lumped.plotting.histories import (
     difference,
     exact_fine,
@@ -80,6 +80,7 @@ __all__ = [
     "stop_histories",
     "stops_map",
     "string_spring_triptych",
+    "stribeck_stability",
     "style",
     "styled",
     "summary_kinks",

@@ -1,5 +1,6 @@
 """Friction on a belt (issue 33, notebook 15): a contact's graph, the phase portrait with its stick
-segment, and what ``tanh`` smoothing does to the stick (creep)."""
+segment, what ``tanh`` smoothing does to the stick (creep), and the stability of steady sliding on a
+Stribeck belt about its Hopf speed."""
 
 from __future__ import annotations
 
@@ -12,7 +13,7 @@ from matplotlib.figure import Figure
 
 from lumped.plotting._base import legend_above, new_axes, styled
 
-__all__ = ["belt_phase_portrait", "friction_graph", "smoothing_creep"]
+__all__ = ["belt_phase_portrait", "friction_graph", "smoothing_creep", "stribeck_stability"]
 
 Curve = tuple[np.ndarray, np.ndarray]
 
@@ -116,3 +117,44 @@ def smoothing_creep(
     bottom.set(xlabel="$t$ (s)", ylabel="$|v - V|$ (m/s)", ylim=(1e-7, 1.0))
     legend_above(top, ncol=4)
     return top.figure  # type: ignore[return-value]
+
+
+@styled
+def stribeck_stability(
+    swings: Mapping[str, tuple[Curve, Curve]],
+    measured: Curve,
+    linear: Curve,
+    hopf: float,
+    axes: Sequence[Axes] | None = None,
+) -> Figure:
+    """Steady sliding on a Stribeck belt: swings growing or decaying (left), growth rate against belt speed (right).
+
+    Parameters
+    ----------
+    swings : mapping label -> ((t, swing), (t, predicted))
+        For each belt speed, the oscillation's swings (s, m) and the linearised motion's prediction, drawn
+        on a log scale (solid and dashed, one colour each).
+    measured : (speeds, rates)
+        Growth rates measured from simulated runs (m/s, 1/s), drawn as markers.
+    linear : (speeds, rates)
+        The linearised motion's growth rate (m/s, 1/s), drawn as a line.
+    hopf : float, m/s
+        The Hopf speed, where the linear rate vanishes: marked in the right panel.
+    axes : two Axes, optional
+    """
+    if axes is None:
+        _, made = plt.subplots(1, 2, figsize=(6.4, 3.3))
+        axes = list(made)
+    left, right = axes
+    for i, (label, ((t, swing), (tp, predicted))) in enumerate(swings.items()):
+        left.semilogy(t, swing, color=f"C{i}", lw=1.0, label=label)
+        left.semilogy(tp, predicted, "--", color=f"C{i}", lw=0.9)
+    left.set(xlabel="$t$ (s)", ylabel="swing (m)")
+    legend_above(left, ncol=1)
+    right.plot(*linear, color="k", lw=1.0, label="linearised")
+    right.plot(*measured, "o", color="C3", ms=4, label="event-driven")
+    right.axhline(0.0, color="k", lw=0.5)
+    right.axvline(hopf, color="0.5", lw=0.8, ls=":", label=f"Hopf speed {hopf:.4f} m/s")
+    right.set(xlabel="belt speed $V$ (m/s)", ylabel="growth rate (1/s)")
+    legend_above(right, ncol=1)
+    return left.figure  # type: ignore[return-value]
