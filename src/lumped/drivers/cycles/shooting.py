@@ -26,7 +26,11 @@ component of the field ``x' = v``,
 
     P'(v0) = (v0 / v1) det Phi,    det Phi = exp(-int (C + g'(|u|)) / m dt) prod_reversals r,
 
-the integral over the slip phases (``g'`` the law's
+(``v0 / v1`` is the return time's correction: a perturbation ``Phi (0, dv)``
+is brought back to the section along the field, by ``dt = -dx / v1``, and in
+the basis ``(f, e_v)`` only its ``e_v`` part is left, ``det Phi v0 / v1``),
+
+with the integral over the slip phases (``g'`` the law's
 :meth:`~lumped.laws.SlipLaw.slope`, by Gauss-Legendre quadrature on each
 step of the phase's dense output), and ``r`` the determinant of each event's
 saltation matrix ``S = I + (f+ - f-) n^T / (n . f-)``:
