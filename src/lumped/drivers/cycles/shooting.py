@@ -80,7 +80,7 @@ from lumped.numerics import validate
 from lumped.numerics.roots import brentq
 from lumped.solvers.closed_form_belt import HarmonicSlip
 from lumped.solvers.event_driven import _ATOL_FACTOR, _Budget, _Settings
-from lumped.solvers.event_driven_network import ContactSlip, March, Model, model, refusal
+from lumped.solvers.event_driven_network import METHOD, ContactSlip, March, Model, model, refusal
 from lumped.solvers.events import OFF, STICK, Phase, Piece
 
 __all__ = [
@@ -171,20 +171,25 @@ def _system(network: Network) -> _System:
 def _check(network: Network) -> None:
     """The scope: one mass on one friction contact on a belt, springs to points at rest, no load.
 
-    TODO(issue 34): replace by :func:`lumped.drivers.cycles.equilibria.check_autonomous` when it is on main.
+    TODO(issue 34): replace by :func:`lumped.drivers.cycles.equilibria.check_autonomous` when it is on main
+    (the messages here follow its wording).
     """
     if not isinstance(network, Network):
         raise ValueError(f"network must be a Network, got {type(network).__name__}")  # noqa: TRY004 (the API's one error type)
+    scope = "one mass on one friction contact on a driven point, no load"
+    if len(network.masses) != 1:
+        raise ValueError(f"cycles: the system has {len(network.masses)} masses; cycles runs {scope}")
+    if network.loads:
+        raise ValueError(f"cycles: the system has a load on {network.loads[0].on!r}; cycles runs {scope}")
     reason = refusal(network)
-    if reason is None and network.loads:
-        reason = "it has a load; cycles runs autonomous systems"
-    mdl = model(network) if reason is None else None
-    if mdl is not None and (mdl.A != 0 or mdl.K <= 0):
-        reason = "its springs must hold the mass to points at rest (K > 0, none to a moving driver)"
-    if mdl is not None and mdl.V == 0:
-        reason = "its friction contact is on a point at rest, not on a driven belt"
     if reason is not None:
-        raise ValueError(f"cycles: {reason.removeprefix('method ')}")
+        raise ValueError(f"cycles: {reason.removeprefix(f'method {METHOD!r} ')}")
+    mdl = model(network)
+    name = network.elements[mdl.contact.link.element].name
+    if mdl.A != 0 or mdl.K <= 0:
+        raise ValueError(f"cycles: springs must hold the mass to points at rest (K > 0); cycles runs {scope}")
+    if mdl.V == 0:
+        raise ValueError(f"cycles: the friction contact {name!r} is on a point at rest; cycles runs {scope}")
 
 
 def _steady_position(mdl: Model) -> float:
