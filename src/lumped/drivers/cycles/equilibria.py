@@ -35,6 +35,7 @@ law: it cannot lose stability, so it has no cycle), quoting its eigenvalues.
 from __future__ import annotations
 
 import math
+from itertools import pairwise
 from typing import NamedTuple
 
 import numpy as np
@@ -232,7 +233,10 @@ def parameter_member(network: Network, parameter: str, start: float, stop: float
 def hopf_points(network: Network, parameter: str, start: float, stop: float) -> list[float]:
     """The values of ``parameter`` in ``[start, stop]`` where a pair of eigenvalues of steady sliding crosses the
     imaginary axis: the sign changes of ``c_eff`` over :data:`HOPF_SAMPLES` samples, each located by Brent's
-    method to :data:`HOPF_RTOL` relative (and to a few ulps where ``c_eff`` is exact).
+    method to :data:`HOPF_RTOL` relative (and to a few ulps where ``c_eff`` is exact).  A sample where ``c_eff``
+    is within its error bound of 0 has no sign: a change across such samples is one crossing, an end within it
+    next to a sample of known sign is one, and a ``c_eff`` within it of 0 throughout (a neutral centre, the
+    static/kinetic belt without viscous parts) has none.
 
     Raises
     ------
@@ -245,17 +249,20 @@ def hopf_points(network: Network, parameter: str, start: float, stop: float) -> 
         raise ValueError(f"vary: START:STOP must be finite with START < STOP, got {start!r}:{stop!r}")
     param, _ = parameter_member(network, parameter, start, stop)
 
-    def damping(value: float) -> float:
+    def damping(value: float) -> Slope:
         member = with_values(network, [param], [value])
-        return _damping(member, _sliding(member)).value
+        return _damping(member, _sliding(member))
 
-    grid = np.linspace(start, stop, HOPF_SAMPLES)
-    values = np.array([damping(float(p)) for p in grid])
-    signs = np.sign(values)
-    inner = np.flatnonzero(signs[1:-1] == 0) + 1  # a zero on the grid crosses if its neighbours differ in sign
-    points = [float(grid[i]) for i in inner if signs[i - 1] * signs[i + 1] < 0]
-    points += [float(grid[i]) for i in (0, grid.size - 1) if signs[i] == 0]
-    for i in np.flatnonzero(values[:-1] * values[1:] < 0):
-        a, b = float(grid[i]), float(grid[i + 1])
-        points.append(brentq(damping, a, b, xtol=HOPF_RTOL * max(abs(a), abs(b)), rtol=HOPF_RTOL))
+    grid = [float(p) for p in np.linspace(start, stop, HOPF_SAMPLES)]
+    values = []
+    for p in grid:  # c_eff, or 0 where it is within its error bound of 0 (its sign unknown)
+        c = damping(p)
+        values.append(c.value if abs(c.value) > c.error else 0.0)
+    known = [(p, v) for p, v in zip(grid, values) if v != 0]
+    points = [
+        brentq(lambda p: damping(p).value, a, b, xtol=HOPF_RTOL * max(abs(a), abs(b)), rtol=HOPF_RTOL)
+        for (a, fa), (b, fb) in pairwise(known)  # the samples between them: within the error of 0
+        if fa * fb < 0
+    ]
+    points += [grid[i] for i, j in ((0, 1), (-1, -2)) if values[i] == 0 and values[j] != 0]  # on an end
     return sorted(points)
