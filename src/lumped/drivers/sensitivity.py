@@ -141,9 +141,7 @@ _NETWORK = {
 def _network_parameter(network: Network, p: SystemParameter, what: str) -> tuple[Parameter, float]:
     """The network solver's parameter of ``p`` and its chain-rule factor, or a one-line ``ValueError``."""
     if p.table != "element":
-        kind = _NETWORK.get((p.table, p.key))
-        if kind is None:  # a driven point's velocity
-            raise ValueError(f"{what}: {p.name!r} has no sensitivity: the exact network solver does not take it")
+        kind = _NETWORK[(p.table, p.key)]
         if kind == "omega" and network.loads[0].force.omega == 0:  # type: ignore[union-attr]
             raise ValueError(f"{what}: {p.name!r} has no sensitivity at 0 (the load is then the constant A sin(phase))")
         return Parameter(kind, p.index), 1.0
