@@ -261,3 +261,15 @@ def test_the_central_slope_brackets_the_exact_one(decay: str, speed: float):
     exact, central = law.slope(speed), central_slope(law.slip, speed)
     assert abs(central.value - exact.value) <= central.error + exact.error
     assert central.error < 1e-6 * max(1.0, abs(exact.value))
+
+
+def test_a_flat_curve_in_rounding_noise_has_no_hopf_point_and_is_not_stable():
+    """``g = 0.5 + 0.3 (sin^2 + cos^2 - 1)``: flat, but its central differences are rounding noise of both signs
+    (about half each over the samples).  Within the slope's error bound of 0 a sign is unknown: no crossing, and
+    steady sliding is not labelled stable."""
+    law = SlipCurve(1.0, lambda s: 0.5 + 0.3 * math.sin(s) ** 2 + 0.3 * math.cos(s) ** 2 - 0.3)
+    net = belt(Contact("c", ("belt", "m"), law), 0.3)
+    signs = {np.sign(law.slope(v).value) for v in np.linspace(0.05, 1.0, 20)}
+    assert signs >= {-1.0, 1.0}  # the noise this test is about
+    assert hopf_points(net, "belt.velocity", 0.05, 1.0) == []
+    assert not steady_sliding(net).stable
