@@ -106,13 +106,28 @@ def test_the_long_run_crosses_the_section_in_the_stick_at_the_belts_speed(double
     assert doubles == [0.2]
     rows = read(out)
     assert list(rows[0]) == [
-        "branch", "period", "max_m", "min_m", "stick_time", "stable", "max_multiplier", "max_real_part", "kind"
-    ]  # fmt: skip
+        "branch",
+        "period",
+        "max_m",
+        "min_m",
+        "stick_time",
+        "stable",
+        "max_multiplier",
+        "max_real_part",
+        "kind",
+    ]
     eq, cyc = rows
     assert eq == {
-        "branch": "equilibrium", "period": "", "max_m": "0.5", "min_m": "0.5", "stick_time": "", "stable": "false",
-        "max_multiplier": "", "max_real_part": "0", "kind": "regular",
-    }  # fmt: skip
+        "branch": "equilibrium",
+        "period": "",
+        "max_m": "0.5",
+        "min_m": "0.5",
+        "stick_time": "",
+        "stable": "false",
+        "max_multiplier": "",
+        "max_real_part": "0",
+        "kind": "regular",
+    }
     ref = belt_cycle(1.0, 1.0, 1.0, 0.5, 0.2)
     assert cyc["branch"] == "cycle" and float(cyc["period"]) == ref.period and float(cyc["max_m"]) == ref.x_max
     assert (cyc["max_real_part"], cyc["stable"], cyc["max_multiplier"]) == ("", "true", "0")
