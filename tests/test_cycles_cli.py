@@ -185,6 +185,7 @@ damping = 0.3
         (["--vary", "fric.kinetic=0.5:2"], r"--vary: at fric.kinetic = 2: kinetic = 2.0 N must not exceed static"),
         (["--vary", "fric.kinetic=0.5:1"], r"--vary: at fric.kinetic = 1: no falling law"),
         (["--vary", "=0.1:0.5"], r"--vary expects NAME=START:STOP or START:STOP"),
+        (["--vary", "m.x0=0.1:0.5"], r"--vary: m.x0 is the initial state, on which neither steady sliding nor"),
     ],
 )
 def test_bad_options_are_refused_in_one_line_before_any_work(doubles, tmp_path, args, message):

@@ -115,7 +115,9 @@ def request(network: Network, vary: tuple[str, float, float] | None = None, poin
         raise ValueError(f"vary: START and STOP must be real numbers, got {start!r:.20}:{stop!r:.20}") from None
     if not (math.isfinite(start) and math.isfinite(stop) and start < stop):
         raise ValueError(f"vary: START:STOP must be finite with START < STOP, got {start!r}:{stop!r}")
-    _, ends = parameter_member(network, name, start, stop)
+    param, ends = parameter_member(network, name, start, stop)
+    if param.table == "mass" and param.key != "mass":
+        raise ValueError(f"vary: {name} is the initial state, on which neither steady sliding nor a cycle depends")
     for value, member in zip((start, stop), ends, strict=True):
         try:
             check_autonomous(member)
