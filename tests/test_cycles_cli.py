@@ -179,6 +179,11 @@ damping = 0.3
     ("args", "message"),
     [
         (["--points", "1"], r"--points: between 2 and 10000 rows, got 1"),
+        (["--points", "10001"], r"--points: between 2 and 10000 rows, got 10001"),
+        (
+            ["--vary", "fric.static=0.5:2"],
+            r"--vary: at fric.static = 0.5: no falling law: .*\(eigenvalues 0 \+- 1i 1/s\)",
+        ),
         (["--vary", "belt.velocity=-0.1:0.5"], r"--vary: belt.velocity = -0.1:0.5 reaches 0, where the belt stops"),
         (["--vary", "belt.speed=0.1:0.5"], r"--vary: unknown parameter 'belt.speed'; .*'belt.velocity'"),
         (["--vary", "0.5:0.1"], r"--vary: START:STOP must satisfy START < STOP"),

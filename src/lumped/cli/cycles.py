@@ -100,12 +100,14 @@ def _cells(columns: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
 
 def run(args: argparse.Namespace, output: Output) -> str:
     """Validate, read the system, reserve the output, find the cycles, write; returns the summary."""
-    from lumped.drivers.cycles.api import belt_parameter, cycles, request
+    from lumped.drivers.cycles.api import MAX_POINTS, belt_parameter, cycles, request
     from lumped.drivers.sweep import Progress
     from lumped.model.files import load_system
 
     vary = None if args.vary is None else _vary(args.vary)
     points = validate.parse_int("--points", args.points)
+    if not 2 <= points <= MAX_POINTS:
+        raise ValueError(f"--points: between 2 and {MAX_POINTS} rows, got {points}")
     check_output(args.output, (".csv",))
     network = load_system(args.system)
     bar = Progress(sys.stderr, True, label="cycles", unit="")

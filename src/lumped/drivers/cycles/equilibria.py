@@ -206,7 +206,9 @@ def check_autonomous(network: Network) -> None:
         what = f"the dashpot {network.elements[moving.element].name!r} on the moving point is linear"
     eq = steady_sliding(network)
     top = eq.eigenvalues[0]
-    roots = f"{top.real:.6g} +- {top.imag:.6g}i" if top.imag else " and ".join(f"{z:.6g}" for z in eq.eigenvalues.real)
+    roots = " and ".join(f"{z + 0.0:.6g}" for z in eq.eigenvalues.real)  # + 0.0: no "-0"
+    if top.imag:
+        roots = f"{top.real + 0.0:.6g} +- {top.imag:.6g}i"
     raise _refuse(
         f"no falling law: {what}, so steady sliding at x = {eq.position[0]:.6g} m (eigenvalues {roots} 1/s) "
         "cannot lose stability and there is no cycle"
