@@ -248,4 +248,7 @@ def test_the_help_names_the_columns():
 def test_a_stable_sliding_run_settles_on_steady_sliding():
     """The Stribeck example above its Hopf speed spirals in at ``0.093``/s: no cycle from its initial state."""
     net = load_system(STRIBECK)
-    assert api._settled_crossing(net, steady_sliding(net)) is None
+    assert api._settled_crossing(net, steady_sliding(net)) == (
+        None,
+        "the run from the initial state settles on steady sliding",
+    )

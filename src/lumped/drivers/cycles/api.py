@@ -183,9 +183,9 @@ def _rows_at_file(network: Network, points: int, progress: Callable | None) -> t
     notes = []
     starts = []
     tick(1, 3)
-    v0 = _settled_crossing(network, eq)
-    if v0 is None:
-        notes.append("the long run from the initial state did not settle on a cycle")
+    v0, note = _settled_crossing(network, eq)
+    if note:
+        notes.append(note)
     starts.append(("the initial state", v0))
     tick(2, 3)
     starts.append(("the Hopf branch", _hopf_branch_crossing(network, points)))
@@ -209,11 +209,11 @@ def _same(a: Any, b: Any) -> bool:
     return abs(a.section - b.section) <= 1e-8 * max(abs(a.section), abs(b.section))
 
 
-def _settled_crossing(network: Network, eq: Equilibrium) -> float | None:
+def _settled_crossing(network: Network, eq: Equilibrium) -> tuple[float | None, str]:
     """The speed at which the long run from the file's initial state crosses the section ``x = x*`` upward, once
-    two successive crossings agree to :data:`SETTLE_RTOL` of the belt's speed; ``None`` if it settles on steady
-    sliding (its swing below ``SETTLE_RTOL`` of the scale ``|x*| + static/K``) or does not settle in
-    :data:`SETTLE_PIECES` pieces."""
+    two successive crossings agree to :data:`SETTLE_RTOL` of the belt's speed, and ``""``; ``None`` and what the run
+    did instead: it settles on steady sliding (its swing below ``SETTLE_RTOL`` of the scale ``|x*| + static/K``)
+    or it does not settle in :data:`SETTLE_PIECES` pieces."""
     from lumped.solvers.event_driven_network import model
 
     mdl = model(network)
@@ -226,15 +226,16 @@ def _settled_crossing(network: Network, eq: Equilibrium) -> float | None:
         t = np.linspace(0.0, span, 200 * SETTLE_PERIODS + 1)
         x, v = march.state(t)
         if np.ptp(x[t > span - span / SETTLE_PERIODS]) < SETTLE_RTOL * scale:
-            return None
+            return None, "the run from the initial state settles on steady sliding"
         for v_cross in _crossings(march, t, x, v, x_star):
             if last is not None and abs(v_cross - last) <= SETTLE_RTOL * speed:
-                return v_cross
+                return v_cross, ""
             last = v_cross
         mass = net.masses[0]
         params = system_parameters(net, [f"{mass.name}.x0", f"{mass.name}.v0"])
         net = with_values(net, params, [float(x[-1]), float(v[-1])])
-    return None
+    periods = SETTLE_PERIODS * SETTLE_PIECES
+    return None, f"the run from the initial state does not settle on a cycle in {periods} natural periods"
 
 
 def _crossings(march: Any, t: np.ndarray, x: np.ndarray, v: np.ndarray, x_star: float) -> list[float]:
