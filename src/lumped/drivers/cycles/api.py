@@ -41,10 +41,12 @@ from lumped.drivers.cycles.equilibria import (
     parameter_member,
     steady_sliding,
 )
+from lumped.drivers.cycles.shooting import Cycle, find_cycle
 from lumped.model.network import Network
 from lumped.model.system_parameters import system_parameters, with_values
 from lumped.numerics import validate
-from lumped.solvers.event_driven_network import solve_contact
+from lumped.numerics.roots import brentq
+from lumped.solvers.event_driven_network import March, model, solve_contact
 
 __all__ = [
     "COLUMNS",
@@ -175,8 +177,6 @@ Row = tuple[float, str, Any, str]  # (value, branch, Equilibrium or Cycle, kind)
 def _rows_at_file(network: Network, points: int, progress: Callable | None) -> tuple[list[Row], list[str]]:
     """The equilibrium's row, then the cycles found from the initial state and from the Hopf branch; and what
     was not found, in words, for the summary."""
-    from lumped.drivers.cycles.shooting import find_cycle
-
     tick = progress or (lambda done, total: None)
     eq = steady_sliding(network)
     rows: list[Row] = [(math.nan, "equilibrium", eq, "regular")]
@@ -203,7 +203,7 @@ def _rows_at_file(network: Network, points: int, progress: Callable | None) -> t
     return rows, notes
 
 
-def _same(a: Any, b: Any) -> bool:
+def _same(a: Cycle, b: Cycle) -> bool:
     """Two cycles found from two starts are one if they cross the section at the same speed (to Newton's 1e-12
     relative, with a margin of 1e4 for the two starts)."""
     return abs(a.section - b.section) <= 1e-8 * max(abs(a.section), abs(b.section))
@@ -214,8 +214,6 @@ def _settled_crossing(network: Network, eq: Equilibrium) -> tuple[float | None, 
     two successive crossings agree to :data:`SETTLE_RTOL` of the belt's speed, and ``""``; ``None`` and what the run
     did instead: it settles on steady sliding (its swing below ``SETTLE_RTOL`` of the scale ``|x*| + static/K``)
     or it does not settle in :data:`SETTLE_PIECES` pieces."""
-    from lumped.solvers.event_driven_network import model
-
     mdl = model(network)
     x_star, speed = float(eq.position[0]), abs(mdl.V)
     span = SETTLE_PERIODS * 2 * math.pi * math.sqrt(mdl.m / mdl.K)
@@ -238,11 +236,9 @@ def _settled_crossing(network: Network, eq: Equilibrium) -> tuple[float | None, 
     return None, f"the run from the initial state does not settle on a cycle in {periods} natural periods"
 
 
-def _crossings(march: Any, t: np.ndarray, x: np.ndarray, v: np.ndarray, x_star: float) -> list[float]:
+def _crossings(march: March, t: np.ndarray, x: np.ndarray, v: np.ndarray, x_star: float) -> list[float]:
     """The speeds at the upward crossings of ``x = x*`` in a run sampled at ``t``, each located by Brent's
     method on the continuous motion."""
-    from lumped.numerics.roots import brentq
-
     out = []
     for i in np.flatnonzero((x[:-1] < x_star) & (x[1:] >= x_star) & (v[1:] > 0)):
         f = lambda s: float(march.state(np.array([s]))[0][0]) - x_star
