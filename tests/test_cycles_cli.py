@@ -136,6 +136,10 @@ def test_the_long_run_crosses_the_section_in_the_stick_at_the_belts_speed(double
 
 
 def test_the_api_gives_the_same_table_with_nan_where_a_value_does_not_apply(doubles):
+    with pytest.raises(ValueError, match=r"^progress must be callable"):
+        lumped.cycles(load_system(BELT), progress=3)
+    with pytest.raises(ValueError, match=r"^vary: expected \(name, start, stop\)"):
+        lumped.cycles(load_system(BELT), vary=0.3)
     table = lumped.cycles(load_system(BELT))
     assert table.columns["branch"].tolist() == ["equilibrium", "cycle"]
     assert math.isnan(table.columns["period"][0]) and math.isnan(table.columns["max_real_part"][1])

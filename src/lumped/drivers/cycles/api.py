@@ -159,6 +159,8 @@ def cycles(
         One line naming the argument, before any work (:func:`request`).
     """
     req = request(network, vary, points)
+    if progress is not None and not callable(progress):
+        raise ValueError(f"progress must be callable as progress(done, total), got {type(progress).__name__}")
     if req.vary is None:
         rows, notes = _rows_at_file(req.network, req.points, progress)
         summary = "; ".join([_summary(rows, None), *notes])
