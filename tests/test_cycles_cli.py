@@ -79,9 +79,11 @@ def doubles(monkeypatch):
     def continue_branches(network, parameter, start, stop, points=50, progress=None):
         eq = steady_sliding(network)
         cycle = closed_form_cycle(network, 0.2)
+        stable = eq._replace(max_real_part=-1e-14, stable=True)  # the located Hopf point, a hair on one side
         return [
             BranchPoint(start, "equilibrium", eq, None, "regular"),
-            BranchPoint(0.5 * (start + stop), "equilibrium", eq, None, "hopf"),
+            BranchPoint(0.5 * (start + stop), "equilibrium", stable, None, "hopf"),
+            BranchPoint(0.5 * (start + stop), "cycle", None, cycle, "hopf"),
             BranchPoint(stop, "cycle", None, cycle, "fold"),
         ]
 
@@ -152,10 +154,16 @@ def test_with_vary_the_branches_are_rows_with_the_parameter_first(doubles, tmp_p
     assert run.returncode == 0, run.stderr
     rows = read(out)
     assert list(rows[0])[:2] == ["belt.velocity", "branch"]
-    assert [r["kind"] for r in rows] == ["regular", "hopf", "fold"]
-    assert [r["belt.velocity"] for r in rows] == ["0.10000000000000001", "0.20000000000000001", "0.29999999999999999"]
-    assert rows[2]["max_real_part"] == "" and rows[2]["period"] != ""
-    assert "changes: 1 hopf, 1 fold" in run.stderr
+    assert [r["kind"] for r in rows] == ["regular", "hopf", "hopf", "fold"]
+    assert [r["belt.velocity"] for r in rows] == [
+        "0.10000000000000001",
+        "0.20000000000000001",
+        "0.20000000000000001",
+        "0.29999999999999999",
+    ]
+    assert rows[3]["max_real_part"] == "" and rows[3]["period"] != ""
+    assert rows[1]["stable"] == "false"  # the pair on the imaginary axis: marginal, whatever side it lies on
+    assert "changes: 1 hopf, 1 fold" in run.stderr  # one Hopf point, where both branches meet
     named = run_lumped("cycles", "--system", BELT, "--vary", "belt.velocity=0.1:0.3", "--output", tmp_path / "n.csv")
     assert named.returncode == 0 and (tmp_path / "n.csv").read_text() == out.read_text()  # the default's name
 

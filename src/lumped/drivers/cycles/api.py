@@ -288,7 +288,7 @@ def _table(rows: list[Row], masses: list[str], vary: str | None) -> dict[str, np
             cols[f"max_{m}"].append(float(item.position[i] if equilibrium else item.x_max[i]))
             cols[f"min_{m}"].append(float(item.position[i] if equilibrium else item.x_min[i]))
         cols["stick_time"].append(nan if equilibrium else item.stick_time)
-        cols["stable"].append(bool(item.stable))
+        cols["stable"].append(bool(item.stable) and kind != "hopf")  # a pair on the imaginary axis: marginal
         cols["max_multiplier"].append(nan if equilibrium else item.max_multiplier)
         cols["max_real_part"].append(item.max_real_part if equilibrium else nan)
         cols["kind"].append(kind)
@@ -300,7 +300,8 @@ def _summary(rows: list[Row], vary: str | None) -> str:
     """``1 equilibrium (stable), 2 cycles (1 stable); changes: 1 hopf, 1 fold``."""
     eq = [r for r in rows if r[1] == "equilibrium"]
     cyc = [r for r in rows if r[1] == "cycle"]
-    kinds = [r[3] for r in rows if r[3] != "regular"]
+    located = dict.fromkeys((r[3], r[0]) for r in rows if r[3] != "regular")  # a Hopf point ends both branches
+    kinds = [kind for kind, _ in located]
     changes = ", ".join(f"{kinds.count(k)} {k}" for k in dict.fromkeys(kinds)) or "none"
     if vary is None:
         state = "stable" if eq[0][2].stable else "not stable"
