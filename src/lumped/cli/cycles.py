@@ -34,7 +34,8 @@ Columns (one row per equilibrium or cycle): NAME (with --vary), branch
 (equilibrium or cycle), period (s), max_<mass> and min_<mass> (m: the
 extremes over the period; the position for an equilibrium), stick_time (s per
 period with the contact stuck), stable (true or false: by more than the
-computed error; a value within it of the boundary is false),
+computed error; a value within it of the boundary, or a Hopf point's
+equilibrium, is false),
 max_multiplier (a cycle's largest Floquet multiplier in modulus, the trivial
 one left out), max_real_part (an equilibrium's largest real part of an
 eigenvalue, 1/s) and kind (regular, hopf, fold, stick-slip-onset,
