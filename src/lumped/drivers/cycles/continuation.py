@@ -20,7 +20,10 @@ fold (where ``p`` turns back) is passed like any other point.  ``F_v = P' -
 :func:`~lumped.drivers.cycles.shooting.cycle_derivative_in`.  A step moves
 ``p`` by ``(stop - start)/(points - 1)`` at most and ``v`` by
 :data:`SPEED_STEP` of ``v_s`` at most; it is halved where the corrector fails
-and grows by half again after a success.
+and grows by half again after a success.  ``F_p`` is a central difference: within
+its step of a kink of the branch (where the stick phases change) it spans both
+sides, so where Newton on the hyperplane fails the corrector tries at the
+predicted value of ``p`` (which needs no ``F_p``).
 
 The branch starts from each Hopf point: a row of kind ``hopf`` (the cycle of
 zero amplitude, below), then the small cycle whose section speed is
@@ -30,25 +33,33 @@ grows in amplitude from there.  Then, unless a branch from a Hopf point has
 come to it, the branch of the cycle found at ``start`` from the belt's speed
 (a cycle stuck as it crosses the section crosses it at exactly the belt's
 speed, so that this is its fixed point), if there is one: the stick-slip
-branch need not be joined to a Hopf point's within the range.  A branch ends where it leaves the range
-(its last row is at the range's end), where it comes back to the Hopf
-amplitude (another Hopf point), or where the step falls below :data:`MIN_STEP`
-of the largest.
+branch need not be joined to a Hopf point's within the range.  A branch ends
+where it leaves the range (its last row is at the range's end), where it
+comes back to half the Hopf amplitude (another Hopf point), or where the step
+falls below :data:`MIN_STEP` of the largest; before that, where steps fail
+below :data:`KINK_STEP` of the largest, the other piece of a fold at a kink is
+looked for at the same value (:meth:`_Family.across`).
 
-Between two accepted points the branch is tested for a change, located by
-bisection on the arclength (each point tried corrected to :data:`CORRECTOR_TOL`)
-until the bracket is shorter than :data:`LOCATE_TOL`, and inserted as a row:
+Between two accepted points the branch is tested for a change and each is
+inserted as a row:
 
 * ``stick-slip-onset`` (the number of stick phases per period goes from 0 to
   more: the cycle grazes the stuck state, its smallest slip speed reaching 0)
-  or ``stick-change`` (it changes otherwise): the row is the bracket's end with
-  fewer stick phases (the grazing cycle at an onset).  Where the stick phases
-  change the multipliers jump (a stuck phase makes ``P' = 0``): if the jump
-  takes a multiplier across the unit circle, the bracket's other end is a row
-  too, of kind ``fold`` (across +1: the branch turns back at the transition,
-  Leine and van Campen's discontinuous fold) or ``period-doubling`` (across -1);
+  or ``stick-change`` (it changes otherwise).  The branch has a kink there
+  and may turn back: each side's piece is followed to its end by bisection on
+  the step along its own tangent (:func:`_arm_end`, to :data:`LOCATE_TOL`), and
+  the row is the end with fewer stick phases (the grazing cycle at an onset).
+  Where the stick phases change the multipliers jump (a stuck phase makes
+  ``P' = 0``): if the jump takes a multiplier across the unit circle, the other
+  end is a row too, of kind ``fold`` (across +1: the discontinuous fold of
+  Leine and van Campen, where the stable stick-slip branch meets the unstable
+  sliding cycles) or ``period-doubling`` (across -1);
 * ``fold``: ``dp/ds`` changes sign on a piece with the same stick phases;
-* ``period-doubling``: a multiplier crosses -1 there (the sign of ``P' + 1``).
+* ``period-doubling``: a multiplier crosses -1 there (the sign of ``P' + 1``);
+
+these two located by bisection on the secant (each point tried the branch's
+crossing of the hyperplane normal to it, corrected to :data:`CORRECTOR_TOL`)
+until the bracket is shorter than :data:`LOCATE_TOL`.
 
 Notes
 -----
@@ -83,6 +94,7 @@ from lumped.model.network import Network
 from lumped.model.system_parameters import system_parameters, with_values
 from lumped.numerics import validate
 from lumped.numerics.arclength import predict, unit_tangent
+from lumped.numerics.roots import brentq
 from lumped.solvers.event_driven_network import model
 
 __all__ = ["HOPF_AMPLITUDE", "BranchPoint", "continue_branches"]
@@ -103,6 +115,15 @@ SPEED_STEP = 0.05
 LOCATE_TOL = 1e-9
 #: Smallest step as a fraction of the largest before the continuation gives up.
 MIN_STEP = 1e-7
+#: A step this fraction of the largest that fails: look for another piece of the branch at the same value
+#: (:meth:`_Family.across`).
+KINK_STEP = 1e-4
+#: How far back from a failing step's point (scaled units) another piece of the branch is searched for.
+ACROSS_GAP = 1e-5
+#: The cosine of the largest angle between a point's tangent and the secant to it for the tangent to be used.
+TRUSTED = 0.9
+#: The corrector's hyperplane at a fixed parameter.
+_FIXED_P = np.array([0.0, 1.0])
 
 
 class BranchPoint(NamedTuple):
@@ -140,33 +161,75 @@ class _Family:
         """The speed of the contact's other point (m/s) in the member at ``value``."""
         return model(self.member(value)).V
 
-    def point(self, v: float, value: float) -> _Point:
-        """The point at section speed ``v`` of the member at ``value``, with the cycle through it."""
+    def point(self, v: float, value: float, tangent: bool = True) -> _Point:
+        """The point at section speed ``v`` of the member at ``value``, with the cycle through it (and ``F_p``
+        unless ``tangent`` is false: then 0, for a point whose tangent is not wanted)."""
         net = self.member(value)
         cycle = find_cycle(net, v)
-        _, slope, _ = return_map(net, cycle.section)
-        d_p = cycle_derivative_in(net, cycle.section, self.name)
+        d_p = cycle_derivative_in(net, cycle.section, self.name) if tangent else 0.0
+        slope = float(cycle.multipliers[0].real)  # the one nontrivial multiplier: P' at the cycle
         jacobian = np.array([[slope - 1.0, d_p * self.p_s / self.v_s]])
         return _Point(np.array([cycle.section / self.v_s, value / self.p_s]), jacobian, cycle, value)
 
-    def correct(self, guess: np.ndarray, normal: np.ndarray) -> _Point | None:
-        """Newton on ``F = 0``, ``normal . (u - guess) = 0`` to ``|F| <= CORRECTOR_TOL v_s``, then the point's
-        cycle (``None`` where it does not converge or leaves the values the system takes)."""
-        u = guess.copy()
+    def correct(self, guess: np.ndarray, normal: np.ndarray, tangent: bool = True) -> _Point | None:
+        """The point of the branch at ``guess``'s value of the parameter, else on the hyperplane through ``guess``
+        normal to ``normal`` (``None`` if neither converges).
+
+        The first needs no ``F_p``, which is a central difference (:func:`cycle_derivative_in`): within its step
+        of a kink of the branch (a change of the stick phases) it spans both sides and is no derivative, and
+        Newton on the hyperplane may then land on the other piece, close by; at a fixed parameter Newton is exact
+        and converges to the piece nearest the guess.  The second passes a fold, where the first finds nothing
+        (Newton's residual stops decreasing)."""
+        return self._newton(guess, _FIXED_P, tangent) or self._newton(guess, normal, tangent)
+
+    def _newton(
+        self, guess: np.ndarray, normal: np.ndarray, tangent: bool = True, tol: float = CORRECTOR_TOL
+    ) -> _Point | None:
+        """Newton on ``F = 0``, ``normal . (u - guess) = 0`` to ``|F| <= tol v_s``, then the point's cycle
+        (``None`` where it does not converge or leaves the values the system takes)."""
+        u, fixed, last = guess.copy(), normal[0] == 0, math.inf
         try:
             for _ in range(MAX_CORRECTOR):
                 v, value = self._snapped(u)
                 net = self.member(value)
                 v_next, slope, _ = return_map(net, v)
                 f = (v_next - v) / self.v_s
-                if not math.isfinite(f):
+                if not abs(f) < last:  # not finite, or Newton does not converge here: no quadratic decrease
                     return None
-                if abs(f) <= CORRECTOR_TOL:
-                    return self.point(v, value)
-                row = [slope - 1.0, cycle_derivative_in(net, v, self.name) * self.p_s / self.v_s]
-                u = u - np.linalg.solve(np.array([row, normal]), np.array([f, normal @ (u - guess)]))
+                if abs(f) <= tol:
+                    return self.point(v, value, tangent)
+                last = abs(f)
+                d_p = 0.0 if fixed else cycle_derivative_in(net, v, self.name) * self.p_s / self.v_s
+                u = u - np.linalg.solve(np.array([[slope - 1.0, d_p], normal]), np.array([f, normal @ (u - guess)]))
         except (ValueError, np.linalg.LinAlgError):
             return None
+        return None
+
+    def across(self, p: _Point) -> _Point | None:
+        """A cycle at ``p``'s value on another piece of the branch near ``p`` (other stick phases), or ``None``.
+
+        Where two pieces meet in a fold at a kink (the branch turning back where its cycle grazes the stuck
+        state) no hyperplane ahead of the last point meets the branch; at ``p``'s value, a little way back from
+        the kink (:data:`ACROSS_GAP`), the other piece's cycle is near ``p``'s, and ``F`` (continuous through the
+        kink) changes sign between them: the speeds ``v +- 10^-k v_s`` (``k`` = 9 down to 1) are scanned for it
+        and Brent's method finds it."""
+        net, v0 = self.member(p.value), p.cycle.section
+        f = lambda v: (return_map(net, v)[0] - v) / self.v_s
+        for sign in (1.0, -1.0):
+            steps = [v for v in (v0 + sign * 10.0**-k * self.v_s for k in range(9, 0, -1)) if v > 0]
+            values = []
+            for v in steps:
+                try:
+                    values.append(f(v))
+                except ValueError:  # no return from there: the scan ends
+                    break
+            for i in np.flatnonzero(np.sign(values[:-1]) * np.sign(values[1:]) < 0):
+                try:
+                    q = self.point(brentq(f, steps[i], steps[i + 1]), p.value)
+                except ValueError:
+                    continue
+                if q.cycle.stick_phases != p.cycle.stick_phases:
+                    return q
         return None
 
     def landed(self, u: np.ndarray, along: np.ndarray) -> np.ndarray:
@@ -221,22 +284,69 @@ def _locate(fam: _Family, a: _Point, b: _Point, index: int) -> tuple[_Point, _Po
     return near, far
 
 
-def _changes(fam: _Family, a: _Point, b: _Point) -> tuple[list[BranchPoint], _Point | None]:
+def _arm_end(fam: _Family, a: _Point, b: _Point, t: np.ndarray) -> _Point:
+    """The end of ``a``'s piece of the branch (its stick phases) on the way to ``b``: bisection on the distance
+    ``s`` along ``a``'s tangent ``t`` (oriented towards the kink; the bracket ``|b - a|`` first doubled while the
+    piece goes on) to :data:`LOCATE_TOL`.
+
+    The point at ``s`` is the piece's crossing of the hyperplane ``t . (u - u_a) = s``, from the line through the
+    last two points found on the piece (the first: ``t``), corrected at that guess's value of the parameter
+    (exact ``F_v``, no ``F_p``: the central difference spans the kink near it) or else on the hyperplane; it is
+    on the piece if it converges with ``a``'s stick phases within ``s`` of that line.  Each piece is followed
+    from its own side because the two may meet at an angle, or in a fold: a bisection along the secant from one
+    to the other would cross the angle's inside, where the hyperplanes meet the two pieces far from the kink."""
+    lo, hi, near, line = 0.0, float(np.linalg.norm(b.u - a.u)), a, t
+
+    def on(step: float) -> _Point | None:
+        guess = near.u + line * (step - t @ (near.u - a.u)) / (t @ line)
+        p = fam._newton(guess, _FIXED_P, tangent=False) or fam._newton(guess, t, tangent=False)
+        if p is None or p.cycle.stick_phases != a.cycle.stick_phases or np.linalg.norm(p.u - guess) > step:
+            return None
+        return p
+
+    def found(p: _Point) -> np.ndarray:
+        d = p.u - near.u
+        return d / np.linalg.norm(d) if t @ d > 0 else line
+
+    for _ in range(4):
+        p = on(hi)
+        if p is None:
+            break
+        lo, line, near, hi = hi, found(p), p, 2 * hi
+    while hi - lo > LOCATE_TOL:
+        mid = 0.5 * (lo + hi)
+        p = on(mid)
+        if p is not None:
+            lo, line, near = mid, found(p), p
+        else:
+            hi = mid
+    return near if near is a else fam.point(near.cycle.section, near.value)  # with its tangent
+
+
+def _changes(
+    fam: _Family, a: _Point, b: _Point, travel: np.ndarray
+) -> tuple[list[BranchPoint] | None, _Point | None]:
     """The rows of the changes between ``a`` and ``b`` (module docstring), in order along the branch, and where
-    ``b``'s piece begins if the stick phases change between them (``None`` if they do not)."""
+    ``b``'s piece begins if the stick phases change between them (``None`` if they do not).  ``travel`` is the
+    tangent along which the branch left ``a``: ``a``'s piece ends ahead along it, and ``b``'s piece ends towards
+    where ``a``'s does (behind ``b`` where the branch turns back at the kink).  ``(None, None)`` if ``a``'s piece
+    goes on well past ``b`` (twice as far): near a kink the pieces run close and Newton may land on the other
+    one, which is not the branch going on; the step is then refused."""
     if a.cycle.stick_phases == b.cycle.stick_phases:
         return _smooth_changes(fam, a, b), None
-    lo, hi = _locate(fam, a, b, 0)
-    onset = min(lo.cycle.stick_phases, hi.cycle.stick_phases) == 0
+    end_a = _arm_end(fam, a, b, travel)
+    if np.linalg.norm(end_a.u - a.u) > 2 * np.linalg.norm(b.u - a.u):
+        return None, None  # a's piece goes on past b: b is on another piece close by, not across a kink
+    end_b = _arm_end(fam, b, end_a, _tangent(b, end_a.u - b.u))
+    onset = min(a.cycle.stick_phases, b.cycle.stick_phases) == 0
     kind = "stick-slip-onset" if onset else "stick-change"
-    few, many = (lo, hi) if lo.cycle.stick_phases < hi.cycle.stick_phases else (hi, lo)
-    rows = [_row(few, kind)]
-    jump = _jump(lo.cycle, hi.cycle)
-    if jump is not None:
-        rows.append(_row(many, jump))
-    if few is hi:
+    fewer_first = a.cycle.stick_phases < b.cycle.stick_phases
+    few, many = (end_a, end_b) if fewer_first else (end_b, end_a)
+    jump = _jump(end_a.cycle, end_b.cycle)
+    rows = [_row(few, kind)] + ([_row(many, jump)] if jump is not None else [])
+    if not fewer_first:
         rows.reverse()
-    return _smooth_changes(fam, a, lo) + rows + _smooth_changes(fam, hi, b), hi
+    return _smooth_changes(fam, a, end_a) + rows + _smooth_changes(fam, end_b, b), end_b
 
 
 def _jump(a: Cycle, b: Cycle) -> str | None:
@@ -298,51 +408,78 @@ def _follow(
 ) -> list[BranchPoint]:
     """The rows of the branch from ``first`` along ``tangent`` until it ends (module docstring)."""
     rows: list[BranchPoint] = []
-    p, back, ds = first, None, walk.largest(tangent)
+    p, back, ds, crossed, trail = first, None, walk.largest(tangent), False, [first]
+    travel = tangent  # the branch's direction at p: the secant to it from the point before on its piece
     for _ in range(steps):
         guess = predict(p.u, tangent, ds, back)
-        q = fam.correct(guess, tangent) or fam.correct(guess, fam.landed(guess, tangent))
+        q = fam.correct(guess, tangent) or fam._newton(guess, fam.landed(guess, tangent))
+        if q is None and not crossed and ds < KINK_STEP * walk.largest(tangent):
+            q, crossed = fam.across(_back_from(trail, p)), True
         if q is None or abs(q.u[1] - p.u[1]) > 1.5 * walk.dp or abs(q.u[0] - p.u[0]) > 1.5 * walk.dv:
             ds *= 0.5
             if ds < MIN_STEP * walk.largest(tangent):
                 break
             continue
-        outside = q.u[1] < walk.lo or q.u[1] > walk.hi
+        crossed = False
+        outside = q.u[1] < walk.lo + LOCATE_TOL or q.u[1] > walk.hi - LOCATE_TOL  # at an end: the end itself
         if outside:
             q = _at_edge(fam, p, q, walk) or q
-        found, piece = _changes(fam, p, q)
+        found, piece = _changes(fam, p, q, travel)
+        if found is None:
+            ds *= 0.5
+            continue
         rows += [*found, _row(q, "regular")]
-        back = (p.u, tangent) if piece is None else None  # no Hermite cubic through a kink
-        # across a kink the branch may turn back: the tangent is oriented from where q's piece begins
+        # across a kink the branch may turn back: the tangent is oriented from where q's piece begins; it is the
+        # secant from there where F_p (a central difference: no derivative within its step of a kink) turns it
         begins = p if piece is None or np.array_equal(piece.u, q.u) else piece
-        tangent = _tangent(q, q.u - begins.u)
+        secant = (q.u - begins.u) / np.linalg.norm(q.u - begins.u)
+        jacobian = _tangent(q, secant)
+        trusted = jacobian @ secant > TRUSTED
+        back = (p.u, tangent) if piece is None and trusted else None  # no Hermite cubic through a kink
+        tangent, travel = (jacobian if trusted else secant), secant
         progress(q.value)
+        if piece is not None:  # a new piece, known from its end to q: the steps grow again from that length
+            ds = float(np.linalg.norm(q.u - begins.u))
         p, ds = q, min(1.5 * ds, walk.largest(tangent))
+        trail.append(q)
         if outside or q.u[0] < walk.floor:
             break
     return rows
 
 
+def _back_from(trail: list[_Point], p: _Point) -> _Point:
+    """The last point of ``trail`` at least :data:`ACROSS_GAP` from ``p``, else the first: where the branch folds
+    at a kink the other piece is searched for a little way back from it, where the two are apart (module
+    docstring of :meth:`_Family.across`)."""
+    for q in reversed(trail):
+        if np.linalg.norm(q.u - p.u) >= ACROSS_GAP:
+            return q
+    return trail[0]
+
+
 def _at_edge(fam: _Family, p: _Point, q: _Point, walk: _Walk) -> _Point | None:
     """The point of the branch at the end of the range that the step ``p -> q`` passed (``None`` if the
     corrector fails there: ``q`` then ends the branch)."""
-    edge, value = (walk.hi, walk.ends[1]) if q.u[1] > walk.hi else (walk.lo, walk.ends[0])
+    edge, value = (walk.hi, walk.ends[1]) if q.u[1] > p.u[1] else (walk.lo, walk.ends[0])
     guess = p.u + (q.u - p.u) * (edge - p.u[1]) / (q.u[1] - p.u[1])
     guess[1] = edge
-    at = fam.correct(guess, np.array([0.0, 1.0]))
+    at = fam.correct(guess, _FIXED_P)
     return None if at is None else fam.point(at.cycle.section, value)  # at the end's value exactly
 
 
 def _from_hopf(fam: _Family, hopf: float, walk: _Walk, steps: int, progress: Callable[[float], None]) -> list[BranchPoint]:
     """The branch from the Hopf point at ``hopf``: its cycle of zero amplitude, the small cycle at
-    :data:`HOPF_AMPLITUDE` of the belt's speed (``p`` solved for), and on along growing amplitude."""
+    :data:`HOPF_AMPLITUDE` of the belt's speed (``p`` solved for), and on along growing amplitude; the first
+    alone where no small cycle is found or the map is neutral there (``F_v = F_p = 0``: a centre, no isolated
+    cycle to follow)."""
     net = fam.member(hopf)
     belt = model(net).V
     rows = [BranchPoint(hopf, "cycle", None, _hopf_cycle(steady_sliding(net), belt), "hopf")]
     guess = np.array([HOPF_AMPLITUDE * abs(belt) / fam.v_s, hopf / fam.p_s])
-    first = fam.correct(guess, np.array([1.0, 0.0]))
-    if first is None:
-        raise ValueError(f"vary: no small cycle found off the Hopf point at {fam.name} = {hopf:.12g}")
+    # v fixed, p solved for; F = v (P'(0) - 1 + O(v^2)) is that small: the tolerance is relative to v
+    first = fam._newton(guess, np.array([1.0, 0.0]), tol=CORRECTOR_TOL * guess[0])
+    if first is None or not np.any(first.jacobian):  # none, or a neutral family (a centre): no branch to follow
+        return rows
     rows.append(_row(first, "regular"))
     tangent = _tangent(first, np.array([1.0, 0.0]))
     return rows + _follow(fam, first, tangent, walk, steps, progress)
