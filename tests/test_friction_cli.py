@@ -213,7 +213,7 @@ STUCK = BELT.replace(DRIVER + "  # m/s: the belt sits at 0.2 t\n", "").replace(
     '["belt", "m"]', '["ground", "m"]'
 )  # static above kinetic
 NOT_MONOTONE = "cannot run element 'fric' of kind 'friction': its graph is not monotone"
-DRIVEN = "cannot run a system with driven points ('belt'); backward-euler runs it"
+DRIVEN = "cannot run a system with driven points ('belt'); backward-euler runs it (exact and event-driven too, at a constant velocity)"
 SYSTEMS = {"belt": (BELT, DRIVEN), "static above kinetic": (STUCK, NOT_MONOTONE)}
 assert "\n[[driver]]" not in STUCK
 

@@ -40,7 +40,7 @@ Nothing here imports a solver, a driver or the model above it.
 """
 
 from lumped.laws.bingham import BinghamDashpot, bingham_corrector, coulomb, sticks
-from lumped.laws.contract import BinghamForm, Dashpot, DashpotState, LinearSpring, SlipLaw, StepBound
+from lumped.laws.contract import BinghamForm, Dashpot, DashpotState, LinearSpring, SlipLaw, Slope, StepBound
 from lumped.laws.curve import Curve
 from lumped.laws.dashpot_elements import Bingham, HerschelBulkley, LawElement, LinearDashpot, LockingBingham, Monotone
 from lumped.laws.element import GROUND, Element
@@ -66,6 +66,7 @@ __all__ = [
     "SlipCurve",
     "SlipElement",
     "SlipLaw",
+    "Slope",
     "StribeckLaw",
     "BinghamForm",
     "Dashpot",

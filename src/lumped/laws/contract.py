@@ -49,7 +49,7 @@ from lumped.laws import monotone_graph
 from lumped.numerics import validate
 from lumped.numerics.roots import brentq
 
-__all__ = ["LinearSpring", "SlipLaw", "SlipPiece", "Dashpot", "DashpotState", "BinghamForm", "StepBound"]
+__all__ = ["LinearSpring", "SlipLaw", "SlipPiece", "Slope", "Dashpot", "DashpotState", "BinghamForm", "StepBound"]
 
 
 @dataclass(frozen=True)
@@ -123,6 +123,35 @@ class SlipPiece(NamedTuple):
     b: float
 
 
+class Slope(NamedTuple):
+    """The slope ``g'(s)`` of a slip curve (N s/m) and a bound on its error (N s/m, ``0`` where exact)."""
+
+    value: float
+    error: float
+
+
+#: The step of the central difference of :meth:`SlipLaw.slope`, relative to the speed: ``eps^(1/3)``, which
+#: balances its truncation (``h^2 g^(3)/6``) against the rounding of ``g`` over ``h``.
+SLOPE_STEP = float(np.finfo(float).eps) ** (1 / 3)
+
+
+def central_slope(g: Callable[[float], float], speed: float) -> Slope:
+    """``g'(speed)`` by a central difference of step ``h = SLOPE_STEP * speed``, with its error bound.
+
+    With ``D(h) = (g(s+h) - g(s-h))/(2h) = g' + h^2 g^(3)/6 + O(h^4)``, ``|D(h) - D(2h)|`` is three times the
+    leading truncation term of ``D(h)`` (a margin for the ``O(h^4)`` rest); each value of ``g``, computed to a
+    few ulps (``4 eps |g|`` taken), adds ``4 eps max|g| / h`` to ``D(h)`` and as much to that estimate.  The
+    steps are made exact in floating point (``(s + h) - s``), so only ``g``'s rounding enters.
+    """
+    s = float(speed)
+    h = (s + SLOPE_STEP * s) - s
+    values = [float(g(s + j * h)) for j in (-2, -1, 1, 2)]
+    d1 = (values[2] - values[1]) / (2 * h)
+    d2 = (values[3] - values[0]) / (4 * h)
+    rounding = 8 * float(np.finfo(float).eps) * max(abs(v) for v in values) / h
+    return Slope(d1, abs(d1 - d2) + rounding)
+
+
 class SlipLaw(ABC):
     """A friction law: a graph in (rate ``u``, tension ``T``), symmetric (``T(-u) = -T(u)``).
 
@@ -153,6 +182,10 @@ class SlipLaw(ABC):
        method on the bracket ``(0, z/sigma]`` (``g >= 0``).
     8. ``kernel_form()``: ``(code, parameters)`` for the compiled one-mass loop, or ``None`` (the
        default: the Python step runs it).
+    9. ``slope(speed)``: the slope ``g'(s)`` at a speed ``s > 0`` as a :class:`Slope` (the value and a bound
+       on its error): the linearisation of steady sliding (:mod:`lumped.drivers.cycles.equilibria`).  The
+       default is the linear pieces' exact slope (the piece starting at ``s`` where two meet), else a central
+       difference with its error bound (:func:`central_slope`); a law with a closed form overrides it.
     """
 
     static: float
@@ -211,6 +244,13 @@ class SlipLaw(ABC):
     def kernel_form(self) -> tuple[int, tuple[float, ...]] | None:
         """``(code, parameters)`` of the compiled one-mass loop, or ``None`` (point 8)."""
         return None
+
+    def slope(self, speed: float) -> Slope:
+        """``g'(speed)`` (N s/m) and a bound on its error (point 9); ``speed > 0``."""
+        pieces = self.pieces()
+        if pieces is not None:
+            return Slope(next(p.b for p in pieces if speed < p.hi or p.hi == math.inf), 0.0)
+        return central_slope(self.slip, speed)
 
     @staticmethod
     def check(value: object, name: str) -> SlipLaw:

@@ -307,18 +307,19 @@ class Network:
         if self.drivers:
             raise ValueError(
                 f"{what} cannot run a system with driven points ({listed([d.name for d in self.drivers])}); "
-                "backward-euler runs it"
+                "backward-euler runs it (exact and event-driven too, at a constant velocity)"
             )
 
     def refuse_non_monotone(self, what: str) -> None:
         """A ``ValueError`` saying that ``what`` cannot run the first element whose graph is not monotone
-        (point 12 of :class:`~lumped.laws.element.Element`: friction with static above kinetic, a falling
-        slip curve), if there is one."""
+        (point 13 of :class:`~lumped.laws.element.Element`: friction with static above kinetic, a falling
+        slip curve, a curve that folds), if there is one."""
         for el in self.elements:
             if not el.monotone:
                 raise ValueError(
                     f"{what} cannot run element {el.name!r} of kind {el.kind!r}: its graph is not monotone "
-                    "(static above kinetic, or a slip curve that falls with speed); backward-euler runs it"
+                    "(static above kinetic, a slip curve that falls with speed, a curve that folds); "
+                    "backward-euler runs it"
                 )
 
     def index_of(self, el: Element) -> tuple[int, int]:

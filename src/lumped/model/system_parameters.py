@@ -5,7 +5,8 @@ each number in it is then ``<name>.<key>``: a mass's ``mass``, ``x0`` or
 ``v0`` (``m.x0``), an element's parameter (``dashpot.threshold``,
 ``spring.stiffness``, ``damper.damping``), and, for a system with a single
 load, that load's ``force.amplitude``, ``force.omega``, ``force.phase``,
-``force.until`` (a sine) or ``force.value``, ``force.until`` (a constant).
+``force.until`` (a sine) or ``force.value``, ``force.until`` (a constant),
+and a driven point's ``velocity`` where it is one number (``belt.velocity``).
 The sensitivities (``simulate --sensitivities``) and the fit (``lumped
 fit``) name their parameters so; :func:`system_parameters` reads such
 names and :func:`with_values` writes new values into a system.
@@ -19,19 +20,22 @@ from collections.abc import Sequence
 from typing import NamedTuple
 
 from lumped.model.forcing import parameters
-from lumped.model.network import Load, Network, listed
+from lumped.model.network import Driver, Load, Network, listed
 
-__all__ = ["MASS_KEYS", "SystemParameter", "system_parameters", "with_values"]
+__all__ = ["DRIVER_KEYS", "MASS_KEYS", "SystemParameter", "system_parameters", "with_values"]
 
 #: A mass's numeric keys.
 MASS_KEYS = ("mass", "x0", "v0")
+#: A driven point's numeric keys (its velocity where it is one number, m/s).
+DRIVER_KEYS = ("velocity",)
 #: The loads' table in a system file, which is the first part of their names.
 LOAD = "force"
 
 
 class SystemParameter(NamedTuple):
     """A numeric parameter of a system: its ``name`` (``element.key``), the ``table`` holding it
-    (``"mass"``, ``"element"`` or ``"force"``), the item's ``index`` in it, the ``key`` and its ``value``."""
+    (``"mass"``, ``"element"``, ``"driver"`` or ``"force"``), the item's ``index`` in it, the ``key`` and its
+    ``value``."""
 
     name: str
     table: str
@@ -53,6 +57,7 @@ def _choices(network: Network) -> list[str]:
     """Every parameter name of ``network``, masses first."""
     names = [f"{m.name}.{key}" for m in network.masses for key in MASS_KEYS]
     names += [f"{el.name}.{key}" for el in network.elements for key in _element_keys(el)]
+    names += [f"{d.name}.{key}" for d in network.drivers if d.constant_velocity is not None for key in DRIVER_KEYS]
     if len(network.loads) == 1:
         names += [f"{LOAD}.{key}" for key in parameters(network.loads[0].force)]
     return names
@@ -69,6 +74,11 @@ def _one(network: Network, name: str, what: str) -> SystemParameter:
     for i, el in enumerate(network.elements):
         if el.name == item and key in _element_keys(el):
             return SystemParameter(name, "element", i, key, float(getattr(el, key)))
+    for i, d in enumerate(network.drivers):
+        if d.name == item and key in DRIVER_KEYS:
+            if d.constant_velocity is None:
+                raise ValueError(f"{what}: {name!r}: driver {d.name!r} follows a history, not one velocity")
+            return SystemParameter(name, "driver", i, key, float(d.constant_velocity))
     if item == LOAD and network.loads:
         force = network.loads[0].force
         if len(network.loads) > 1 or not parameters(force):
@@ -116,13 +126,16 @@ def with_values(network: Network, parameters: Sequence[SystemParameter], values:
     if not all(math.isfinite(float(v)) for v in values):
         raise ValueError(f"values must be finite numbers, got {list(values)!r}")
     masses, elements, loads = list(network.masses), list(network.elements), list(network.loads)
+    drivers = list(network.drivers)
     for p, value in zip(parameters, values, strict=True):
         value = float(value)
         if p.table == "mass":
             masses[p.index] = dataclasses.replace(masses[p.index], **{p.key: value})
         elif p.table == "element":
             elements[p.index] = dataclasses.replace(elements[p.index], **{p.key: value})
+        elif p.table == "driver":
+            drivers[p.index] = Driver(drivers[p.index].name, value)
         else:
             load = loads[p.index]
             loads[p.index] = Load(load.on, dataclasses.replace(load.force, **{p.key: value}))  # type: ignore[type-var]
-    return Network(masses, elements, loads)
+    return Network(masses, elements, loads, drivers)

@@ -5,7 +5,10 @@ a constant ``V > 0`` through a friction contact whose static force ``S`` is
 at least its kinetic force ``K`` (no viscous part, no Stribeck velocity).
 Its limit cycle has a closed form (:func:`belt_cycle`), which the tests of
 the ``exact`` and ``backward-euler`` methods and notebook 15 meet; nothing
-else derives it.
+else derives it.  Its slip phase, a harmonic motion whose stop (the block back
+at the belt's speed) has a closed form, is :class:`HarmonicSlip`: the phase the
+cycles' return map (:mod:`lumped.drivers.cycles.shooting`) runs where the slip
+is undamped and the slip curve flat.
 """
 
 from __future__ import annotations
@@ -13,9 +16,14 @@ from __future__ import annotations
 import math
 from typing import NamedTuple
 
+import numpy as np
+
 from lumped.numerics import validate
 
-__all__ = ["BeltCycle", "belt_cycle"]
+__all__ = ["BeltCycle", "HarmonicSlip", "belt_cycle"]
+
+#: Samples of :attr:`HarmonicSlip.steps` per period ``2 pi/omega``.
+HARMONIC_SAMPLES = 64
 
 
 class BeltCycle(NamedTuple):
@@ -127,3 +135,58 @@ def belt_cycle(mass: float, stiffness: float, static: float, kinetic: float, vel
         break_position=s / k,
         stick_position=(2 * kin - s) / k,
     )
+
+
+class HarmonicSlip:
+    """A slip phase of direction ``s`` (``+-1``) on a belt at ``V``, undamped under a constant force: closed form.
+
+    With ``x' = u + V`` and ``m u' = -k (x - centre)`` (the contact's force ``s a`` of a flat slip curve and the
+    constant forces folded into ``centre``), ``y = x - centre`` turns clockwise on the circle of radius
+    ``R = sqrt(y0^2 + (v0/omega)^2)`` in the plane ``(y, x'/omega)``, ``omega = sqrt(k/m)``:
+
+        x' = R omega cos(psi),    y = R sin(psi),    psi = omega (t - t0) + phi,    phi = atan2(y0, v0/omega).
+
+    The contact stops where ``x' = V``, ``cos(psi) = c = V/(R omega)`` (never if ``|c| > 1``): ``u = x' - V``
+    falls through zero there when ``sin(psi) > 0`` (``s = +1``, ``psi = acos(c)``) and rises through it when
+    ``sin(psi) < 0`` (``s = -1``, ``psi = -acos(c)``), so the stop is the first such ``psi`` after ``phi``.
+    The interface is :class:`lumped.solvers.event_driven_network.ContactSlip`'s: ``first_stop``, ``state``
+    (``(x, u)``), ``rhs``, ``s``, and ``steps`` (:data:`HARMONIC_SAMPLES` a period, for the scans of the phase).
+    """
+
+    def __init__(
+        self, mass: float, stiffness: float, centre: float, velocity: float, s: int, start: tuple[float, float, float]
+    ) -> None:
+        self.m, self.k, self.centre, self.V, self.s = mass, stiffness, centre, velocity, s
+        self.omega = math.sqrt(stiffness / mass)
+        self.t0, x0, u0 = start
+        self.y0, self.v0 = x0 - centre, u0 + velocity
+        self.end = self.t0
+
+    def state(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+        """Position (m) and the contact's rate ``u = x' - V`` (m/s) at times ``t``."""
+        tau = self.omega * (np.asarray(t, dtype=float) - self.t0)
+        cos, sin = np.cos(tau), np.sin(tau)
+        y = self.y0 * cos + self.v0 / self.omega * sin
+        return self.centre + y, self.v0 * cos - self.omega * self.y0 * sin - self.V
+
+    def rhs(self, t: float, y: tuple[float, float]) -> tuple[float, float]:
+        """``(x', u')``: ``u + V`` and ``-omega^2 (x - centre)``."""
+        return y[1] + self.V, -(self.omega**2) * (y[0] - self.centre)
+
+    def first_stop(self, t_lim: float, direction: int) -> float | None:
+        """The first time in ``(t0, t_lim]`` at which ``u`` is back at zero (the class docstring), or ``None``."""
+        radius = math.hypot(self.y0, self.v0 / self.omega)
+        c = self.V / (radius * self.omega) if radius > 0 else math.inf
+        stop = None
+        if abs(c) <= 1:
+            phi = math.atan2(self.y0, self.v0 / self.omega)
+            tau = ((direction * math.acos(c) - phi) % (2 * math.pi)) / self.omega
+            stop = self.t0 + tau if self.t0 + tau <= t_lim else None
+        self.end = t_lim if stop is None else stop
+        return stop
+
+    @property
+    def steps(self) -> np.ndarray:
+        """Times from ``t0`` to the phase's end, :data:`HARMONIC_SAMPLES` a period (both ends included)."""
+        n = max(1, math.ceil((self.end - self.t0) * self.omega / (2 * math.pi) * HARMONIC_SAMPLES))
+        return np.linspace(self.t0, self.end, n + 1)

@@ -164,6 +164,12 @@ class IntegratedSlip:
         y = self._dense(t)
         return y[0], y[1]
 
+    @property
+    def steps(self) -> np.ndarray:
+        """The integrator's step times over the phase, ``t0`` first (``[t0]`` before :meth:`first_stop`): the dense
+        output is one polynomial between two of them."""
+        return self._dense.ts if self._dense is not None else np.array([self.t0])
+
     def first_stop(self, t_lim: float, direction: int) -> float | None:
         """First time in ``(t0, t_lim]`` at which ``v`` returns to zero, or ``None``."""
         if t_lim <= self.t0:

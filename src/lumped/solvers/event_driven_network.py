@@ -302,10 +302,15 @@ class March:
             self.event(t_b, "breakaway", direction)
         return t_b, direction or None
 
+    def slip_motion(self, s: int, p: Piece, start: tuple[float, float, float]) -> ContactSlip:
+        """The slip phase of direction ``s`` from ``start = (t, x, u)``: DOP853 (:class:`ContactSlip`).  A
+        subclass may return a closed form with the same interface (``first_stop``, ``state``, ``rhs``, ``s``)."""
+        return ContactSlip(self.mdl, s, p, start, self.settings)
+
     def slip(
         self, t: float, t_lim: float, x: float, u: float, s: int, p: Piece
     ) -> tuple[float, float, float, int | None]:
-        motion = ContactSlip(self.mdl, s, p, (t, x, u), self.settings)
+        motion = self.slip_motion(s, p, (t, x, u))
         t_stop = motion.first_stop(t_lim, s)
         if t_stop is None:
             x_end, u_end = (float(a) for a in motion.state(t_lim))
