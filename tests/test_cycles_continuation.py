@@ -28,13 +28,16 @@ from lumped.solvers.event_driven_network import model
 
 # -- the static/kinetic belt ----------------------------------------------------------------------------------
 
-S_K = dict(mass=1.0, stiffness=1.0, static=1.0, kinetic=0.5)
+S_K = {"mass": 1.0, "stiffness": 1.0, "static": 1.0, "kinetic": 0.5}
 
 
 def static_kinetic_belt(V: float = 0.2) -> Network:
     friction = Friction("f", ("belt", "m"), static=S_K["static"], kinetic=S_K["kinetic"])
-    return Network([Mass("m", S_K["mass"])], [Spring("k", ("ground", "m"), S_K["stiffness"]), friction],
-                   drivers=[Driver("belt", V)])
+    return Network(
+        [Mass("m", S_K["mass"])],
+        [Spring("k", ("ground", "m"), S_K["stiffness"]), friction],
+        drivers=[Driver("belt", V)],
+    )
 
 
 def cycles_of(rows: list[BranchPoint]) -> list[BranchPoint]:
@@ -62,11 +65,22 @@ class ClosedFormShooting:
         V, omega, centre = self.parts(net)
         if v0 >= V:
             c = belt_cycle(**S_K, velocity=V)
-            return Cycle(c.period, V, np.array([c.x_max]), np.array([c.x_min]), c.stick_time, 1, 0.0,
-                         np.array([0.0]), 0.0, True)
+            return Cycle(
+                c.period, V, np.array([c.x_max]), np.array([c.x_min]), c.stick_time, 1, 0.0, np.array([0.0]), 0.0, True
+            )
         a = v0 / omega
-        return Cycle(2 * math.pi / omega, v0, np.array([centre + a]), np.array([centre - a]), 0.0, 0, V - v0,
-                     np.array([1.0]), 1.0, False)
+        return Cycle(
+            2 * math.pi / omega,
+            v0,
+            np.array([centre + a]),
+            np.array([centre - a]),
+            0.0,
+            0,
+            V - v0,
+            np.array([1.0]),
+            1.0,
+            False,
+        )
 
     def cycle_derivative_in(self, net: Network, v: float, parameter: str) -> float:
         assert parameter == "belt.velocity"
@@ -117,8 +131,11 @@ def stribeck_belt(V: float = 0.2) -> Network:
 
 def leine_belt(V: float = 0.2) -> Network:
     law = SlipCurve(FS, lambda s: FS / (1 + DELTA * s), fall=FS * DELTA)
-    elements = [Spring("k", ("ground", "m"), 1.0), Contact("c", ("belt", "m"), law),
-                LinearDashpot("c0", ("ground", "m"), DAMPING)]
+    elements = [
+        Spring("k", ("ground", "m"), 1.0),
+        Contact("c", ("belt", "m"), law),
+        LinearDashpot("c0", ("ground", "m"), DAMPING),
+    ]
     return Network([Mass("m", 1.0)], elements, drivers=[Driver("belt", V)])
 
 
@@ -175,9 +192,9 @@ def sliding_return(V: float, v: float) -> tuple[float, float]:
         return rhs(t, y)[1]
 
     down.terminal, down.direction, peak.direction = True, -1, -1
-    tol = dict(method="DOP853", rtol=1e-12, atol=1e-15)
+    tol = {"method": "DOP853", "rtol": 1e-12, "atol": 1e-15}
     first = solve_ivp(rhs, (0, 1), [x_star, v], events=[down, peak], **tol)
-    up = lambda t, y: y[0] - x_star  # noqa: E731
+    up = lambda t, y: y[0] - x_star
     up.terminal, up.direction = True, 1
     second = solve_ivp(rhs, (first.t[-1], first.t[-1] + 1), first.y[:, -1], events=[up, peak], **tol)
     speeds = [y[1] for sol in (first, second) for y in sol.y_events[1]] + [v]
@@ -211,7 +228,9 @@ def test_the_stick_slip_branch_folds_where_it_meets_the_unstable_sliding_cycles(
     assert onset.kind == "stick-slip-onset"
     assert fold.cycle.stick_phases == 1 and fold.cycle.max_multiplier == 0 and fold.cycle.stable
     assert onset.cycle.stick_phases == 0 and onset.cycle.max_multiplier > 1 and not onset.cycle.stable
-    assert all(r.cycle.stick_phases == 1 for r in cycles[:i]) and all(r.cycle.stick_phases == 0 for r in cycles[i + 1 :])
+    assert all(r.cycle.stick_phases == 1 for r in cycles[:i]) and all(
+        r.cycle.stick_phases == 0 for r in cycles[i + 1 :]
+    )
     values = [r.value for r in cycles]
     assert values[0] == values[-1] == 0.26 and max(values) == onset.value
 

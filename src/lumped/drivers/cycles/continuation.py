@@ -92,7 +92,6 @@ from lumped.drivers.cycles.shooting import Cycle, cycle_derivative_in, find_cycl
 from lumped.drivers.response.continuation import check_points
 from lumped.model.network import Network
 from lumped.model.system_parameters import system_parameters, with_values
-from lumped.numerics import validate
 from lumped.numerics.arclength import predict, unit_tangent
 from lumped.numerics.roots import brentq
 from lumped.solvers.event_driven_network import model
@@ -166,7 +165,11 @@ class _Family:
         unless ``tangent`` is false: then 0, for a point whose tangent is not wanted)."""
         net = self.member(value)
         cycle = find_cycle(net, v)
-        d_p = cycle_derivative_in(net, cycle.section, self.name) if tangent else 0.0
+        d_p = (
+            self.derivative(net, cycle.section, value, cycle.section, float(cycle.multipliers[0].real))
+            if tangent
+            else 0.0
+        )
         slope = float(cycle.multipliers[0].real)  # the one nontrivial multiplier: P' at the cycle
         jacobian = np.array([[slope - 1.0, d_p * self.p_s / self.v_s]])
         return _Point(np.array([cycle.section / self.v_s, value / self.p_s]), jacobian, cycle, value)
@@ -199,7 +202,7 @@ class _Family:
                 if abs(f) <= tol:
                     return self.point(v, value, tangent)
                 last = abs(f)
-                d_p = 0.0 if fixed else cycle_derivative_in(net, v, self.name) * self.p_s / self.v_s
+                d_p = 0.0 if fixed else self.derivative(net, v, value, v_next, slope) * self.p_s / self.v_s
                 u = u - np.linalg.solve(np.array([[slope - 1.0, d_p], normal]), np.array([f, normal @ (u - guess)]))
         except (ValueError, np.linalg.LinAlgError):
             return None
@@ -240,12 +243,21 @@ class _Family:
             v, value = self._snapped(u)
             net = self.member(value)
             slope = return_map(net, v)[1]
-            row = [slope - 1.0, cycle_derivative_in(net, v, self.name) * self.p_s / self.v_s]
+            row = [slope - 1.0, cycle_derivative_in(net, v, self.name) * self.p_s / self.v_s]  # no shortcut here
         except ValueError:
             return along
         if not np.all(np.isfinite(row)) or not np.any(row):
             return along
         return unit_tangent(np.array([row]), along)
+
+    def derivative(self, net: Network, v: float, value: float, v_next: float, slope: float) -> float:
+        """``dP/dp`` at ``v`` (m/s per unit of the parameter): where the motion from ``v`` sticks before it returns
+        and returns stuck (``P = V``, ``P' = 0``), ``P = V(p)`` near it and ``dP/dp = dV/dp`` exactly, the belt's
+        speed being the parameter itself or not depending on it (an affine function of it: its difference over
+        a unit step); else :func:`cycle_derivative_in`'s central difference."""
+        if slope == 0 and v_next == self.belt(value):
+            return self.belt(value + 1.0) - self.belt(value)
+        return cycle_derivative_in(net, v, self.name)
 
     def _snapped(self, u: np.ndarray) -> tuple[float, float]:
         """``(v, p)`` at ``u``, with ``v`` the belt's speed where it is within the tolerance of it (Notes)."""
@@ -323,9 +335,7 @@ def _arm_end(fam: _Family, a: _Point, b: _Point, t: np.ndarray) -> _Point:
     return near if near is a else fam.point(near.cycle.section, near.value)  # with its tangent
 
 
-def _changes(
-    fam: _Family, a: _Point, b: _Point, travel: np.ndarray
-) -> tuple[list[BranchPoint] | None, _Point | None]:
+def _changes(fam: _Family, a: _Point, b: _Point, travel: np.ndarray) -> tuple[list[BranchPoint] | None, _Point | None]:
     """The rows of the changes between ``a`` and ``b`` (module docstring), in order along the branch, and where
     ``b``'s piece begins if the stick phases change between them (``None`` if they do not).  ``travel`` is the
     tangent along which the branch left ``a``: ``a``'s piece ends ahead along it, and ``b``'s piece ends towards
@@ -467,7 +477,9 @@ def _at_edge(fam: _Family, p: _Point, q: _Point, walk: _Walk) -> _Point | None:
     return None if at is None else fam.point(at.cycle.section, value)  # at the end's value exactly
 
 
-def _from_hopf(fam: _Family, hopf: float, walk: _Walk, steps: int, progress: Callable[[float], None]) -> list[BranchPoint]:
+def _from_hopf(
+    fam: _Family, hopf: float, walk: _Walk, steps: int, progress: Callable[[float], None]
+) -> list[BranchPoint]:
     """The branch from the Hopf point at ``hopf``: its cycle of zero amplitude, the small cycle at
     :data:`HOPF_AMPLITUDE` of the belt's speed (``p`` solved for), and on along growing amplitude; the first
     alone where no small cycle is found or the map is neutral there (``F_v = F_p = 0``: a centre, no isolated
@@ -495,7 +507,9 @@ def _from_start(
     except ValueError:
         return []
     tol = CORRECTOR_TOL * fam.v_s
-    if any(r.cycle is not None and r.value == start and abs(r.cycle.section - first.cycle.section) <= tol for r in found):
+    if any(
+        r.cycle is not None and r.value == start and abs(r.cycle.section - first.cycle.section) <= tol for r in found
+    ):
         return []
     toward = np.array([0.0, 1.0 if walk.hi > first.u[1] else -1.0])
     return [_row(first, "regular"), *_follow(fam, first, _tangent(first, toward), walk, steps, progress)]
@@ -518,7 +532,8 @@ def continue_branches(
     parameter : str
         A numeric parameter of the system file, ``entry.key`` (``belt.velocity``).
     start, stop : float
-        The range, in the parameter's unit; ``start != stop``.
+        The range, in the parameter's unit: finite, ``start < stop``, values the system takes
+        (:func:`hopf_points` checks them).
     points : int
         The equilibria's rows (``>= 2``), and the cycles' steps: ``p`` moves by ``(stop - start)/(points - 1)``
         at most in one.
@@ -534,21 +549,25 @@ def continue_branches(
     Raises
     ------
     ValueError
-        One line: a system :func:`check_autonomous` refuses, an unknown parameter, a bad range or ``points``,
-        a value of the range the system refuses.
+        One line: a system :func:`check_autonomous` refuses, bad ``points``, an unknown parameter, a bad range
+        or a value of it that the system refuses (:func:`hopf_points`).
     """
     check_autonomous(network)
     points = check_points(points)
-    start, stop = validate.finite("start", start), validate.finite("stop", stop)
-    if start == stop:
-        raise ValueError(f"vary: the range {parameter}={start!r}:{stop!r} is empty; give two different values")
+    hopf = hopf_points(network, parameter, start, stop)  # checks the parameter and the range (vary: ...)
     fam = _Family(network, parameter, start, stop)
     report = _reporter(progress, start, stop)
-    hopf = hopf_points(network, parameter, start, stop)
     rows = _equilibria(fam, start, stop, points, hopf)
     lo, hi = sorted((start / fam.p_s, stop / fam.p_s))
     slowest = min(abs(fam.belt(start)), abs(fam.belt(stop)))
-    walk = _Walk(lo, hi, (min(start, stop), max(start, stop)), 1.0 / (points - 1), SPEED_STEP, 0.5 * HOPF_AMPLITUDE * slowest / fam.v_s)
+    walk = _Walk(
+        lo,
+        hi,
+        (min(start, stop), max(start, stop)),
+        1.0 / (points - 1),
+        SPEED_STEP,
+        0.5 * HOPF_AMPLITUDE * slowest / fam.v_s,
+    )
     for h in hopf:
         rows += _from_hopf(fam, h, walk, 50 * points, report)
     rows += _from_start(fam, start, walk, 50 * points, report, rows)
