@@ -191,6 +191,11 @@ class _Family:
         """Newton on ``F = 0``, ``normal . (u - guess) = 0`` to ``|F| <= tol v_s``, then the point's cycle
         (``None`` where it does not converge or leaves the values the system takes)."""
         u, fixed, last = guess.copy(), normal[0] == 0, math.inf
+        if fixed and tangent and tol == CORRECTOR_TOL:  # Newton at a fixed value: find_cycle's, to its tolerance
+            try:
+                return self.point(*self._snapped(u), tangent)
+            except ValueError:
+                return None
         try:
             for _ in range(MAX_CORRECTOR):
                 v, value = self._snapped(u)
