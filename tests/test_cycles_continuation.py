@@ -108,6 +108,20 @@ def test_the_static_kinetic_branch_in_belt_speed_is_the_closed_form_cycle_at_eve
         assert r.cycle.section == r.value
 
 
+def test_the_static_kinetic_branch_meets_belt_cycle_at_every_point():
+    """The same branch by the package's shooting (closed-form phases: the harmonic slip, the stick, the
+    breakaway): period, extremes and stick time of every cycle row are belt_cycle's at its speed to 1e-10 (the
+    phases' round-off, a few ulps of the O(1) state and the O(10) s period, far below)."""
+    rows = continue_branches(static_kinetic_belt(), "belt.velocity", 0.1, 0.5, points=21)
+    cycles = cycles_of(rows)
+    assert [r.value for r in cycles][:: len(cycles) - 1] == [0.1, 0.5] and len(cycles) >= 21
+    for r in cycles:
+        ref = belt_cycle(**S_K, velocity=r.value)
+        got = (r.cycle.period, r.cycle.x_max[0], r.cycle.x_min[0], r.cycle.stick_time)
+        assert got == pytest.approx((ref.period, ref.x_max, ref.x_min, ref.stick_time), rel=0, abs=1e-10)
+        assert r.kind == "regular" and r.cycle.stick_phases == 1 and r.cycle.section == r.value
+
+
 # -- Hopf points and the stick-slip onset -----------------------------------------------------------------------
 
 M, K, B0 = 0.538, 6957.0, 5.746
