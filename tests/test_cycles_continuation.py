@@ -122,6 +122,20 @@ def test_the_static_kinetic_branch_meets_belt_cycle_at_every_point():
         assert r.kind == "regular" and r.cycle.stick_phases == 1 and r.cycle.section == r.value
 
 
+def test_progress_goes_to_the_end_and_a_system_without_a_falling_law_is_refused_before_work():
+    calls: list[tuple[int, int]] = []
+    continue_branches(static_kinetic_belt(), "belt.velocity", 0.1, 0.5, points=5, progress=lambda *a: calls.append(a))
+    assert calls[-1] == (1000, 1000) and all(0 <= done <= total == 1000 for done, total in calls)
+    viscous = Network(
+        [Mass("m", 1.0)],
+        [Spring("k", ("ground", "m"), 1.0), LinearDashpot("d", ("belt", "m"), 0.5)],
+        drivers=[Driver("belt", 0.2)],
+    )
+    with pytest.raises(ValueError, match=r"^cycles: no falling law") as err:
+        continue_branches(viscous, "belt.velocity", 0.1, 0.5, progress=lambda *a: calls.append(("late",)))
+    assert "\n" not in str(err.value) and calls[-1] == (1000, 1000)
+
+
 # -- Hopf points and the stick-slip onset -----------------------------------------------------------------------
 
 M, K, B0 = 0.538, 6957.0, 5.746
