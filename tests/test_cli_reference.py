@@ -165,7 +165,7 @@ def test_lumped_help_names_every_command_with_one_line() -> None:
     parser = build_parser()
     (sub,) = (a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
     commands = {c.dest: c.help for c in sub._choices_actions}
-    assert list(commands) == ["simulate", "sweep", "response", "fit"]
+    assert list(commands) == ["simulate", "sweep", "response", "cycles", "fit"]
     text = _help()
     lines = text.splitlines()
     for name, help_ in commands.items():

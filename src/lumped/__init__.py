@@ -12,7 +12,7 @@ trajectories), :mod:`~lumped.kernels` (the compiled loops),
 :mod:`~lumped.solvers` (one module per method), :mod:`~lumped.drivers`
 (:func:`solve`, the one entry point, which runs any :class:`Problem` by any
 method of :data:`METHODS` and returns one :class:`Trajectory`; the sweep; the
-response curves, :func:`response_curve`), :mod:`~lumped.studies`,
+response curves, :func:`response_curve`; the limit cycles on a belt, :func:`cycles`), :mod:`~lumped.studies`,
 :mod:`~lumped.plotting` and :mod:`~lumped.cli`.  The names below are the
 public API.
 
@@ -27,6 +27,7 @@ add what a :class:`Trajectory` does not carry (the solution in continuous
 time, the located events, a ``kernel`` or ``theta`` of one's own).
 """
 
+from lumped.drivers.cycles.api import CyclesTable, cycles
 from lumped.drivers.fit import FitResult, fit
 from lumped.drivers.methods import METHODS
 from lumped.drivers.simulation import simulate, simulate_network, solve
@@ -84,6 +85,7 @@ __all__ = [
     "Constant",
     "Contact",
     "Curve",
+    "CyclesTable",
     "Dashpot",
     "DashpotState",
     "Driver",
@@ -123,6 +125,7 @@ __all__ = [
     "Trajectory",
     "algorithm1",
     "backward_euler",
+    "cycles",
     "continue_orbits",
     "coulomb",
     "event_capturing",

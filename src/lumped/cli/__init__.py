@@ -1,6 +1,8 @@
-"""Command line: ``python -m lumped COMMAND [options]``, COMMAND one of ``simulate``, ``sweep``, ``response``, ``fit``.
+"""Command line: ``python -m lumped COMMAND [options]``, COMMAND one of ``simulate``, ``sweep``, ``response``,
+``cycles``, ``fit``.
 
-``fit`` estimates a system file's parameters from a record (:mod:`lumped.drivers.fit`);
+``cycles`` finds steady sliding on a belt and its limit cycles, or continues them over a parameter
+(:mod:`lumped.drivers.cycles`); ``fit`` estimates a system file's parameters from a record (:mod:`lumped.drivers.fit`);
 ``response`` follows a forced periodic motion in omega
 (:mod:`lumped.drivers.response`) and writes its response curve;
 ``simulate`` writes the columns ``t, x, v, F_s, F_d, F`` to a ``.csv`` or
@@ -17,7 +19,8 @@ This module holds the entry point (:func:`main`) and the parser
 (:func:`build_parser`); the rest, one module each:
 
 * :mod:`~lumped.cli.simulate`, :mod:`~lumped.cli.system`,
-  :mod:`~lumped.cli.sweep`, :mod:`~lumped.cli.response` and :mod:`~lumped.cli.fit`: the subcommands
+  :mod:`~lumped.cli.sweep`, :mod:`~lumped.cli.response`, :mod:`~lumped.cli.cycles` and :mod:`~lumped.cli.fit`: the
+  subcommands
   (``simulate --system`` in ``system``, ``simulate --sensitivities`` in :mod:`~lumped.cli.sensitivity`);
 * :mod:`~lumped.cli.options`: the parser's class, the methods' options and the
   reading of ``argv``; :mod:`~lumped.cli.reference`: the methods' table of
@@ -35,7 +38,7 @@ import sys
 from collections.abc import Sequence
 
 from lumped import __version__
-from lumped.cli import fit, response, simulate, sweep
+from lumped.cli import cycles, fit, response, simulate, sweep
 from lumped.cli.messages import option_message
 from lumped.cli.options import Parser, attach_values, refuse_repeats, refuse_single_mass
 from lumped.cli.output import Output, refuse_inputs
@@ -46,7 +49,8 @@ __all__ = ["main", "build_parser", "option_message"]
 _DESCRIPTION = """\
 Vibrations of masses on springs and Bingham (or Coulomb) dashpots, solved as
 differential-algebraic systems (Darbha, Nakshatrala and Rajagopal): one motion,
-a grid of runs, a response curve or a fit to a record, one command each."""
+a grid of runs, a response curve, the limit cycles on a belt or a fit to a
+record, one command each."""
 
 _EXAMPLE = """\
 example (free vibration from x0 = 0.5 m, the paper's Figures 11 to 14):
@@ -77,6 +81,7 @@ def build_parser() -> argparse.ArgumentParser:
     simulate.add_parser(sub)
     sweep.add_parser(sub)
     response.add_parser(sub)
+    cycles.add_parser(sub)
     fit.add_parser(sub)
     parser.epilog = _EXAMPLE.format(commands=", ".join(sub.choices))  # each command, one line of help above
     return parser
@@ -85,10 +90,10 @@ def build_parser() -> argparse.ArgumentParser:
 def _parse(argv: Sequence[str]) -> argparse.Namespace:
     """Parse the command line; raises SystemExit (usage, --help) or ValueError."""
     items = attach_values(argv)
-    if items[:1] in (["simulate"], ["sweep"], ["response"], ["fit"]):
+    if items[:1] in (["simulate"], ["sweep"], ["response"], ["cycles"], ["fit"]):
         refuse_repeats([i for i in items[1:] if not i.startswith("--vary")])
     args = build_parser().parse_args(items)
-    if getattr(args, "system", None) is not None and args.command not in ("response", "fit"):
+    if getattr(args, "system", None) is not None and args.command not in ("response", "cycles", "fit"):
         refuse_single_mass(items[1:])
     return args
 
@@ -103,15 +108,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status (0, 2 for a user error, 128 + signal)."""
     output = None
     argv = list(sys.argv[1:] if argv is None else argv)
-    command = argv[0] if argv[:1] in (["sweep"], ["response"], ["fit"]) else "simulate"
+    command = argv[0] if argv[:1] in (["sweep"], ["response"], ["cycles"], ["fit"]) else "simulate"
     try:
         with signals_unwind():
             args = _parse(argv)
             refuse_inputs(args)
             output = Output(args.output) if args.output is not None else None
-            summary = {"sweep": sweep.run, "response": response.run, "fit": fit.run}.get(command, simulate.run)(
-                args, output
-            )
+            runs = {"sweep": sweep.run, "response": response.run, "cycles": cycles.run, "fit": fit.run}
+            summary = runs.get(command, simulate.run)(args, output)
     except SystemExit as stop:  # argparse: usage errors (status 2) and --help (status 0)
         return int(stop.code or 0)
     except (KeyboardInterrupt, Terminated) as stop:
@@ -127,7 +131,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     finally:
         if output is not None:
             output.discard()
-    how = "" if command in ("response", "fit") else f" ({args.method})"
+    how = "" if command in ("response", "cycles", "fit") else f" ({args.method})"
     wrote = f"; wrote {args.output}" if args.output is not None else ""
     print(f"lumped {command}{how}: {summary}{wrote}", file=sys.stderr)
     return 0

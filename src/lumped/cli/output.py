@@ -150,7 +150,9 @@ def _dump(fh: BinaryIO, columns: dict[str, np.ndarray], suffix: str) -> None:
 
 
 def _cell(value: object) -> str:
-    """A CSV cell: a float as ``%.17g``, a boolean as ``true``/``false``, text as it is."""
+    """A CSV cell: a float as ``%.17g``, a boolean as ``true``/``false``, ``None`` (no value) empty, text as it is."""
+    if value is None:
+        return ""
     if isinstance(value, (bool, np.bool_)):
         return "true" if value else "false"
     if isinstance(value, (float, np.floating)):

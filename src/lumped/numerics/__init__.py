@@ -7,5 +7,7 @@
 * :mod:`~lumped.numerics.roots`: the one root finder (Brent's method) and its
   tolerances;
 * :mod:`~lumped.numerics.dop853` and :mod:`~lumped.numerics.dop853_tableau`:
-  the Dormand-Prince 8(5,3) integrator of the slip phases.
+  the Dormand-Prince 8(5,3) integrator of the slip phases;
+* :mod:`~lumped.numerics.arclength`: the predictor of pseudo-arclength
+  continuation (the forced orbits' and the limit cycles').
 """

@@ -60,7 +60,7 @@ from lumped.solvers.event_driven import (
 from lumped.solvers.events import OFF, STICK, Phase, Piece
 from lumped.solvers.network_modes import NetworkEvent, grid_index
 
-__all__ = ["TAKES", "March", "refusal", "solve_contact", "solve_event_driven_network"]
+__all__ = ["TAKES", "March", "classify", "model", "refusal", "solve_contact", "solve_event_driven_network"]
 
 METHOD = "event-driven"
 #: What it runs, in words (the refusals, ``--help``).
@@ -124,8 +124,9 @@ class Model:
         return self.smooth(t, x_start + self.V * (t - start), 0.0, p)
 
 
-def _classify(network: Network) -> tuple[list[Link], list[Link], list[Contact], str | None]:
-    """Springs, dashpots and contacts of a one-mass network, or the refusal of the first other element."""
+def classify(network: Network) -> tuple[list[Link], list[Link], list[Contact], int | None]:
+    """Springs, dashpots and friction contacts of a one-mass network as :class:`Link` s and :class:`Contact` s, and
+    the index of the first element that is none of them (``None`` if there is none; the lists stop there)."""
     mass = network.masses[0].name
     speeds = {d.name: d.constant_velocity for d in network.drivers}
     springs, dashpots, contacts = [], [], []
@@ -145,12 +146,7 @@ def _classify(network: Network) -> tuple[list[Link], list[Link], list[Contact], 
             tau, c = form.threshold, form.viscosity
             contacts.append(Contact(link, tau, lambda s, tau=tau, c=c: tau + c * s, tau))
         else:
-            return (
-                springs,
-                dashpots,
-                contacts,
-                f"method {METHOD!r} cannot run element {el.name!r} of kind {el.kind!r}: its networks are {TAKES}",
-            )
+            return springs, dashpots, contacts, e
     return springs, dashpots, contacts, None
 
 
@@ -161,9 +157,10 @@ def refusal(network: Network) -> str | None:
     for d in network.drivers:
         if d.constant_velocity is None:
             return f"method {METHOD!r} runs driven points at a constant velocity; driver {d.name!r} has {kind_of(d.velocity)}"
-    *_, contacts, reason = _classify(network)
-    if reason is not None:
-        return reason
+    *_, contacts, bad = classify(network)
+    if bad is not None:
+        el = network.elements[bad]
+        return f"method {METHOD!r} cannot run element {el.name!r} of kind {el.kind!r}: its networks are {TAKES}"
     if len(contacts) != 1:
         names = [network.elements[c.link.element].name for c in contacts]
         found = f"it has {len(contacts)}" + (f" ({listed(names)})" if names else "")
@@ -176,7 +173,7 @@ def refusal(network: Network) -> str | None:
 
 def model(network: Network) -> Model:
     """The :class:`Model` of a network that :func:`refusal` accepts."""
-    springs, dashpots, (contact,), _ = _classify(network)
+    springs, dashpots, (contact,), _ = classify(network)
     V = contact.link.velocity
     K, C = sum(s.coefficient for s in springs), sum(d.coefficient for d in dashpots)
     A = sum(s.coefficient * s.velocity for s in springs)

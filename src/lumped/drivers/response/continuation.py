@@ -49,6 +49,7 @@ from lumped.drivers.response.shooting import NEWTON_TOL, Orbit, Scales, check_sy
 from lumped.drivers.response.systems import Family, LoadedNetwork, omega_family, period_map
 from lumped.model.oscillator import Oscillator
 from lumped.numerics import validate
+from lumped.numerics.arclength import predict, unit_tangent
 
 __all__ = [
     "BISECTIONS",
@@ -171,35 +172,16 @@ class _Branch:
 
 
 def _tangent(p: _Point, previous: np.ndarray | None) -> np.ndarray:
-    """The unit null vector of the equations' matrix at ``p`` (the cross product of the rows of the 2 x 3
-    Jacobian of one mass, else the last right singular vector), oriented along ``previous`` (or towards
-    larger values of the parameter)."""
+    """The unit null vector of the equations' matrix at ``p`` (:func:`~lumped.numerics.arclength.unit_tangent`),
+    oriented along ``previous`` (or towards larger values of the parameter)."""
     matrix, _ = p.system(np.zeros(p.u.size - 1), p.u, p.u)
-    if matrix.shape == (2, 3):
-        t = np.cross(matrix[0], matrix[1])
-    else:
-        t = np.linalg.svd(matrix)[2][-1]
-    t /= np.linalg.norm(t)
-    ref = t[-1] if previous is None else t @ previous
-    return -t if ref < 0 else t
+    return unit_tangent(matrix, previous)
 
 
 def _predict(p: _Point, tangent: np.ndarray, ds: float, back: tuple[np.ndarray, np.ndarray] | None) -> np.ndarray:
-    """The predictor ``ds`` along ``tangent`` from ``p``: where the branch, parametrised by ``sigma = tangent .
-    (u - p.u)``, crosses ``sigma = ds``, by the cubic that matches the previous point ``back = (u, tangent)`` and
-    ``p`` and their slopes ``du/dsigma = t/(tangent . t)`` (Hermite), extrapolated.  Its error is ``O(ds^4)``
-    where the branch is smooth (the tangent line's is ``O(ds^2)``), so that one corrector iterate mostly
-    suffices; the tangent line where there is no previous point (the first, and after a change of the stops,
-    where the branch has a kink)."""
-    if back is None:
-        return p.u + ds * tangent
-    h = float(tangent @ (p.u - back[0]))  # the previous point at sigma = -h
-    if not h > 0:
-        return p.u + ds * tangent
-    d_back = back[1] / float(tangent @ back[1])
-    s = 1.0 + ds / h  # sigma + h in units of h
-    h00, h10, h01, h11 = 2 * s**3 - 3 * s**2 + 1, s**3 - 2 * s**2 + s, 3 * s**2 - 2 * s**3, s**3 - s**2
-    return h00 * back[0] + h10 * h * d_back + h01 * p.u + h11 * h * tangent
+    """The predictor ``ds`` along ``tangent`` from ``p`` (:func:`~lumped.numerics.arclength.predict`: Hermite
+    through the previous point ``back``, the tangent line where there is none)."""
+    return predict(p.u, tangent, ds, back)
 
 
 def _largest_step(u: np.ndarray, tangent: np.ndarray, d_value: float) -> float:

@@ -1,0 +1,310 @@
+"""Limit cycles of one mass on a belt and their branches: :func:`cycles`, the API of ``python -m lumped cycles``.
+
+:func:`cycles` takes a :class:`~lumped.model.network.Network` (a system file
+read by :func:`lumped.model.files.load_system`) in the scope of
+:func:`~lumped.drivers.cycles.equilibria.check_autonomous` and returns a
+:class:`CyclesTable`, one row per equilibrium or cycle, in the columns the
+issue names: the varied parameter (with ``vary``), ``branch``
+(``equilibrium`` or ``cycle``), ``period`` (s), ``max_<mass>`` and
+``min_<mass>`` (m; the equilibrium's position for an equilibrium),
+``stick_time`` (s per period stuck), ``stable``, ``max_multiplier`` (a cycle's
+largest Floquet multiplier in modulus, the trivial one left out),
+``max_real_part`` (an equilibrium's largest real part of an eigenvalue, 1/s)
+and ``kind`` (``regular``, ``hopf``, ``fold``, ``stick-slip-onset``,
+``stick-change``, ``period-doubling``).  A value that does not apply to a row
+(an equilibrium's period, stick time and multiplier; a cycle's real part) is
+``nan`` in the table and an empty cell in the command's CSV.
+
+Without ``vary``: the equilibrium's row, then one row per cycle found at the
+file's parameters: from the file's initial state by a long run (event-driven,
+:func:`~lumped.solvers.event_driven_network.solve_contact`) until the
+crossings of the section settle (:data:`SETTLE_RTOL`), then Newton on the
+return map (:func:`~lumped.drivers.cycles.shooting.find_cycle`); and from the
+branch born at the nearest Hopf point in the belt's speed within a factor
+:data:`HOPF_REACH` of the file's (its cycle nearest the file's speed, then
+Newton).  With ``vary = (name, start, stop)``: the branches of
+:func:`~lumped.drivers.cycles.continuation.continue_branches` over the range.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any, NamedTuple
+
+import numpy as np
+
+from lumped.drivers.cycles.equilibria import (
+    Equilibrium,
+    check_autonomous,
+    hopf_points,
+    parameter_member,
+    steady_sliding,
+)
+from lumped.drivers.cycles.shooting import Cycle, find_cycle
+from lumped.model.network import Network
+from lumped.model.system_parameters import system_parameters, with_values
+from lumped.numerics import validate
+from lumped.numerics.roots import brentq
+from lumped.solvers.event_driven_network import March, model, solve_contact
+
+__all__ = [
+    "COLUMNS",
+    "HOPF_REACH",
+    "MAX_POINTS",
+    "SETTLE_RTOL",
+    "CyclesTable",
+    "belt_parameter",
+    "cycles",
+    "request",
+]
+
+#: The columns after the varied parameter's, with ``max_<mass>``, ``min_<mass>`` in place of ``extremes``.
+COLUMNS = ("branch", "period", "extremes", "stick_time", "stable", "max_multiplier", "max_real_part", "kind")
+#: The most rows asked of a continuation (as ``lumped response``'s).
+MAX_POINTS = 10_000
+#: The long run settles when two successive upward crossings of the section differ in speed by this, relative
+#: to the belt's speed: Newton on the return map then starts within its basin (it refines to its own tolerance).
+SETTLE_RTOL = 1e-6
+#: The long run goes on in pieces of :data:`SETTLE_PERIODS` natural periods, at most :data:`SETTLE_PIECES` of them.
+SETTLE_PERIODS, SETTLE_PIECES = 20, 50
+#: The Hopf points looked for without ``vary``: belt speeds from ``V / HOPF_REACH`` to ``V * HOPF_REACH``.
+HOPF_REACH = 10.0
+
+
+class CyclesTable(NamedTuple):
+    """The table (column name -> array: ``branch`` and ``kind`` as str, ``stable`` as bool, the rest float with
+    ``nan`` where a value does not apply) and a one-line summary."""
+
+    columns: dict[str, np.ndarray]
+    summary: str
+
+
+class Request(NamedTuple):
+    """Checked arguments: the network, the varied parameter's name and range (``None``) and the rows."""
+
+    network: Network
+    vary: tuple[str, float, float] | None
+    points: int
+
+
+def belt_parameter(network: Network) -> str:
+    """The default parameter to vary: the velocity of the friction contact's driven point, ``<driver>.velocity``
+    (``belt.velocity``), for a file with one driver; a ``ValueError`` naming the drivers otherwise."""
+    names = [d.name for d in network.drivers]
+    if len(names) != 1:
+        raise ValueError(f"vary: the system has {len(names)} driven points ({', '.join(names)}): name the parameter")
+    return f"{names[0]}.velocity"
+
+
+def request(network: Network, vary: tuple[str, float, float] | None = None, points: int = 50) -> Request:
+    """:func:`cycles`'s arguments checked before any work, or a one-line ``ValueError`` naming the argument:
+    the system in scope (:func:`check_autonomous`, ``cycles: ...``), ``points`` from 2 to :data:`MAX_POINTS`,
+    ``vary`` a parameter of the file with a finite range ``start < stop`` whose ends the file's items accept and
+    whose systems are in scope (a belt's speed not reaching 0)."""
+    check_autonomous(network)
+    points = validate.positive_int("points", points)
+    if not 2 <= points <= MAX_POINTS:
+        raise ValueError(f"points: between 2 and {MAX_POINTS} rows, got {points}")
+    if vary is None:
+        return Request(network, None, points)
+    if not (isinstance(vary, tuple) and len(vary) == 3 and isinstance(vary[0], str)):
+        raise ValueError(f"vary: expected (name, start, stop), got {vary!r:.60}")
+    name, start, stop = vary
+    try:
+        start, stop = float(start), float(stop)
+    except (TypeError, ValueError):
+        raise ValueError(f"vary: START and STOP must be real numbers, got {start!r:.20}:{stop!r:.20}") from None
+    if not (math.isfinite(start) and math.isfinite(stop) and start < stop):
+        raise ValueError(f"vary: START:STOP must be finite with START < STOP, got {start!r}:{stop!r}")
+    param, ends = parameter_member(network, name, start, stop)
+    if param.table == "mass" and param.key != "mass":
+        raise ValueError(f"vary: {name} is the initial state, on which neither steady sliding nor a cycle depends")
+    for value, member in zip((start, stop), ends, strict=True):
+        try:
+            check_autonomous(member)
+        except ValueError as err:
+            raise ValueError(f"vary: at {name} = {value:g}: {str(err).removeprefix('cycles: ')}") from None
+    return Request(network, (name, start, stop), points)
+
+
+def cycles(
+    network: Network,
+    *,
+    vary: tuple[str, float, float] | None = None,
+    points: int = 50,
+    progress: Callable[[int, int], None] | None = None,
+) -> CyclesTable:
+    """Steady sliding and the limit cycles of ``network`` (module docstring), as a table.
+
+    Parameters
+    ----------
+    network : Network
+        One mass on a friction contact on a belt (:func:`check_autonomous`).
+    vary : (str, float, float), optional
+        ``(name, start, stop)``: a parameter of the file (``belt.velocity``, ``element.key``, ``mass.key``;
+        :func:`belt_parameter` gives the belt's) and its range, ``start < stop``.
+    points : int
+        2 to :data:`MAX_POINTS`: about the rows of each branch (with ``vary``).
+    progress : callable, optional
+        Called as ``progress(done, total)``.
+
+    Returns
+    -------
+    CyclesTable
+
+    Raises
+    ------
+    ValueError
+        One line naming the argument, before any work (:func:`request`).
+    """
+    req = request(network, vary, points)
+    if progress is not None and not callable(progress):
+        raise ValueError(f"progress must be callable as progress(done, total), got {type(progress).__name__}")
+    if req.vary is None:
+        rows, notes = _rows_at_file(req.network, req.points, progress)
+        summary = "; ".join([_summary(rows, None), *notes])
+        return CyclesTable(_table(rows, network.mass_names, None), summary)
+    from lumped.drivers.cycles.continuation import continue_branches
+
+    name, start, stop = req.vary
+    branch = continue_branches(req.network, name, start, stop, req.points, progress)
+    rows = [(p.value, p.branch, p.equilibrium if p.branch == "equilibrium" else p.cycle, p.kind) for p in branch]
+    return CyclesTable(_table(rows, network.mass_names, name), _summary(rows, name))
+
+
+Row = tuple[float, str, Any, str]  # (value, branch, Equilibrium or Cycle, kind)
+
+
+def _rows_at_file(network: Network, points: int, progress: Callable | None) -> tuple[list[Row], list[str]]:
+    """The equilibrium's row, then the cycles found from the initial state and from the Hopf branch; and what
+    was not found, in words, for the summary."""
+    tick = progress or (lambda done, total: None)
+    eq = steady_sliding(network)
+    rows: list[Row] = [(math.nan, "equilibrium", eq, "regular")]
+    notes = []
+    starts = []
+    tick(1, 3)
+    v0, note = _settled_crossing(network, eq)
+    if note:
+        notes.append(note)
+    starts.append(("the initial state", v0))
+    tick(2, 3)
+    starts.append(("the Hopf branch", _hopf_branch_crossing(network, points)))
+    for where, v in starts:
+        if v is None:
+            continue
+        try:
+            cycle = find_cycle(network, v)
+        except ValueError as err:  # Newton's failure: no cycle vouched for from this start
+            notes.append(f"from {where}: {err}")
+            continue
+        if not any(_same(cycle, row[2]) for row in rows[1:]):
+            rows.append((math.nan, "cycle", cycle, "regular"))
+    tick(3, 3)
+    return rows, notes
+
+
+def _same(a: Cycle, b: Cycle) -> bool:
+    """Two cycles found from two starts are one if they cross the section at the same speed (to Newton's 1e-12
+    relative, with a margin of 1e4 for the two starts)."""
+    return abs(a.section - b.section) <= 1e-8 * max(abs(a.section), abs(b.section))
+
+
+def _settled_crossing(network: Network, eq: Equilibrium) -> tuple[float | None, str]:
+    """The speed at which the long run from the file's initial state crosses the section ``x = x*`` upward, once
+    two successive crossings agree to :data:`SETTLE_RTOL` of the belt's speed, and ``""``; ``None`` and what the run
+    did instead: it settles on steady sliding (its swing below ``SETTLE_RTOL`` of the scale ``|x*| + static/K``)
+    or it does not settle in :data:`SETTLE_PIECES` pieces."""
+    mdl = model(network)
+    x_star, speed = float(eq.position[0]), abs(mdl.V)
+    span = SETTLE_PERIODS * 2 * math.pi * math.sqrt(mdl.m / mdl.K)
+    scale = abs(x_star) + mdl.contact.static / mdl.K
+    net, last = network, None
+    for _ in range(SETTLE_PIECES):
+        march = solve_contact(net, span, rtol=1e-10)
+        t = np.linspace(0.0, span, 200 * SETTLE_PERIODS + 1)
+        x, v = march.state(t)
+        if np.ptp(x[t > span - span / SETTLE_PERIODS]) < SETTLE_RTOL * scale:
+            return None, "the run from the initial state settles on steady sliding"
+        for v_cross in _crossings(march, t, x, v, x_star):
+            if last is not None and abs(v_cross - last) <= SETTLE_RTOL * speed:
+                return v_cross, ""
+            last = v_cross
+        mass = net.masses[0]
+        params = system_parameters(net, [f"{mass.name}.x0", f"{mass.name}.v0"])
+        net = with_values(net, params, [float(x[-1]), float(v[-1])])
+    periods = SETTLE_PERIODS * SETTLE_PIECES
+    return None, f"the run from the initial state does not settle on a cycle in {periods} natural periods"
+
+
+def _crossings(march: March, t: np.ndarray, x: np.ndarray, v: np.ndarray, x_star: float) -> list[float]:
+    """The speeds at the upward crossings of ``x = x*`` in a run sampled at ``t``, each located by Brent's
+    method on the continuous motion."""
+    out = []
+    for i in np.flatnonzero((x[:-1] < x_star) & (x[1:] >= x_star) & (v[1:] > 0)):
+        f = lambda s: float(march.state(np.array([s]))[0][0]) - x_star
+        when = brentq(f, float(t[i]), float(t[i + 1]))
+        out.append(float(march.state(np.array([when]))[1][0]))
+    return out
+
+
+def _hopf_branch_crossing(network: Network, points: int) -> float | None:
+    """The section speed of the cycle nearest the file's belt speed on the branch born at the nearest Hopf point
+    in that speed (within :data:`HOPF_REACH`), or ``None`` where there is none."""
+    name = belt_parameter(network)
+    (param,) = system_parameters(network, [name])
+    V = param.value
+    lo, hi = sorted((V / HOPF_REACH, V * HOPF_REACH))
+    hopf = hopf_points(network, name, lo, hi)
+    if not hopf:
+        return None
+    nearest = min(hopf, key=lambda h: abs(h - V))
+    if nearest == V:
+        return None
+    from lumped.drivers.cycles.continuation import continue_branches
+
+    start, stop = sorted((nearest, V))
+    branch = [p for p in continue_branches(network, name, start, stop, points) if p.branch == "cycle"]
+    if not branch:
+        return None
+    return float(min(branch, key=lambda p: abs(p.value - V)).cycle.section)
+
+
+def _table(rows: list[Row], masses: list[str], vary: str | None) -> dict[str, np.ndarray]:
+    """The columns of :data:`COLUMNS` (``nan`` where a value does not apply)."""
+    nan = math.nan
+    cols: dict[str, list] = {name: [] for name in ([vary] if vary else [])}
+    cols |= {"branch": [], "period": []}
+    cols |= {f"{e}_{m}": [] for m in masses for e in ("max", "min")}
+    cols |= {"stick_time": [], "stable": [], "max_multiplier": [], "max_real_part": [], "kind": []}
+    for value, branch, item, kind in rows:
+        if vary:
+            cols[vary].append(value)
+        equilibrium = branch == "equilibrium"
+        cols["branch"].append(branch)
+        cols["period"].append(nan if equilibrium else item.period)
+        for i, m in enumerate(masses):
+            cols[f"max_{m}"].append(float(item.position[i] if equilibrium else item.x_max[i]))
+            cols[f"min_{m}"].append(float(item.position[i] if equilibrium else item.x_min[i]))
+        cols["stick_time"].append(nan if equilibrium else item.stick_time)
+        cols["stable"].append(bool(item.stable) and kind != "hopf")  # a pair on the imaginary axis: marginal
+        cols["max_multiplier"].append(nan if equilibrium else item.max_multiplier)
+        cols["max_real_part"].append(item.max_real_part if equilibrium else nan)
+        cols["kind"].append(kind)
+    text = ("branch", "kind")
+    return {k: np.array(v, dtype=str if k in text else bool if k == "stable" else float) for k, v in cols.items()}
+
+
+def _summary(rows: list[Row], vary: str | None) -> str:
+    """``1 equilibrium (stable), 2 cycles (1 stable); changes: 1 hopf, 1 fold``."""
+    eq = [r for r in rows if r[1] == "equilibrium"]
+    cyc = [r for r in rows if r[1] == "cycle"]
+    located = dict.fromkeys((r[3], r[0]) for r in rows if r[3] != "regular")  # a Hopf point ends both branches
+    kinds = [kind for kind, _ in located]
+    changes = ", ".join(f"{kinds.count(k)} {k}" for k in dict.fromkeys(kinds)) or "none"
+    if vary is None:
+        state = "stable" if eq[0][2].stable else "not stable"
+        found = f"{len(cyc)} cycle{'s' * (len(cyc) != 1)} ({sum(r[2].stable for r in cyc)} stable)"
+        return f"steady sliding at x = {eq[0][2].position[0]:.6g} m ({state}); {found}"
+    return f"{len(eq)} equilibria and {len(cyc)} cycles in {vary}; changes: {changes}"
