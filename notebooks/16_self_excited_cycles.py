@@ -36,7 +36,6 @@
 
 # %%
 # %matplotlib inline
-import dataclasses
 import math
 
 import numpy as np
@@ -47,9 +46,10 @@ from scipy.special import i1
 
 import lumped as L
 import lumped.plotting as P
-from lumped.drivers.cycles import find_cycle, return_map, section_of
+from lumped.drivers.cycles import Cycle, find_cycle, hopf_points, return_map, steady_sliding
+from lumped.drivers.cycles.continuation import continue_branches
 from lumped.solvers.closed_form_belt import belt_cycle
-from lumped.solvers.event_driven_network import model, solve_contact
+from lumped.solvers.event_driven_network import solve_contact
 
 # Leine et al.'s benchmark: m = k = 1, g(s) = F_s / (1 + delta s), no damper.
 F_s, delta = 1.0, 3.0
@@ -145,37 +145,44 @@ print(f"Leine: c = 0 + g'(V) = {leine_c}, negative for every V > 0")
 
 
 # %% [markdown]
-# The package's own description of each system (`model(network)`: its
-# stiffness $K$ and damping $C$) with the law's slope (`SlipLaw.slope`, a
-# value and its error bound) gives the eigenvalues of the companion matrix of
-# (2); they meet the closed forms to within that bound:
+# The package computes steady sliding and its eigenvalues for any such system
+# (`lumped.drivers.cycles.steady_sliding`, from the network's springs,
+# dashpots and the law's slope, `SlipLaw.slope`, a value with its error
+# bound); they meet $x^* = g(V)/k$ and the closed forms (2) to within that
+# bound:
 
 # %%
-def eigenvalues(network: L.Network, V: float) -> tuple[np.ndarray, float]:
-    """The linearisation's eigenvalues from the package's model and slope, and the slope's error bound."""
-    mdl = model(network)
-    element = network.elements[-1]
-    slope = (element.slip_law() or element.one_mass_law()).slope(V)
-    c = mdl.C + slope.value
-    return np.sort_complex(np.linalg.eigvals([[0.0, 1.0], [-mdl.K / mdl.m, -c / mdl.m]])), slope.error
-
-
 def closed_form(m, k, c):
     root = np.sqrt(complex(c * c - 4 * m * k))
     return np.sort_complex(np.array([(-c - root) / (2 * m), (-c + root) / (2 * m)]))
 
 
-for name, net_of, m, k, c_of, speeds in (
-    ("Leine", leine_belt, 1.0, 1.0, lambda V: -F_s * delta / (1 + delta * V) ** 2, (0.05, 0.2, 0.5)),
-    ("Veraszto-Stepan", vs_belt, mv, kv, lambda V: b0 + bs - (C0 - C) * cv * math.exp(-cv * V),
+for name, net_of, g_of, m, k, c_of, speeds in (
+    ("Leine", leine_belt, leine_g, 1.0, 1.0, lambda V: -F_s * delta / (1 + delta * V) ** 2, (0.05, 0.2, 0.5)),
+    ("Veraszto-Stepan", vs_belt, vs_g, mv, kv, lambda V: b0 + bs - (C0 - C) * cv * math.exp(-cv * V),
      (0.8 * V_hopf, 0.95 * V_hopf, 1.05 * V_hopf, 1.2 * V_hopf)),
 ):
     for V in speeds:
-        lam, bound = eigenvalues(net_of(V), V)
+        net = net_of(V)
+        eq = steady_sliding(net)
+        bound = net.elements[-1].law.slope(V).error / m
         ref = closed_form(m, k, c_of(V))
-        assert np.all(np.abs(lam - ref) <= bound / m + 1e-12 * np.abs(ref))
-        print(f"{name:15s} V = {V:.4f} m/s: c = {c_of(V):+.4f} N s/m, max Re(lambda) = {ref.real.max():+.4f} 1/s "
-              f"({'stable' if ref.real.max() < 0 else 'unstable'})")
+        assert math.isclose(eq.position[0], g_of(V) / k, rel_tol=1e-12)
+        assert np.all(np.abs(np.sort_complex(eq.eigenvalues) - ref) <= bound + 1e-12 * np.abs(ref))
+        print(f"{name:15s} V = {V:.4f} m/s: x* = {eq.position[0]:.4e} m, c = {c_of(V):+.4f} N s/m, max Re(lambda) = "
+              f"{eq.max_real_part:+.4f} 1/s ({'stable' if eq.stable else 'unstable'})")
+
+# %% [markdown]
+# and `hopf_points` locates where a pair crosses the imaginary axis in any
+# parameter of the system file, here the belt's speed (`belt.velocity`): to
+# $10^{-8}$ of (3), the issue's reference, for the Veraszto-Stépán belt, and
+# nowhere for Leine's:
+
+# %%
+(V_located,) = hopf_points(vs_belt(0.2), "belt.velocity", 0.1, 0.3)
+assert abs(V_located / V_hopf - 1) <= 1e-8
+assert hopf_points(leine_belt(0.2), "belt.velocity", 0.05, 0.5) == []
+print(f"hopf_points: {V_located:.8f} m/s (closed form {V_hopf:.8f} m/s, within 1e-8 relative); Leine: none")
 
 # %% [markdown]
 # Below $V_H$ the Veraszto-Stépán block's steady sliding grows into oscillation; above it, it
@@ -317,16 +324,25 @@ print(f"static/kinetic belt: period {shot.period:.10f} s, x_max {shot.x_max[0]:.
 # zero, and so must be the contact's, $\oint g(V - \dot x)\,\dot x\,dt =
 # \oint \bigl(g(V - \dot x) - g(V)\bigr)\dot x\,dt$; but $g$ falls, so the
 # integrand has the sign of $\dot x^2$ and the integral is positive: the
-# contact feeds energy into every slip-only motion. What remains is stick-slip:
-# a stick-slip cycle, found by Newton's method from the belt's speed at each of
-# 46 speeds from 0.05 to 0.5 m/s:
+# contact feeds energy into every slip-only motion. What remains is stick-slip.
+# `continue_branches` (`lumped.drivers.cycles.continuation`) follows steady
+# sliding and the cycle found at the range's start by pseudo-arclength in
+# (section speed, parameter), Newton's method on $P(v; p) - v$ with the
+# map's derivative as the corrector, and reports every Hopf point, fold,
+# change of stick phases and multiplier crossing the unit circle as a row of
+# its own. From 0.05 to 0.5 m/s:
 
 # %%
-leine_speeds = np.linspace(0.05, 0.5, 46)
-leine_cycles = [find_cycle(leine_belt(V), V) for V in leine_speeds]
-assert all(c.stable and c.stick_phases == 1 and c.max_multiplier == 0 for c in leine_cycles)
-for V, c in zip(leine_speeds[::15], leine_cycles[::15]):
-    print(f"V = {V:.2f} m/s: period {c.period:.4f} s, x from {c.x_min[0]:+.4f} to {c.x_max[0]:+.4f} m, "
+leine_rows = continue_branches(leine_belt(0.05), "belt.velocity", 0.05, 0.5, points=46)
+leine_eq = [r for r in leine_rows if r.branch == "equilibrium"]
+leine_cy = [r for r in leine_rows if r.branch == "cycle"]
+assert {r.kind for r in leine_rows} == {"regular"} and not any(r.equilibrium.stable for r in leine_eq)
+assert all(r.cycle.stable and r.cycle.stick_phases == 1 and r.cycle.max_multiplier == 0 for r in leine_cy)
+print("every row regular: no Hopf point, fold or change of stick phases; every equilibrium unstable, every cycle "
+      "stick-slip with one stick a period and multiplier 0")
+for r in (leine_cy[0], leine_cy[-1]):
+    c = r.cycle
+    print(f"V = {r.value:.2f} m/s: period {c.period:.4f} s, x from {c.x_min[0]:+.4f} to {c.x_max[0]:+.4f} m, "
           f"stuck {c.stick_time / c.period:.0%} of it")
 
 # %% [markdown]
@@ -334,7 +350,8 @@ for V, c in zip(leine_speeds[::15], leine_cycles[::15]):
 # grow (at the linear rate $F_s\delta/(2(1 + \delta V)^2)$, above 0.24 1/s) into
 # the stick-slip cycle within 120 s; their extremes over the last 40 s, sampled
 # every $10^{-3}$ s (which lowers a maximum by at most $\omega^2 A h^2/8 <
-# 10^{-6}$ m), meet the cycles':
+# 10^{-6}$ m), meet the cycles' (found by Newton's method from the belt's
+# speed at the runs' speeds):
 
 # %%
 def settled_extremes(network: L.Network, t_end: float, last: float, h: float) -> tuple[float, float]:
@@ -343,18 +360,21 @@ def settled_extremes(network: L.Network, t_end: float, last: float, h: float) ->
     return float(x.max()), float(x.min())
 
 
+def branches(rows):
+    """The equilibria (value, position, stable) and the cycles (value, x_max, x_min, stable) of the rows, in order."""
+    eq = [(r.value, r.equilibrium.position[0], r.equilibrium.stable) for r in rows if r.branch == "equilibrium"]
+    cy = [(r.value, r.cycle.x_max[0], r.cycle.x_min[0], r.cycle.stable) for r in rows if r.branch == "cycle"]
+    return tuple(np.array(col) for col in zip(*eq)), tuple(np.array(col) for col in zip(*cy))
+
+
 run_speeds = np.array([0.1, 0.2, 0.3, 0.4, 0.5])
 leine_runs = np.array([settled_extremes(leine_belt(V, leine_g(V) + 1e-3), 120.0, 40.0, 1e-3) for V in run_speeds])
-at_runs = [leine_cycles[int(np.argmin(np.abs(leine_speeds - V)))] for V in run_speeds]
+at_runs = [find_cycle(leine_belt(V), V) for V in run_speeds]
 worst = max(max(abs(hi - c.x_max[0]), abs(lo - c.x_min[0])) for (hi, lo), c in zip(leine_runs, at_runs))
 assert worst < 1e-6
 print(f"long runs at V = {', '.join(f'{V:g}' for V in run_speeds)} m/s: extremes within 1e-6 m of the cycles'")
-fig = P.bifurcation_diagram(
-    (leine_speeds, leine_g(leine_speeds), np.zeros(leine_speeds.size, bool)),
-    {"stick-slip cycle": (leine_speeds, *np.array([(c.x_max[0], c.x_min[0]) for c in leine_cycles]).T,
-                          np.ones(leine_speeds.size, bool))},
-    (run_speeds, *leine_runs.T),
-)
+leine_equilibria, leine_cycles = branches(leine_rows)
+fig = P.bifurcation_diagram(leine_equilibria, {"stick-slip cycle": leine_cycles}, (run_speeds, *leine_runs.T))
 _ = P.save_figure(fig, "cy01_bifurcation_leine")
 
 # %% [markdown]
@@ -362,72 +382,92 @@ _ = P.save_figure(fig, "cy01_bifurcation_leine")
 # surrounded by a superstable stick-slip cycle whose amplitude grows with the
 # belt's speed; no Hopf point, no slip-only cycle, no fold.
 #
-# **The Veraszto-Stépán law.** Here steady sliding is stable above
-# $V_H$. Three branches: the equilibrium (stable above $V_H$); the stick-slip
-# cycle, found from the belt's speed; and the slip-only cycles born at $V_H$,
-# followed upward in the speed, each found from the last two by linear
-# extrapolation:
+# **The Veraszto-Stépán law.** Here steady sliding is stable above $V_H$.
+# From half to 1.6 times $V_H$, the continuation starts the cycle branch at
+# the Hopf point (branch switching onto its small cycles) and follows it
+# through everything it meets; the rows that are not regular:
 
 # %%
-factors = np.linspace(0.5, 1.42, 47)
-vs_speeds = factors * V_hopf
-stick_slip = [find_cycle(vs_belt(V), V) for V in vs_speeds]
-assert all(c.stable and c.stick_phases == 1 and c.max_multiplier == 0 for c in stick_slip)
-slip_factors = np.r_[1.002, 1.005, np.linspace(1.01, 1.42, 42)]
-slip_speeds = slip_factors * V_hopf
-slip_only, guesses = [], [0.0175, 0.028]
-for V in slip_speeds:
-    guess = guesses[len(slip_only)] if len(slip_only) < 2 else 2 * slip_only[-1].section - slip_only[-2].section
-    slip_only.append(find_cycle(vs_belt(V), guess))
-assert all(not c.stable and c.stick_phases == 0 and c.min_slip_speed > 0 for c in slip_only)
-for f, c in zip(slip_factors[::10], slip_only[::10]):
-    print(f"V = {f:.3f} V_H: slip-only cycle, amplitude {(c.x_max[0] - c.x_min[0]) / 2:.3e} m, "
-          f"slowest slip {c.min_slip_speed:.4f} m/s, multiplier {c.max_multiplier:.4f}")
+vs_rows = continue_branches(vs_belt(V_hopf), "belt.velocity", 0.5 * V_hopf, 1.6 * V_hopf, points=30)
+marked = [r for r in vs_rows if r.kind != "regular"]
+assert [(r.branch, r.kind) for r in marked] == [
+    ("equilibrium", "hopf"), ("cycle", "hopf"), ("cycle", "stick-slip-onset"), ("cycle", "fold")]
+hopf_row, onset, fold = marked[1:]
+assert abs(hopf_row.value / V_hopf - 1) <= 1e-8
+assert abs(fold.value - onset.value) < 1e-4 * V_hopf
+print(f"hopf at V = {hopf_row.value:.8f} m/s (within 1e-8 of (3)): zero amplitude, multiplier "
+      f"{hopf_row.cycle.max_multiplier:.4f}")
+for r, digits in ((onset, 5), (fold, 3)):
+    c = r.cycle
+    print(f"{r.kind:16s} at V = {r.value / V_hopf:.{digits}f} V_H: stick phases {c.stick_phases}, amplitude "
+          f"{(c.x_max[0] - c.x_min[0]) / 2:.3e} m, multiplier {c.max_multiplier:.4f}")
+cycle_rows = [r for r in vs_rows if r.branch == "cycle" and r.kind == "regular"]
+assert all(r.cycle.stable == (r.cycle.stick_phases > 0) for r in cycle_rows)  # stick-slip stable, slip-only not
+slip_rows = [r for r in cycle_rows if r.cycle.stick_phases == 0]
+assert all(V_hopf < r.value < onset.value for r in slip_rows)
 
 # %% [markdown]
+# The Hopf point is *subcritical*: the cycles born there (multiplier 1 at
+# zero amplitude) lie on the stable side of steady sliding, $V > V_H$, and
+# are unstable (Step 2's 1.0234 at $1.02\,V_H$). As the speed rises they grow
+# and their slowest slip speed falls, until at $1.42585\,V_H$ the cycle touches
+# the belt's speed: it *grazes* the stuck state (`stick-slip-onset`). There
+# the branch has a kink: past it every cycle sticks once a period and the
+# branch turns back toward lower speeds as the stick-slip cycle, stable,
+# down to the range's start. The `fold` row is that turn on the stick-slip
+# side of the kink, its multiplier 0 against the slip side's 1.5645: it does
+# not pass through 1 as at a smooth fold but jumps across the unit circle,
+# the *discontinuous* fold of Leine and van Campen, which a continuation
+# watching only for $\mu = 1$ would miss. (The two rows are the kink's two
+# sides, each located by bisection along its own piece; they are within
+# $10^{-4}\,V_H$ of each other.) Beyond it neither cycle exists.
+#
 # **The Hopf point from the cycles.** Near a Hopf point the speed is a series
 # in the cycles' squared amplitude, $V = V_H + c_1 a^2 + c_2 a^4 + \dots$, so a
 # line through the two smallest cycles in $(a^2, V)$, and a parabola through
 # the three smallest, meet $a = 0$ near $V_H$; the parabola errs by the next
 # term, smaller than the one the line leaves out (their difference), which
-# is the tolerance asserted:
+# is the tolerance asserted. Three small cycles by Newton's method (Step 2)
+# from section speeds near their linear size:
 
 # %%
-a2 = np.array([((c.x_max[0] - c.x_min[0]) / 2) ** 2 for c in slip_only[:3]])
-line, parabola = (np.polyval(np.polyfit(a2[: deg + 1], slip_speeds[: deg + 1], deg), 0.0) for deg in (1, 2))
+small_factors = np.array([1.002, 1.005, 1.01])
+small = [find_cycle(vs_belt(f * V_hopf), v0) for f, v0 in zip(small_factors, (0.0175, 0.028, 0.04))]
+assert all(c.stick_phases == 0 and not c.stable for c in small)
+a2 = np.array([((c.x_max[0] - c.x_min[0]) / 2) ** 2 for c in small])
+line, parabola = (np.polyval(np.polyfit(a2[: deg + 1], small_factors[: deg + 1] * V_hopf, deg), 0.0) for deg in (1, 2))
 assert abs(parabola - V_hopf) <= abs(parabola - line)
 print(f"V at zero amplitude: line {line:.8f} m/s, parabola {parabola:.8f} m/s; closed form (3) {V_hopf:.8f} m/s "
       f"(the parabola within {abs(parabola / V_hopf - 1):.0e} relative)")
 
 # %% [markdown]
-# **The fold.** As the speed rises, the unstable slip-only cycle grows and its
-# slowest slip speed falls toward 0, linearly; the stick-slip cycle's stick
-# shrinks. They meet where the slip-only cycle first touches the belt's speed
-# (it *grazes* the stuck state): there the two branches join, and beyond it
-# neither exists (Newton's method finds no cycle there, and the runs below come
-# to rest at $1.55\,V_H$ from either start). Linear extrapolation of the slowest slip speed from the last
-# three slip-only cycles (a quadratic, to see how far from linear it is):
+# **The grazing from the cycles.** The same independent way: the slowest
+# slip speed of slip-only cycles found by Newton's method at $1.40$, $1.41$ and
+# $1.42\,V_H$ (each from the section speed interpolated between the
+# continuation's slip-only cycles, which selects the slip-only cycle there),
+# extrapolated to 0 by a line through the last two and a parabola through all
+# three, meets the continuation's onset within their difference:
 
 # %%
-last = slip_only[-3:]
-slowest = np.array([c.min_slip_speed for c in last])
-V_graze = [np.roots(np.polyfit(slip_speeds[-3:], slowest, deg))[-1].real for deg in (1, 2)]
-V_fold = V_graze[1]
+near_factors = np.array([1.40, 1.41, 1.42])
+slip_values, slip_sections = np.array([(r.value, r.cycle.section) for r in slip_rows]).T
+
+
+def slip_only_cycle(f: float) -> Cycle:
+    """The slip-only cycle at f V_H by Newton's method from the section speed interpolated on the branch."""
+    return find_cycle(vs_belt(f * V_hopf), np.interp(f * V_hopf, slip_values, slip_sections))
+
+
+near = [slip_only_cycle(f) for f in near_factors]
+assert all(c.stick_phases == 0 and not c.stable for c in near)
+slowest = np.array([c.min_slip_speed for c in near])
+V_line, V_parabola = (np.roots(np.polyfit(near_factors[2 - deg :] * V_hopf, slowest[2 - deg :], deg))[-1].real
+                      for deg in (1, 2))
+assert abs(V_parabola - onset.value) <= abs(V_parabola - V_line)
 print(f"slowest slip speed {', '.join(f'{s:.5f}' for s in slowest)} m/s at "
-      f"{', '.join(f'{f:.2f}' for f in slip_factors[-3:])} V_H")
-print(f"grazing (the fold) at V = {V_fold:.5f} m/s = {V_fold / V_hopf:.4f} V_H "
-      f"(linear extrapolation: {V_graze[0]:.5f} m/s)")
-print(f"at {slip_factors[-1]:.2f} V_H: slip-only multiplier {slip_only[-1].max_multiplier:.4f}, stick-slip cycle's "
-      f"stick {stick_slip[-1].stick_time:.5f} s of {stick_slip[-1].period:.5f} s, multiplier 0")
-assert vs_speeds[-1] < V_fold < vs_speeds[-1] + 0.01 * V_hopf
+      f"{', '.join(f'{f:.2f}' for f in near_factors)} V_H: zero at {V_parabola:.5f} m/s (line {V_line:.5f} m/s); the continuation's onset {onset.value:.5f} m/s")
 
 # %% [markdown]
-# At the fold the multiplier jumps: on the slip-only branch it is
-# $\mu = 1.5557$ at $1.42\,V_H$ and rising, on the stick-slip branch 0. It does
-# not pass through 1, as at a smooth fold, but jumps across the unit circle at
-# the grazing, the *discontinuous* fold Leine and van Campen describe; a
-# continuation that watched only for $\mu = 1$ would miss it.
-#
 # Long runs, by `event-driven` over 8 s, from two starts: $10^{-5}$ m beside
 # steady sliding at rest, and stuck on the belt at $x^*$ (moving at $V$). Their
 # swing over the last 0.2 s (3.6 periods) is called *rest* below $10^{-7}$ m:
@@ -452,26 +492,19 @@ for f in run_factors:
 # runs' DOP853 error at `rtol` $10^{-10}$:
 
 # %%
-for f in run_factors[run_factors < V_fold / V_hopf]:
+for f in run_factors[run_factors * V_hopf < fold.value]:
     c = find_cycle(vs_belt(f * V_hopf), f * V_hopf)
     hi, lo = vs_runs[f][1]
     assert max(abs(hi - c.x_max[0]), abs(lo - c.x_min[0])) < 1e-8
 print("stuck starts below the fold: extremes within 1e-8 m of the stick-slip cycles'")
 settled = [(f * V_hopf, hi, lo) for f in run_factors for hi, lo in vs_runs[f]]
-x_hopf = float(vs_g(V_hopf)) / kv  # the slip-only branch starts there, at zero amplitude
-x_fold = np.polyval(np.polyfit(slip_speeds[-2:], [c.x_max[0] for c in slip_only[-2:]], 1), V_fold)  # marked there
-equilibrium_speeds = np.linspace(0.5, 1.6, 111) * V_hopf
+vs_equilibria, vs_cycles = branches(vs_rows)
 fig = P.bifurcation_diagram(
-    (equilibrium_speeds, vs_g(equilibrium_speeds) / kv, equilibrium_speeds > V_hopf),
-    {
-        "stick-slip cycle": (vs_speeds, *np.array([(c.x_max[0], c.x_min[0]) for c in stick_slip]).T,
-                             np.ones(vs_speeds.size, bool)),
-        "slip-only cycle": (np.r_[V_hopf, slip_speeds],
-                            *np.array([(x_hopf, x_hopf)] + [(c.x_max[0], c.x_min[0]) for c in slip_only]).T,
-                            np.zeros(slip_speeds.size + 1, bool)),
-    },
+    vs_equilibria,
+    {"cycle": vs_cycles},
     tuple(np.array(settled).T),
-    {f"Hopf, (3): {V_hopf:.4f} m/s": (V_hopf, x_hopf), f"fold (grazing): {V_fold:.4f} m/s": (V_fold, x_fold)},
+    {f"Hopf: {hopf_row.value:.4f} m/s": (hopf_row.value, hopf_row.cycle.x_max[0]),
+     f"grazing and fold: {onset.value:.4f} m/s": (onset.value, onset.cycle.x_max[0])},
 )
 _ = P.save_figure(fig, "cy02_bifurcation_stribeck")
 
@@ -519,11 +552,15 @@ w_test, V_test = 0.1, 1.2 * V_hopf
 integral = quad(lambda th: vs_g(V_test + w_test * math.sin(th)) * math.sin(th), 0, 2 * math.pi, epsabs=1e-13)[0]
 assert math.isclose(-integral + bs * w_test * math.pi, 2 * math.pi * (C0 - C) * math.exp(-cv * V_test)
                     * i1(cv * w_test), rel_tol=1e-10)
-averaged = np.array([averaged_w(V) for V in slip_speeds])
-relative = averaged / np.array([c.section for c in slip_only]) - 1
-assert np.all(np.abs(relative) < 7e-3)
-print(f"largest relative difference over the {slip_speeds.size} slip-only cycles: {np.abs(relative).max():.1e}")
-for f, c in zip(slip_factors[::8], slip_only[::8]):
+sections = np.array([r.cycle.section for r in slip_rows])
+relative = np.array([averaged_w(r.value) for r in slip_rows]) / sections - 1
+at_graze = averaged_w(onset.value) / onset.cycle.section - 1
+assert np.all(np.abs(relative) <= abs(at_graze))
+print(f"relative difference: growing along the continuation's slip-only cycles to {at_graze:+.1e} at the grazing one")
+table_factors = (1.002, 1.1, 1.2, 1.3, 1.4)
+table = [slip_only_cycle(f) for f in table_factors]
+assert all(c.stick_phases == 0 and not c.stable for c in table)
+for f, c in zip(table_factors, table):
     w = averaged_w(f * V_hopf)
     print(f"V = {f:.3f} V_H: averaging w = {w:.5f} m/s, computed {c.section:.5f} m/s "
           f"(relative {w / c.section - 1:+.1e}); amplitude w/omega {w / math.sqrt(kv / mv):.4e} m, "
@@ -537,7 +574,7 @@ for f, c in zip(slip_factors[::8], slip_only[::8]):
 # %%
 V_graze_avg = brentq(lambda V: averaged_w(V) - V, 1.01 * V_hopf, 2 * V_hopf)
 print(f"averaging's grazing: w = V at {V_graze_avg:.5f} m/s = {V_graze_avg / V_hopf:.4f} V_H; "
-      f"computed fold {V_fold:.5f} m/s ({V_graze_avg / V_fold - 1:+.1%})")
+      f"computed {onset.value:.5f} m/s ({V_graze_avg / onset.value - 1:+.1%})")
 
 # %% [markdown]
 # Where it **fails** is everywhere the contact sticks. Averaging knows no
@@ -557,8 +594,7 @@ for f in (0.6, 0.8):
     w = np.linspace(1e-6, V, 2001)[1:]
     assert np.all(2 * (C0 - C) * math.exp(-cv * V) * i1(cv * w) > (b0 + bs) * w)  # no root of (4)
     print(f"V = {f} V_H: no cycle from (4); the runs' stick-slip swing {vs_runs[f][1][0] - vs_runs[f][1][1]:.4e} m")
-swing_ratio = (vs_runs[1.1][1][0] - vs_runs[1.1][1][1]) / (slip_only[11].x_max[0] - slip_only[11].x_min[0])
-assert math.isclose(slip_factors[11], 1.1)
+swing_ratio = (vs_runs[1.1][1][0] - vs_runs[1.1][1][1]) / (table[1].x_max[0] - table[1].x_min[0])
 print(f"V = 1.1 V_H: stick-slip swing / slip-only cycle's swing = {swing_ratio:.2f}")
 w_grid = np.linspace(1e-3, 0.5, 50)
 for V in (0.05, 0.5):
