@@ -465,7 +465,8 @@ V_line, V_parabola = (np.roots(np.polyfit(near_factors[2 - deg :] * V_hopf, slow
                       for deg in (1, 2))
 assert abs(V_parabola - onset.value) <= abs(V_parabola - V_line)
 print(f"slowest slip speed {', '.join(f'{s:.5f}' for s in slowest)} m/s at "
-      f"{', '.join(f'{f:.2f}' for f in near_factors)} V_H: zero at {V_parabola:.5f} m/s (line {V_line:.5f} m/s); the continuation's onset {onset.value:.5f} m/s")
+      f"{', '.join(f'{f:.2f}' for f in near_factors)} V_H: zero at {V_parabola:.5f} m/s (line {V_line:.5f} m/s); "
+      f"the continuation's onset {onset.value:.5f} m/s")
 
 # %% [markdown]
 # Long runs, by `event-driven` over 8 s, from two starts: $10^{-5}$ m beside
