@@ -25,8 +25,8 @@
 # * a limit cycle as a fixed point of the return map to a section, found by
 #   Newton's method with the map's exact derivative, and what a stuck contact
 #   does to the cycle's Floquet multiplier (it makes it 0);
-# * the bifurcation diagram in the belt speed for both laws: equilibria stable
-#   and unstable, the Hopf point against its closed form, the small unstable
+# * the bifurcation diagram in the belt speed for both laws, by
+#   pseudo-arclength continuation: equilibria stable and unstable, the Hopf point against its closed form, the small unstable
 #   cycles born there, the stick-slip branch, the fold where the two meet, and
 #   long event-driven runs on top;
 # * how far a first-order (averaging) approximation of the slip-only cycles
@@ -616,7 +616,7 @@ print("Leine: the contact's averaged work per cycle is positive at every w < V f
 #   method with the map's exact derivative converges in a few steps. A stuck
 #   contact makes the saltation matrix singular, so a stick-slip cycle's
 #   nontrivial multiplier is exactly 0: it is superstable.
-# * For Leine's law the diagram is one superstable stick-slip cycle around an
+# * For Leine's law the diagram is a superstable stick-slip cycle around an
 #   unstable equilibrium at every speed from 0.05 to 0.5 m/s (cy01). For
 #   Veraszto and Stépán's, the Hopf point is subcritical: unstable slip-only
 #   cycles grow from it (multiplier 1.0234 at $1.02\,V_H$) until they graze the
