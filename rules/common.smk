@@ -33,7 +33,7 @@ CONFIG_TEXT = yaml.safe_dump(dict(config), sort_keys=True)
 #: then the tutorial's extensions (extNN_<slug>, notebooks 06 to 08) and the
 #: accuracy study (accNN_<slug>, notebook 09) and the studies (stNN_<slug>, notebook 10;
 #: spNN_<slug>, notebook 12; rcNN_<slug>, notebook 13; fitNN_<slug>, notebook 14;
-#: frNN_<slug>, notebook 15).
+#: frNN_<slug>, notebook 15; cyNN_<slug>, notebook 16).
 NOTEBOOK_FIGURES = {
     "01_governing_equations": [],
     "02_sgn_zero_failure": [],
@@ -74,6 +74,7 @@ NOTEBOOK_FIGURES = {
     "13_response_curves": ["rc01_response_curves", "rc02_two_mass_response"],
     "14_sensitivities_and_fit": ["fit01_rest_kinks", "fit02_free_decay_fit"],
     "15_friction_on_a_belt": ["fr01_belt_phase_portrait", "fr02_smoothing_creep", "fr03_stribeck_stability"],
+    "16_self_excited_cycles": ["cy01_bifurcation_leine", "cy02_bifurcation_stribeck"],
 }
 
 #: notebook stem -> the data files it reads (rules/studies.smk, rules/accuracy.smk).
@@ -102,6 +103,7 @@ CATEGORY = {
     "13_response_curves": "Tutorial - response curves by shooting and continuation (rc01-rc02)",
     "14_sensitivities_and_fit": "Tutorial - sensitivities through stick and slip, and a fit (fit01-fit02)",
     "15_friction_on_a_belt": "Tutorial - friction on a belt, static above kinetic and Stribeck (fr01-fr03)",
+    "16_self_excited_cycles": "Tutorial - self-excited cycles, from steady sliding to stick-slip (cy01-cy02)",
 }
 
 #: Every figure file the pipeline makes.

@@ -40,6 +40,14 @@ DT = 1e-3
 FORCE = L.SwitchedSine(amplitude=10.0, omega=5.0 * math.pi, phase=0.0, until=1.0)
 FORCED = L.backward_euler(OSC, 2.5, DT, force=FORCE)
 FORCED_EXACT = L.solve_exact(OSC, 2.5, force=FORCE)
+_V = np.linspace(0.1, 0.3, 5)
+#: Made-up arguments of the bifurcation diagram (cy01, cy02): equilibria, two cycle branches, runs, marks.
+DIAGRAM = (
+    (_V, 1e-3 * _V, _V > 0.2),
+    {"stick-slip cycle": (_V, 1e-2 * _V, -1e-2 * _V, _V > 0), "slip-only cycle": (_V, 5e-3 * _V, -5e-3 * _V, _V < 0)},
+    (_V[::2], 1e-2 * _V[::2], -1e-2 * _V[::2]),
+    {"Hopf, (3): 0.2000 m/s": (0.2, 2e-4), "fold (grazing): 0.3000 m/s": (0.3, 3e-3)},
+)
 
 
 def _text_width_inches() -> float:
@@ -278,6 +286,8 @@ FIGURES = {
         (np.array([0.1, 0.3]), np.array([2.0, -2.0])),
         0.2,
     ),
+    "cy01": lambda: plotting.bifurcation_diagram(*DIAGRAM[:3]),
+    "cy02": lambda: plotting.bifurcation_diagram(*DIAGRAM),
 }
 
 

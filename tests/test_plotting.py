@@ -75,6 +75,8 @@ _T = np.linspace(0.0, 1.0, 11)
 #: Made-up arguments of the belt helpers (notebook 15): runs, closed form and stick segment; the creep's.
 BELT = ({"run": (_T, 0.2 * np.cos(_T))}, (_T, 0.2 * np.sin(_T)), (0.0, 1.0, 0.2))
 CREEP = ((_T, 0.2 * np.cos(_T)), {"eps": (_T, 0.2 + 1e-3 * _T)}, 0.2, [(0.0, 0.3), (0.7, 1.0)])
+#: The bifurcation diagram's (notebook 16): equilibria stable from 0.5 on, a cycle branch stable from 0.4 on.
+DIAGRAM = ((_T, 0.1 * _T, _T >= 0.5), {"cycle": (_T, 1 + _T, -1 - _T, _T > 0.35)})
 
 #: Every helper that draws a legend, as a call taking ``ax``.
 LEGENDS = {
@@ -89,6 +91,7 @@ LEGENDS = {
     "friction_graph": lambda ax: plotting.friction_graph({"law": StribeckLaw(1.0, 0.5, 0.01)}, 0.05, ax=ax),
     "belt_phase_portrait": lambda ax: plotting.belt_phase_portrait(*BELT, ax=ax),
     "smoothing_creep": lambda ax: plotting.smoothing_creep(*CREEP, axes=[ax] * 2),
+    "bifurcation_diagram": lambda ax: plotting.bifurcation_diagram(*DIAGRAM, ax=ax),
 }
 #: Helpers whose ``ax=None`` call is spelled differently (they take ``axes``).
 WHOLE = {
@@ -134,4 +137,18 @@ def test_summary_kinks_leaves_global_rcparams_alone_and_marks_each_kink():
     assert {k for k in before if before[k] != dict(matplotlib.rcParams)[k]} <= {"interactive"}
     top, bottom = fig.axes
     assert len(bottom.lines) == 5 and len(top.lines) == 2  # the curve, the kink's line, its two circles, the axis
+    plt.close(fig)
+
+
+def test_bifurcation_diagram_draws_stable_solid_and_unstable_dashed_joined_where_stability_changes():
+    """Each branch splits into runs of equal stability; a run is joined to the next point (no gap at the change),
+    solid where stable, dashed where not, and each kind is labelled once per branch."""
+    fig = plotting.bifurcation_diagram(*DIAGRAM)
+    (ax,) = fig.axes
+    pieces = [(line.get_linestyle(), line.get_xdata()[0], line.get_xdata()[-1], line.get_label()) for line in ax.lines]
+    assert pieces[:2] == [("--", 0.0, 0.5, "equilibrium, unstable"), ("-", 0.5, 1.0, "equilibrium, stable")]
+    high = pieces[2:4]
+    assert [p[:3] for p in high] == [("--", 0.0, 0.4), ("-", 0.4, 1.0)]  # stable from 0.4 on
+    assert [p[3] for p in high] == ["cycle, unstable", "cycle, stable"]
+    assert all(p[3].startswith("_") for p in pieces[4:6])  # the lower extremes: same styles, no second label
     plt.close(fig)

@@ -58,6 +58,7 @@ def test_a_caption_splits_at_its_first_sentence(path):
         "rc": f"Tutorial figure rc{number}",
         "fit": f"Tutorial figure fit{number}",
         "fr": f"Tutorial figure fr{number}",
+        "cy": f"Tutorial figure cy{number}",
     }[kind]
     assert caption.title.startswith(expected)
     flat = " ".join(caption.text.split())

@@ -18,6 +18,7 @@ except ModuleNotFoundError as err:
 from lumped.plotting._base import STYLE, legend_above, new_axes, save_figure, sci_tex, style, styled
 from lumped.plotting.accuracy import accuracy_convergence, work_precision
 from lumped.plotting.convergence import convergence
+from lumped.plotting.cycles import bifurcation_diagram
 from lumped.plotting.figures import (
     bingham_pair,
     bingham_pictorial,
@@ -50,6 +51,7 @@ __all__ = [
     "STYLE",
     "accuracy_convergence",
     "belt_phase_portrait",
+    "bifurcation_diagram",
     "bingham_pair",
     "bingham_pictorial",
     "chain_positions",
