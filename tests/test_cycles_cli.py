@@ -17,7 +17,6 @@ import re
 import sys
 import types
 from pathlib import Path
-from typing import NamedTuple
 
 import numpy as np
 import pytest
@@ -26,6 +25,8 @@ from test_friction_event_driven import leine_reference, leine_system
 
 import lumped
 from lumped.drivers.cycles import api, steady_sliding
+from lumped.drivers.cycles.continuation import BranchPoint
+from lumped.drivers.cycles.shooting import Cycle
 from lumped.model.files import load_system
 from lumped.solvers.closed_form_belt import belt_cycle
 from lumped.solvers.event_driven_network import model
@@ -33,27 +34,6 @@ from lumped.solvers.event_driven_network import model
 EXAMPLES = Path(__file__).resolve().parents[1] / "examples"
 BELT = EXAMPLES / "belt.toml"
 STRIBECK = EXAMPLES / "stribeck_belt.toml"
-
-
-class Cycle(NamedTuple):  # the interface's Cycle
-    period: float
-    section: float
-    x_max: np.ndarray
-    x_min: np.ndarray
-    stick_time: float
-    stick_phases: int
-    min_slip_speed: float
-    multipliers: np.ndarray
-    max_multiplier: float
-    stable: bool
-
-
-class BranchPoint(NamedTuple):  # the interface's BranchPoint
-    value: float
-    branch: str
-    equilibrium: object
-    cycle: object
-    kind: str
 
 
 def closed_form_cycle(network, v0: float) -> Cycle:
