@@ -280,3 +280,15 @@ def test_leines_benchmark_cycle_from_cycles_meets_the_reference():
     assert table.columns["min_m"][1] == pytest.approx(min(turning), abs=1e-8)
     assert table.columns["stable"].tolist() == [False, True]
     assert table.columns["max_real_part"][0] == pytest.approx((3 / (1 + 3 * 0.2) ** 2) / 2, rel=1e-8)
+
+
+def test_a_block_riding_a_slow_belt_is_not_called_steady_sliding(tmp_path):
+    """At a belt speed of 2e-7 m/s the block sticks near x = 0 and creeps with the belt (its stick lasts
+    2 (static - kinetic)/(k V) = 5e6 s): its swing over a natural period is tiny, but it is far from x* = 0.5 m,
+    so the summary must not say that the run settles on steady sliding."""
+    text = BELT.read_text(encoding="utf-8").replace("velocity = 0.2", "velocity = 2e-7")
+    assert "velocity = 2e-7" in text
+    path = tmp_path / "slow.toml"
+    path.write_text(text, encoding="utf-8")
+    table = lumped.cycles(load_system(path))
+    assert "settles on steady sliding" not in table.summary
