@@ -527,6 +527,8 @@ def continue_branches(
     stop: float,
     points: int = 50,
     progress: Callable[[int, int], None] | None = None,
+    *,
+    start_branch: bool = True,
 ) -> list[BranchPoint]:
     """Steady sliding and its limit cycles from ``parameter = start`` to ``stop`` (the module docstring).
 
@@ -544,6 +546,9 @@ def continue_branches(
         at most in one.
     progress : callable, optional
         ``progress(done, 1000)``: how far the branches have come through the range.
+    start_branch : bool
+        Whether to follow the branch of the cycle found at ``start`` too (module docstring); false: the branches
+        from the Hopf points alone (``cycles`` without ``vary`` wants the Hopf branch's cycle and no other).
 
     Returns
     -------
@@ -575,7 +580,8 @@ def continue_branches(
     )
     for h in hopf:
         rows += _from_hopf(fam, h, walk, 50 * points, report)
-    rows += _from_start(fam, start, walk, 50 * points, report, rows)
+    if start_branch:
+        rows += _from_start(fam, start, walk, 50 * points, report, rows)
     if progress is not None:
         progress(1000, 1000)
     return rows
