@@ -38,6 +38,8 @@ from lumped.model.network import Driver, Load, Mass, Network
 from lumped.solvers.closed_form_belt import belt_cycle
 from lumped.solvers.event_driven_network import solve_contact
 
+EPS = float(np.finfo(float).eps)
+
 #: Just above the Veraszto-Stepan Hopf speed: steady sliding is stable and the Hopf bifurcation subcritical, so an
 #: unstable slip-only cycle surrounds the equilibrium (at v = 0.0554 m/s on the section) inside the stick-slip one.
 V_ABOVE = 1.02 * V_HOPF
@@ -84,6 +86,29 @@ def test_the_static_kinetic_cycle_is_the_closed_form(m, k, static, kinetic, V):
     assert cycle.stick_time == pytest.approx(ref.stick_time, abs=1e-10)
     assert cycle.section == V and cycle.stick_phases == 1 and cycle.min_slip_speed == 0.0
     assert cycle.max_multiplier == 0.0 and cycle.stable  # a stop collapses the map
+
+
+@pytest.mark.parametrize("law", [{}, {"stribeck_velocity": 0.1, "viscous": 0.05}], ids=["closed-form", "dop853"])
+@pytest.mark.parametrize("offset", [1, 1e-13 / EPS, -1, -1e-13 / EPS], ids=["ulp", "1e-13", "-ulp", "-1e-13"])
+def test_a_cycle_started_off_the_belts_speed_by_newtons_error_sticks_once(law: dict, offset: float):
+    """The stick-slip cycle crosses the section stuck, at the belt's speed ``V``.  Newton started within its own
+    tolerance of ``V`` (1e-12 relative: one ulp, or 1e-13, above or below it) returns at once, and the flight from
+    there slips from ``u = v - V`` back to 0 before the stick: a slip of round-off length that is no motion.  One
+    stick phase per period, and the period's stick time that of the cycle started at ``V`` exactly (the static/
+    kinetic belt's is ``belt_cycle``'s; the merged slip lasts ``|v - V| m / |force|``, 1e-13 s at most here, and
+    each flight's own round-off is ~1e-15 of the 5 s stuck, so 1e-12).  Below ``V`` on the static/kinetic belt
+    (a centre) the harmonic cycle never reaches the belt: no stick there, whatever the offset."""
+    V = 0.2
+    net = belt_system(Friction("f", ("belt", "m"), static=1.0, kinetic=0.5, **law), V)
+    exact = find_cycle(net, V)
+    cycle = find_cycle(net, V * (1 + offset * EPS))
+    if not law and offset < 0:
+        assert (cycle.stick_phases, cycle.stick_time) == (0, 0.0)
+        return
+    assert exact.stick_phases == cycle.stick_phases == 1
+    assert cycle.stick_time == pytest.approx(exact.stick_time, abs=1e-12)
+    if not law:
+        assert exact.stick_time == pytest.approx(belt_cycle(1.0, 1.0, 1.0, 0.5, V).stick_time, abs=1e-12)
 
 
 def test_inside_the_static_kinetic_cycle_every_orbit_is_neutral():

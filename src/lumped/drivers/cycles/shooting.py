@@ -375,7 +375,7 @@ def find_cycle(network: Network, v0: float, *, tol: float = 1e-12) -> Cycle:
     for _ in range(MAX_NEWTON):
         residual = flight.v_next - v
         if abs(residual) <= tol * max(abs(sys.mdl.V), v):
-            return _cycle(sys, v, flight)
+            return _cycle(sys, v, flight, tol)
         if flight.derivative == 1:
             raise ValueError(f"v0: the return map is neutral at v = {v:.6g} m/s (P' = 1): no isolated cycle there")
         v, flight = _newton_step(sys, v, -residual / (flight.derivative - 1))
@@ -395,11 +395,11 @@ def _newton_step(sys: _System, v: float, step: float) -> tuple[float, _Flight]:
     raise ValueError(f"v0: no Newton step from v = {v:.6g} m/s stays on the section (v > 0) and returns to it")
 
 
-def _cycle(sys: _System, v: float, flight: _Flight) -> Cycle:
-    """The :class:`Cycle` of a converged flight."""
+def _cycle(sys: _System, v: float, flight: _Flight, tol: float) -> Cycle:
+    """The :class:`Cycle` of a flight converged to ``tol`` (:func:`find_cycle`'s)."""
     phases = flight.march.phases
     stuck = [p for p in phases if p.kind == "stick"]
-    stick_phases = len(stuck) - (len(phases) > 1 and phases[0].kind == phases[-1].kind == "stick")
+    stick_phases, stick_time = _stick_runs(phases, 2 * tol * max(abs(sys.mdl.V), v))
     highs, lows = zip(*(_extremes(sys.mdl, p) for p in phases))
     multiplier = flight.derivative
     modulus = abs(multiplier)
@@ -409,13 +409,48 @@ def _cycle(sys: _System, v: float, flight: _Flight) -> Cycle:
         section=v,
         x_max=np.array([max(highs)]),
         x_min=np.array([min(lows)]),
-        stick_time=float(sum(p.end - p.start for p in stuck)),
-        stick_phases=int(stick_phases),
+        stick_time=stick_time,
+        stick_phases=stick_phases,
         min_slip_speed=slip_min,
         multipliers=np.array([multiplier], dtype=complex),
         max_multiplier=modulus,
         stable=bool(modulus < 1 - MULTIPLIER_MARGIN - flight.error),
     )
+
+
+def _stick_runs(phases: list[Phase], negligible: float) -> tuple[int, float]:
+    """The stick phases per period, counted around the cycle, and the time stuck (s).
+
+    The period's phases are a loop (the last joins the first at the section).  A slip phase whose slip speed
+    stays within ``negligible`` (m/s) is no motion of the cycle but Newton's error: a cycle stuck as it crosses
+    the section crosses it at the belt's speed ``V`` exactly and ``P = V`` near it (``P' = 0``), so Newton's
+    stop ``|P(v) - v| <= tol max(|V|, v)`` leaves ``v`` within that of ``V``, and the flight from it slips from
+    ``u = v - V`` back to ``u = 0`` (a stop, then the stick) without exceeding ``|v - V|`` by more than the
+    integrator's absolute tolerance (``1e-3 RTOL`` of the speed scale); :func:`_cycle` takes twice
+    Newton's bound.  Such a slip between two stuck phases joins them into one, and its time counts as stuck;
+    elsewhere (beside a slip that is a motion) it is left out of both.
+    """
+    kinds = ["S" if p.kind == "stick" else "n" if _largest_slip_speed(p) <= negligible else "s" for p in phases]
+    core = [k for k in kinds if k != "n"]
+    if "S" not in core:
+        return 0, 0.0
+    runs = max(1, sum(k == "S" and core[i - 1] != "S" for i, k in enumerate(core)))
+    n = len(kinds)
+
+    def stuck(i: int) -> bool:
+        if kinds[i] != "n":
+            return kinds[i] == "S"
+        ahead = next(kinds[(i + j) % n] for j in range(1, n) if kinds[(i + j) % n] != "n")
+        behind = next(kinds[(i - j) % n] for j in range(1, n) if kinds[(i - j) % n] != "n")
+        return ahead == behind == "S"
+
+    return runs, float(sum(p.end - p.start for i, p in enumerate(phases) if stuck(i)))
+
+
+def _largest_slip_speed(ph: Phase) -> float:
+    """The largest ``|u|`` (m/s) over a slip phase, on its dense output's samples (:func:`_grid`)."""
+    motion = ph.motion
+    return float(np.max(np.abs(motion.state(_grid(motion.steps, ph.end))[1])))
 
 
 def _extremes(mdl: Model, ph: Phase) -> tuple[float, float]:
