@@ -363,8 +363,8 @@ def find_cycle(network: Network, v0: float, *, tol: float = 1e-12) -> Cycle:
     Raises
     ------
     ValueError
-        One line: bad arguments, a neutral map (``P' = 1``: no isolated cycle), or no convergence in
-        :data:`MAX_NEWTON` steps.
+        One line: bad arguments, a neutral map (``P' = 1``: no isolated cycle), no convergence in
+        :data:`MAX_NEWTON` steps, or convergence to steady sliding (:func:`_off_steady_sliding`).
     """
     sys = _system(network)
     v = validate.positive("v0", v0)
@@ -373,11 +373,29 @@ def find_cycle(network: Network, v0: float, *, tol: float = 1e-12) -> Cycle:
     for _ in range(MAX_NEWTON):
         residual = flight.v_next - v
         if abs(residual) <= tol * max(abs(sys.mdl.V), v):
+            _off_steady_sliding(v, flight.derivative, tol * max(abs(sys.mdl.V), v))
             return _cycle(sys, v, flight, tol)
         if flight.derivative == 1:
             raise ValueError(f"v0: the return map is neutral at v = {v:.6g} m/s (P' = 1): no isolated cycle there")
         v, flight = _newton_step(sys, v, -residual / (flight.derivative - 1))
     raise ValueError(f"v0: Newton's method found no cycle from v0 = {v0:.6g} m/s in {MAX_NEWTON} steps")
+
+
+def _off_steady_sliding(v: float, derivative: float, bound: float) -> None:
+    """Refuse a converged ``v`` that Newton's error does not tell from 0, steady sliding itself.
+
+    Steady sliding is a fixed point of the map too, ``P(0) = 0`` (the section's point at rest), and near it
+    ``P(v) - v = (P'(0) - 1) v``: within a Hopf point's reach (``P'`` near 1) that is below Newton's stopping
+    ``bound`` for every small ``v``.  Newton's iterate is within ``bound / |P'(v) - 1|`` of the root, so a ``v``
+    within that of 0 may be steady sliding and is no cycle that can be vouched for (a one-line ``ValueError``).
+    Where ``P' = 1`` exactly (a centre: the flat, undamped law's harmonic orbits) every ``v`` is a fixed point,
+    exactly, and ``v`` is the orbit's own, not an approximation.
+    """
+    if derivative != 1 and v <= bound / abs(derivative - 1):
+        raise ValueError(
+            f"v0: Newton's method came to v = {v:.3g} m/s, within its error of 0 (P' = {derivative:.6g}): steady "
+            "sliding, not a cycle"
+        )
 
 
 def _newton_step(sys: _System, v: float, step: float) -> tuple[float, _Flight]:
