@@ -336,4 +336,3 @@ def test_newton_coming_to_steady_sliding_is_no_cycle(v0: float):
     with pytest.raises(ValueError, match=r"^v0: Newton's method came to .* steady sliding, not a cycle$") as err:
         find_cycle(stribeck_system(V_ABOVE, 0.0), v0)
     assert "\n" not in str(err.value)
-
