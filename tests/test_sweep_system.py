@@ -263,3 +263,52 @@ def test_a_row_whose_step_is_refused_names_its_values(tmp_path, capsys):
     err = capsys.readouterr().err
     assert status == 2 and len(err.strip().splitlines()) == 1 and "(row 1: m2.mass = 0.01)" in err, err
     assert not out.exists()
+
+
+# ---- the pipeline: the sweep in chunks (rules/sweeps.smk, profiles/cluster) ------------------------------
+
+
+def _merge_script():
+    import importlib.util
+
+    from conftest import ROOT
+
+    spec = importlib.util.spec_from_file_location("merge_chunks", ROOT / "scripts" / "merge_chunks.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_the_merge_refuses_chunks_of_different_sweeps_in_one_line(tmp_path, capsys):
+    (tmp_path / "a.csv").write_text("x,stops_m\n1,2\n")
+    (tmp_path / "b.csv").write_text("y,stops_m\n1,2\n")
+    assert _merge_script().main([str(tmp_path / "o.csv"), str(tmp_path / "a.csv"), str(tmp_path / "b.csv")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and err.startswith("merge_chunks: ") and "columns differ" in err
+    assert not (tmp_path / "o.csv").exists()
+
+
+@pytest.mark.slow  # a snakemake run of four chunks (some 20 s): the slow suite (.ci/run runs it)
+def test_the_pipelines_chunked_sweep_is_the_whole_sweep_byte_for_byte(tmp_path):
+    """rules/sweeps.smk built by Snakemake (one job a chunk, the merge) against one ``sweep --system`` run of the
+    whole grid, as scripts/slurm_local.sh compares the build through profiles/cluster with a local one."""
+    import re
+    import subprocess
+
+    from conftest import copy_tracked_files
+    from test_pipeline import SNAKEMAKE
+
+    root = copy_tracked_files(tmp_path / "repo")
+    target = "results/sweeps/two_blocks.csv"
+    done = subprocess.run(
+        [SNAKEMAKE, "--nolock", "--cores", "2", target], cwd=root, capture_output=True, text=True, timeout=600
+    )
+    assert done.returncode == 0, done.stdout + done.stderr
+    rules = (root / "rules" / "sweeps.smk").read_text()
+    vary = re.findall(r'"([\w.]+=[^"]+)"', rules.split('"vary": [')[1].split("]")[0])
+    t_end, dt = (re.search(rf'"{k}": ([\d.e-]+)', rules).group(1) for k in ("t_end", "dt"))
+    args = [f"--vary={v}" for v in vary] + ["--t-end", t_end, "--dt", dt]
+    whole = tmp_path / "whole.csv"
+    assert main(["sweep", "--system", str(root / "examples" / "two_blocks.toml"), *args, "--output", str(whole)]) == 0
+    assert (root / target).read_bytes() == whole.read_bytes()
+    assert len(whole.read_text().splitlines()) == 1 + 8 * 4

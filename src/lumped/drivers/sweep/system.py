@@ -202,8 +202,13 @@ def build(
 
 
 def workers(rows: int) -> int:
-    """The processes a sweep of ``rows`` one-by-one rows may use: the CPUs this process may run on, at most ``rows``."""
-    return max(1, min(rows, len(os.sched_getaffinity(0))))
+    """The processes a sweep of ``rows`` one-by-one rows may use: the CPUs this process may run on (in a SLURM
+    job, at most its ``SLURM_CPUS_PER_TASK``), at most ``rows``."""
+    cpus = len(os.sched_getaffinity(0))
+    given = os.environ.get("SLURM_CPUS_PER_TASK", "")
+    if given.isdigit() and int(given) >= 1:
+        cpus = min(cpus, int(given))
+    return max(1, min(rows, cpus))
 
 
 class Prepared(NamedTuple):
