@@ -23,7 +23,8 @@
   ``two_mass_response.toml`` without friction has the linear two-degree-of-
   freedom response (``tests/test_response_network.py``); ``belt.toml`` meets
   the closed-form stick-slip cycle and ``stribeck_belt.toml`` the linearised
-  motion about steady sliding (``tests/test_friction_cli.py``).
+  motion about steady sliding (``tests/test_friction_cli.py``); ``two_blocks.toml``'s
+  sweep in the pipeline's chunks is the whole sweep's file (``tests/test_sweep_system.py``).
 * ``scripts/ground_record.py`` writes the committed record, byte for byte.
 """
 
@@ -60,6 +61,7 @@ TESTS = {
     "two_mass_response": (
         "test_response_network.py::test_without_friction_the_example_is_the_linear_two_degree_of_freedom_response"
     ),
+    "two_blocks": "test_sweep_system.py::test_the_pipelines_chunked_sweep_is_the_whole_sweep_byte_for_byte",
 }
 #: The examples whose elements close a loop that is rigid at some saved point: their non-unique forces.
 INTERVALS = {"figure2_beside_dashpot": ["string", "dashpot"], "friction_pads": ["pad1", "pad2"]}
