@@ -216,7 +216,7 @@ def _run_system(args: argparse.Namespace, output: Output) -> str:
     ready = by_file.prepare(network, vary, **grid_values, method=args.method, chunk=chunk, output=suffix, **options)
     output.create()
     start = time.perf_counter()
-    got = by_file.run(ready, Progress(sys.stderr, sys.stderr.isatty()))
+    got = by_file.run(ready, Progress(sys.stderr, sys.stderr.isatty() or ready.seconds > 5.0))
     output.commit(_cells(got) if suffix == ".csv" else got)
     count = len(next(iter(got.values())))
     total = math.prod(v.count for v in varies)

@@ -38,6 +38,7 @@ from __future__ import annotations
 import math
 import multiprocessing
 import os
+import signal
 from collections.abc import Callable, Mapping, Sequence
 from concurrent.futures import ProcessPoolExecutor
 from typing import NamedTuple
@@ -221,6 +222,8 @@ class Prepared(NamedTuple):
     batch: object
     values: np.ndarray | None
     workers: int
+    #: The estimated time (s) of the rows, on ``workers`` processes.
+    seconds: float
 
 
 def sweep_system(
@@ -293,7 +296,7 @@ def prepare(
         limits._check_file(count, columns, output)
     batch = _batch(spec, rows, output)
     if batch is not None:  # the single mass's checks: interval domains, whose ends system_axis checked
-        return Prepared(spec, rows, batch, None, 1)
+        return Prepared(spec, rows, batch, None, 1, batch[0].seconds(rows))
     values = spec.values(rows)
     if len(values) > 1:  # the first row's estimate for all, before every value and row is checked
         _check_time(spec, check(spec, values[:1]) * len(values), workers(len(values)), len(values))
@@ -302,7 +305,7 @@ def prepare(
     seconds = check(spec, values)
     n_workers = workers(len(values)) if seconds > PROCESS_SECONDS else 1
     _check_time(spec, seconds, n_workers, len(values))
-    return Prepared(spec, rows, None, values, n_workers)
+    return Prepared(spec, rows, None, values, n_workers, seconds / n_workers)
 
 
 def run(ready: Prepared, progress: Callable[[int, int], None] | None = None) -> dict[str, np.ndarray]:
@@ -359,12 +362,16 @@ def _row(spec: SystemSweep, values: Sequence[float]) -> dict[str, float]:
     from lumped.drivers.simulation import solve
     from lumped.model.problem import Problem
 
-    traj = solve(Problem(spec.network_of(values), spec.t_end), spec.dt, method=spec.method, **spec.options)
+    try:
+        traj = solve(Problem(spec.network_of(values), spec.t_end), spec.dt, method=spec.method, **spec.options)
+    except ValueError as err:  # a refusal the method makes as it runs (exact, event-driven): the row named
+        raise ValueError(f"{err} (the row {spec.row_text(values)})") from None
     return mass_summaries(traj)
 
 
-def _worker_row(values: Sequence[float]) -> dict[str, float]:
-    return _row(_WORKER, values)  # type: ignore[arg-type]
+def _worker_rows(values: np.ndarray) -> list[dict[str, float]]:
+    """Rows run in a worker process, of the sweep it inherited (:data:`_WORKER`)."""
+    return [_row(_WORKER, row) for row in values]  # type: ignore[arg-type]
 
 
 def _run_rows(
@@ -377,13 +384,32 @@ def _run_rows(
         results = (_row(spec, row) for row in values)
         return [_report(progress, j, n, r) for j, r in enumerate(results)]
     _WORKER = spec
+    context = multiprocessing.get_context("fork")
+    pool = ProcessPoolExecutor(n_workers, mp_context=context, initializer=_quiet)
+    size = max(1, n // (8 * n_workers))  # blocks of rows: some eight a worker, for the progress and the balance
     try:
-        context = multiprocessing.get_context("fork")
-        with ProcessPoolExecutor(n_workers, mp_context=context) as pool:
-            results = pool.map(_worker_row, list(values), chunksize=max(1, n // (8 * n_workers)))
-            return [_report(progress, j, n, r) for j, r in enumerate(results)]
+        blocks = [pool.submit(_worker_rows, values[i : i + size]) for i in range(0, n, size)]
+        out: list[dict[str, float]] = []
+        for block in blocks:  # grid order
+            out += block.result()
+            if progress is not None:
+                progress(len(out), n)
+    except BaseException:  # a refused row, Ctrl-C, SIGTERM: stop the workers now, not after their rows
+        for process in list((pool._processes or {}).values()):  # no public way before Python 3.14
+            process.terminate()
+        pool.shutdown(wait=False)
+        raise
     finally:
         _WORKER = None
+    pool.shutdown()
+    return out
+
+
+def _quiet() -> None:
+    """A worker's signals: Ctrl-C and SIGTERM/SIGHUP are the parent's to handle (it stops the workers)."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+    for name in ("SIGTERM", "SIGHUP"):
+        signal.signal(getattr(signal, name), signal.SIG_DFL)
 
 
 def _report(progress: Callable[[int, int], None] | None, j: int, n: int, result: dict) -> dict:
