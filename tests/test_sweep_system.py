@@ -312,3 +312,16 @@ def test_the_pipelines_chunked_sweep_is_the_whole_sweep_byte_for_byte(tmp_path):
     assert main(["sweep", "--system", str(root / "examples" / "two_blocks.toml"), *args, "--output", str(whole)]) == 0
     assert (root / target).read_bytes() == whole.read_bytes()
     assert len(whole.read_text().splitlines()) == 1 + 8 * 4
+
+
+def test_the_single_mass_sweeps_chunks_concatenate_to_the_whole_grid(tmp_path):
+    """``--chunk I/N`` of the sweep without ``--system``: the API's ``chunk`` on the command line."""
+    grid = ["--vary", "x0=-1:1:7", "--vary", "threshold=0.5:1:2", "--t-end", "1", "--dt", "1e-3"]
+    assert main(["sweep", *grid, "--output", str(tmp_path / "all.csv")]) == 0
+    lines = []
+    for i in range(3):
+        out = tmp_path / f"chunk{i}.csv"
+        assert main(["sweep", *grid, "--chunk", f"{i}/3", "--output", str(out)]) == 0
+        text = out.read_text().splitlines()
+        lines += text[1:] if lines else text
+    assert lines == (tmp_path / "all.csv").read_text().splitlines() and len(lines) == 1 + 14
