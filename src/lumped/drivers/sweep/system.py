@@ -148,6 +148,8 @@ def _parameter(network: Network, name: str) -> SystemParameter:
     try:
         return system_parameters(network, [name], "vary")[0]
     except ValueError as err:
+        if not isinstance(name, str):
+            raise
         item, _, key = name.rpartition(".")
         entries = [*network.masses, *network.elements, *network.drivers]
         if any(getattr(e, "name", None) == item and hasattr(e, key) for e in entries):
@@ -173,6 +175,8 @@ def check_values(network: Network, axis: SystemAxis, values: np.ndarray | None =
     """``values`` (every distinct value of ``axis`` by default) through the check of the mass, element, driver
     or load that holds the parameter: its own message, after ``vary: name = value``."""
     for value in np.unique(axis.values) if values is None else values:
+        if not math.isfinite(value):
+            raise ValueError(f"vary: {axis.name} must hold finite numbers, got {value}")
         try:
             with_values(network, [axis.parameter], [value])
         except ValueError as err:
