@@ -26,7 +26,8 @@
   motion about steady sliding (``tests/test_friction_cli.py``);
   ``block_chain.toml``'s identical blocks move as one block, that block on a
   belt seen from the plate, and its ``count`` tables are the tables written one
-  by one (``tests/test_repeated_tables.py``).
+  by one (``tests/test_repeated_tables.py``); ``two_blocks.toml``'s sweep in the
+  pipeline's chunks is the whole sweep's file (``tests/test_sweep_system.py``).
 * ``scripts/ground_record.py`` writes the committed record, byte for byte.
 """
 
@@ -64,6 +65,7 @@ TESTS = {
     "two_mass_response": (
         "test_response_network.py::test_without_friction_the_example_is_the_linear_two_degree_of_freedom_response"
     ),
+    "two_blocks": "test_sweep_system.py::test_the_pipelines_chunked_sweep_is_the_whole_sweep_byte_for_byte",
 }
 #: The examples whose elements close a loop that is rigid at some saved point: their non-unique forces.
 INTERVALS = {"figure2_beside_dashpot": ["string", "dashpot"], "friction_pads": ["pad1", "pad2"]}
