@@ -13,8 +13,8 @@ trajectories), :mod:`~lumped.kernels` (the compiled loops),
 (:func:`solve`, the one entry point, which runs any :class:`Problem` by any
 method of :data:`METHODS` and returns one :class:`Trajectory`; the sweep; the
 response curves, :func:`response_curve`; the limit cycles on a belt, :func:`cycles`), :mod:`~lumped.studies`,
-:mod:`~lumped.plotting` and :mod:`~lumped.cli`.  The names below are the
-public API.
+:mod:`~lumped.plotting` and :mod:`~lumped.cli`.  The names of :data:`__all__`
+are the public API, each imported from its module on first use (``_HOMES``).
 
 The other ways to start a run that users know are shims over :func:`solve`,
 each documented with the call it stands for and what it adds:
