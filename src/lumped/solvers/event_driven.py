@@ -231,9 +231,12 @@ class IntegratedSlip:
         so that a single crossing keeps the bracket ``(a, b]``.  A step that starts at rest looks only
         where the motion is under way (:meth:`_under_way`).
         """
+        ends = direction * piece.y_old[1], direction * (piece.y_old[1] + piece.F[1][0])  # g(a), g(b): theta 0, 1
+        if last is None and ends[0] > 0 and min(ends) > piece_spread(piece, 1):
+            return None
         g = lambda t: direction * piece_value(piece, t, 1)
         start = self._under_way(g, a, b)
-        if start is None or (last is None and min(g(a), g(b)) > piece_spread(piece, 1)):
+        if start is None:
             return None
         points = [t for t in piece_critical_times(piece, 1) if t > start]
         first = next((i for i, t in enumerate(points) if g(t) <= 0), None)
