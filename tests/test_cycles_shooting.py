@@ -325,3 +325,14 @@ def test_refusals_are_one_line(network, v, message):
     with pytest.raises(ValueError, match=message) as err:
         return_map(network, v)
     assert "\n" not in str(err.value)
+
+
+@pytest.mark.parametrize("v0", [1e-6, 1e-9])
+def test_newton_coming_to_steady_sliding_is_no_cycle(v0: float):
+    """Steady sliding is the map's fixed point ``v = 0`` too, and near a Hopf point ``P(v) - v = (P'(0) - 1) v``
+    falls below Newton's stopping bound for small ``v``: from a small start Newton came to ``v = 1.5e-11`` m/s
+    (``P' = 0.9887``, so within its error ``1e-12 V / (1 - P')`` = 1.7e-11 of 0) and called it a stable cycle of
+    amplitude 0.  It is refused in one line."""
+    with pytest.raises(ValueError, match=r"^v0: Newton's method came to .* steady sliding, not a cycle$") as err:
+        find_cycle(stribeck_system(V_ABOVE, 0.0), v0)
+    assert "\n" not in str(err.value)

@@ -272,7 +272,8 @@ def _hopf_branch_crossing(network: Network, points: int) -> float | None:
     from lumped.drivers.cycles.continuation import continue_branches
 
     start, stop = sorted((nearest, V))
-    branch = [p for p in continue_branches(network, name, start, stop, points) if p.branch == "cycle"]
+    rows = continue_branches(network, name, start, stop, points, start_branch=False)  # the Hopf branch alone
+    branch = [p for p in rows if p.branch == "cycle"]
     if not branch:
         return None
     return float(min(branch, key=lambda p: abs(p.value - V)).cycle.section)

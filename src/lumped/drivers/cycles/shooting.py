@@ -74,13 +74,14 @@ from typing import NamedTuple
 
 import numpy as np
 
+from lumped.drivers.cycles.equilibria import check_autonomous, steady_sliding
 from lumped.model.network import Network
 from lumped.model.system_parameters import system_parameters, with_values
 from lumped.numerics import validate
 from lumped.numerics.roots import brentq
 from lumped.solvers.closed_form_belt import HarmonicSlip
 from lumped.solvers.event_driven import _ATOL_FACTOR, _Budget, _Settings
-from lumped.solvers.event_driven_network import METHOD, ContactSlip, March, Model, model, refusal
+from lumped.solvers.event_driven_network import ContactSlip, March, Model, model
 from lumped.solvers.events import OFF, STICK, Phase, Piece
 
 __all__ = [
@@ -159,8 +160,9 @@ class _System(NamedTuple):
 
 
 def _system(network: Network) -> _System:
-    """The checked system of ``network`` (a one-line ``ValueError`` for any other)."""
-    _check(network)
+    """The checked system of ``network`` (a one-line ``ValueError`` for any other: the boundary of ``cycles``,
+    :func:`~lumped.drivers.cycles.equilibria.check_autonomous`), its section at steady sliding's position."""
+    check_autonomous(network)
     mdl = model(network)
     el = network.elements[mdl.contact.link.element]
     law = el.slip_law() or el.one_mass_law()
@@ -168,39 +170,8 @@ def _system(network: Network) -> _System:
     flat = None
     if pieces is not None and len(pieces) == 1 and pieces[0].b == 0 and mdl.C == 0:
         flat = pieces[0].a
-    return _System(mdl, _steady_position(mdl), law, flat, el.name, len(network.elements))
-
-
-def _check(network: Network) -> None:
-    """The scope: one mass on one friction contact on a belt, springs to points at rest, no load.
-
-    TODO(issue 34): replace by :func:`lumped.drivers.cycles.equilibria.check_autonomous` when it is on main
-    (the messages here follow its wording).
-    """
-    if not isinstance(network, Network):
-        raise ValueError(f"network must be a Network, got {type(network).__name__}")  # noqa: TRY004 (the API's one error type)
-    scope = "one mass on one friction contact on a driven point, no load"
-    if len(network.masses) != 1:
-        raise ValueError(f"cycles: the system has {len(network.masses)} masses; cycles runs {scope}")
-    if network.loads:
-        raise ValueError(f"cycles: the system has a load on {network.loads[0].on!r}; cycles runs {scope}")
-    reason = refusal(network)
-    if reason is not None:
-        raise ValueError(f"cycles: {reason.removeprefix(f'method {METHOD!r} ')}")
-    mdl = model(network)
-    name = network.elements[mdl.contact.link.element].name
-    if mdl.A != 0 or mdl.K <= 0:
-        raise ValueError(f"cycles: springs must hold the mass to points at rest (K > 0); cycles runs {scope}")
-    if mdl.V == 0:
-        raise ValueError(f"cycles: the friction contact {name!r} is on a point at rest; cycles runs {scope}")
-
-
-def _steady_position(mdl: Model) -> float:
-    """``x* = (gamma + C V + sgn(V) g(|V|)) / K``: the mass at rest, the contact sliding at ``-V``.
-
-    TODO(issue 34): take it from :func:`lumped.drivers.cycles.equilibria.steady_sliding` when it is on main.
-    """
-    return (mdl.gamma + mdl.C * mdl.V + math.copysign(mdl.contact.g(abs(mdl.V)), mdl.V)) / mdl.K
+    x_star = float(steady_sliding(network).position[0])
+    return _System(mdl, x_star, law, flat, el.name, len(network.elements))
 
 
 def section_of(network: Network) -> float:
@@ -392,8 +363,8 @@ def find_cycle(network: Network, v0: float, *, tol: float = 1e-12) -> Cycle:
     Raises
     ------
     ValueError
-        One line: bad arguments, a neutral map (``P' = 1``: no isolated cycle), or no convergence in
-        :data:`MAX_NEWTON` steps.
+        One line: bad arguments, a neutral map (``P' = 1``: no isolated cycle), no convergence in
+        :data:`MAX_NEWTON` steps, or convergence to steady sliding (:func:`_off_steady_sliding`).
     """
     sys = _system(network)
     v = validate.positive("v0", v0)
@@ -402,11 +373,29 @@ def find_cycle(network: Network, v0: float, *, tol: float = 1e-12) -> Cycle:
     for _ in range(MAX_NEWTON):
         residual = flight.v_next - v
         if abs(residual) <= tol * max(abs(sys.mdl.V), v):
+            _off_steady_sliding(v, flight.derivative, tol * max(abs(sys.mdl.V), v))
             return _cycle(sys, v, flight, tol)
         if flight.derivative == 1:
             raise ValueError(f"v0: the return map is neutral at v = {v:.6g} m/s (P' = 1): no isolated cycle there")
         v, flight = _newton_step(sys, v, -residual / (flight.derivative - 1))
     raise ValueError(f"v0: Newton's method found no cycle from v0 = {v0:.6g} m/s in {MAX_NEWTON} steps")
+
+
+def _off_steady_sliding(v: float, derivative: float, bound: float) -> None:
+    """Refuse a converged ``v`` that Newton's error does not tell from 0, steady sliding itself.
+
+    Steady sliding is a fixed point of the map too, ``P(0) = 0`` (the section's point at rest), and near it
+    ``P(v) - v = (P'(0) - 1) v``: within a Hopf point's reach (``P'`` near 1) that is below Newton's stopping
+    ``bound`` for every small ``v``.  Newton's iterate is within ``bound / |P'(v) - 1|`` of the root, so a ``v``
+    within that of 0 may be steady sliding and is no cycle that can be vouched for (a one-line ``ValueError``).
+    Where ``P' = 1`` exactly (a centre: the flat, undamped law's harmonic orbits) every ``v`` is a fixed point,
+    exactly, and ``v`` is the orbit's own, not an approximation.
+    """
+    if derivative != 1 and v <= bound / abs(derivative - 1):
+        raise ValueError(
+            f"v0: Newton's method came to v = {v:.3g} m/s, within its error of 0 (P' = {derivative:.6g}): steady "
+            "sliding, not a cycle"
+        )
 
 
 def _newton_step(sys: _System, v: float, step: float) -> tuple[float, _Flight]:
