@@ -322,3 +322,15 @@ def test_a_slow_belt_from_cycles_gives_the_closed_form_cycle(tmp_path):
     assert float(cyc["stick_time"]) == pytest.approx(ref.stick_time, abs=8 * np.finfo(float).eps * ref.period)
     assert (cyc["stable"], cyc["max_multiplier"]) == ("true", "0")
     assert "1 cycle (1 stable)" in run.stderr
+
+
+def test_a_belt_too_slow_to_vouch_for_says_why_without_naming_an_internal_argument(tmp_path):
+    """At 1e-12 m/s the stick lasts 1e12 s, beyond the return's clock: no cycle, and the summary says why in the
+    user's words.  ``find_cycle``'s messages name its own arguments (``v0: ``, ``v: ``), which the user never gave."""
+    path = tmp_path / "slowest.toml"
+    path.write_text(BELT.read_text(encoding="utf-8").replace("velocity = 0.2", "velocity = 1e-12"), encoding="utf-8")
+    run = run_lumped("cycles", "--system", path, "--output", tmp_path / "c.csv")
+    assert run.returncode == 0, run.stderr
+    summary = run.stderr.strip().splitlines()[-1]
+    assert "0 cycles" in summary and "no cycle is vouched for" in summary
+    assert not re.search(r"\bv0?: ", summary), summary

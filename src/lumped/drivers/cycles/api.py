@@ -202,7 +202,8 @@ def _rows_at_file(network: Network, points: int, progress: Callable | None) -> t
         try:
             cycle = find_cycle(network, v)
         except ValueError as err:  # Newton's failure: no cycle vouched for from this start
-            notes.append(f"from {where}: {err}")
+            # find_cycle names its own argument (``v0: ...``, ``v: ...``); the user gave neither
+            notes.append(f"from {where}: {str(err).split(': ', 1)[-1]}")
             continue
         if not any(_same(cycle, row[2]) for row in rows[1:]):
             rows.append((math.nan, "cycle", cycle, "regular"))
