@@ -29,6 +29,7 @@ from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 from lumped.solvers import friction_compiled as friction
 from lumped.solvers import network_compiled as kernel
+from lumped.solvers import network_sparse as sparse
 from lumped.solvers.backward_euler_network import march
 from lumped.solvers.uniqueness import check_step
 
@@ -42,7 +43,7 @@ SOLVERS = NETWORK_SOLVERS
 #: (benchmarks/bench_network.py, chains): Python about 2e-5 + 1e-5 per
 #: element; compiled about 1e-6 + 4e-8 to 1e-7 per element; a margin of 2.
 #: The one-mass friction loop: about 3e-8 s a step (benchmarks/bench_belt.py), a margin of 10.
-_COST = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7), friction.PATH: (3e-7, 0.0)}
+_COST = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7), friction.PATH: (3e-7, 0.0), sparse.PATH: (4e-6, 2e-7)}
 
 
 def _paper_form(net: Network) -> OneMass | None:
@@ -133,8 +134,9 @@ def _path(net: Network, solver: str) -> str:
     other = friction.ineligible(net)
     if other is None:
         return friction.PATH
+    general = sparse.ineligible(net)
+    if general is None:
+        return sparse.PATH
     if solver == "compiled":
-        if any(el.slip_law() is not None for el in net.elements):  # the friction loop's reason too
-            reason = f"{reason} (the network kernel); {other} (the one-mass friction loop)"
-        raise ValueError(f"solver: 'compiled' cannot run this network: {reason}")
+        raise ValueError(f"solver: 'compiled' cannot run this network: {general}")
     return "python"

@@ -37,7 +37,7 @@ __all__ = [
 #: steps in minutes; a million masses (issue 19) took 4 minutes and 4.1 GB
 #: before their first message, and would take about 14 s a step.  Elements: three per mass (notebook 08's
 #: chain has two, a spring and a friction element); forces: two per mass (one, and the ground's ``-m a_g``).
-MAX_MASSES = 10_000
+MAX_MASSES = 100_000
 MAX_ELEMENTS = 3 * MAX_MASSES
 MAX_LOADS = 2 * MAX_MASSES
 _SHOWN = 5  # names listed in a message before "... and N more"
