@@ -66,6 +66,8 @@ typedef struct {
     struct sparse_s *sp;
     double *delta;
     int fallback;
+    double *gstate; /* the state each element's step graph was built from (the kernel's graphs()) */
+    double *stat;   /* a friction contact's static threshold (slip_rule), by element; the sparse step's */
 } net_t;
 
 /* q's work arrays for n_mass masses and n_el elements: 0, or -1 if memory ran
@@ -77,7 +79,7 @@ static int allocate(net_t *q, Py_ssize_t n_mass, Py_ssize_t n_el) {
     q->graph = malloc((n_el * MAX_PIECES + 1) * sizeof(piece));
     q->count = malloc((4 * n_el + 1) * sizeof(int));
     q->rig = malloc(n_pt * sizeof(int64_t));
-    q->D = malloc((12 * n_pt + 5 * n_el) * sizeof(double));
+    q->D = malloc((12 * n_pt + 6 * n_el) * sizeof(double));
     q->seen = malloc(q->bound * sizeof(uint64_t));
     q->loop_el = malloc((n_el + 1 + n_pt) * sizeof(int64_t)); /* and hold_chord's scratch */
     if (!q->graph || !q->count || !q->rig || !q->D || !q->seen || !q->loop_el) return -1;
@@ -86,7 +88,7 @@ static int allocate(net_t *q, Py_ssize_t n_mass, Py_ssize_t n_el) {
     q->A = q->K + n_pt, q->off = q->A + n_pt, q->vall = q->off + n_pt, q->rhs = q->vall + n_pt;
     q->w = q->rhs + n_pt, q->f = q->w + n_el, q->z = q->f + n_el;
     q->Ry = q->z + n_el, q->numy = q->Ry + n_pt, q->vy = q->numy + n_pt;
-    q->loop_n = q->vy + n_pt, q->loop_f0 = q->loop_n + n_el;
+    q->loop_n = q->vy + n_pt, q->loop_f0 = q->loop_n + n_el, q->gstate = q->loop_f0 + n_el;
     q->n_loop = 0, q->rigid_loop = 0;
     return 0;
 }
@@ -106,7 +108,7 @@ static const piece *chosen(const net_t *q, Py_ssize_t e, const int *mode) {
 static int next_mode(const net_t *q, Py_ssize_t e, double sigma) {
     if (q->kind[e] == FRICTION && q->count[e] == 3) {
         const double d = q->delta ? q->delta[e] : 0.0;
-        return slip_rule(q->mode[e], d != 0.0 ? q->w[e] + d : q->w[e], q->f[e], q->par[4 * e]);
+        return slip_rule(q->mode[e], d != 0.0 ? q->w[e] + d : q->w[e], q->f[e], q->stat[e]);
     }
     if (q->count[e] == 1) return 0; /* Pieces.mode of one piece: that piece */
     return mode_of(q->graph + e * MAX_PIECES, q->count[e], q->f[e] + sigma * q->w[e], sigma);

@@ -58,19 +58,19 @@ typedef struct {
 /* Element e's step graph from its state, shifted by its rate shift (backward_euler_network._graphs). */
 static void graph_of(net_t *q, Py_ssize_t e, double state) {
     piece *g = q->graph + e * MAX_PIECES;
+    q->gstate[e] = state;
     if (q->sp) q->sp->cmode[e] = -1; /* its chosen piece is read again */
     q->count[e] = step_graph(q->kind[e], q->par + 4 * e, state, q->dt, g);
     if (q->delta && q->delta[e] != 0.0)
         for (int k = 0; k < q->count[e]; k++) g[k] = shift_piece(g[k], q->delta[e]);
 }
 
-/* Every step graph of the step: those that depend on the state (stateful), and those of the elements
- * joined to driven points; the others are the ones march built, unchanged. */
+/* Every step graph of the step: those whose state changed (stateful: a spring's force) and those of
+ * the elements joined to driven points; the others are the ones built before, unchanged. */
 static void graphs(net_t *q, const double *state, const driven_t *dv) {
     for (Py_ssize_t e = 0; e < q->n_el; e++)
-        if (stateful(q->kind[e])) graph_of(q, e, state[e]);
-    for (Py_ssize_t k = 0; k < dv->n; k++)
-        if (!stateful(q->kind[dv->el[k]])) graph_of(q, dv->el[k], state[dv->el[k]]);
+        if (state[e] != q->gstate[e] && stateful(q->kind[e])) graph_of(q, e, state[e]);
+    for (Py_ssize_t k = 0; k < dv->n; k++) graph_of(q, dv->el[k], state[dv->el[k]]);
 }
 
 /* One step to t = n dt with the loads `load` and the drivers' rate shifts `shift`: 0 on success, else
@@ -105,6 +105,7 @@ static int march(net_t *q, march_t *m, const record_t *o, const double *table, c
     int64_t *cnt = m->counters;
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
         q->count[e] = step_graph(q->kind[e], q->par + 4 * e, m->state[e], q->dt, q->graph + e * MAX_PIECES);
+        q->gstate[e] = m->state[e];
         q->mode[e] = m->modes[e] < 0 ? initial_mode(q->kind[e], m->state[e], q->count[e]) : (int)m->modes[e];
     }
     for (Py_ssize_t n = n_first; n <= n_last; n++) {
@@ -417,13 +418,18 @@ static int allocate_sparse(net_t *q, sparse_t *s) {
         return -1;
     }
     q->sp = s;
+    if (!(q->stat = malloc((q->n_el + 1) * sizeof(double)))) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    for (Py_ssize_t e = 0; e < q->n_el; e++) q->stat[e] = q->par[4 * e]; /* contiguous, for slip_rule */
     return 0;
 }
 
 static void deallocate_sparse(net_t *q, sparse_t *s) {
     deallocate(q);
     sparse_free(s);
-    free(q->delta);
+    free(q->delta), free(q->stat);
 }
 
 /* sparse_solve(topology, pieces, counts, rhs, delta, solution) -> iterations (0: did not settle, -1: a
