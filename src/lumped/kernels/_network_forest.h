@@ -67,6 +67,7 @@ typedef struct {
     double *delta;
     int fallback;
     double *gstate; /* the state each element's step graph was built from (the kernel's graphs()) */
+    uint8_t *lazy;  /* the sparse step's one-piece graphs kept only in its arrays (sync_graphs), or NULL */
     double *stat;   /* a friction contact's static threshold (slip_rule), by element; the sparse step's */
 } net_t;
 
@@ -201,6 +202,7 @@ static void substitute(net_t *q, const int *mode) {
 }
 
 static int sparse_linear(net_t *q, const int *mode); /* _network_sparse.h */
+static void sync_graphs(net_t *q);                     /* _network_sparse.h */
 
 /* One linear solve with the modes fixed: 0 if the sparse step met what it leaves to Python. */
 static int linear(net_t *q, const int *mode) {
@@ -264,6 +266,7 @@ static int iterate(net_t *q, double scale, int *iterations) {
         const uint64_t h = hash_modes(q->next, q->n_el);
         for (int j = 0; j < seen && !cycling; j++) cycling = q->seen[j] == h;
         if (cycling) {
+            sync_graphs(q);
             if (on_pieces(q, q->mode)) {
                 for (Py_ssize_t e = 0; e < q->n_el; e++) {
                     const piece *p = chosen(q, e, q->mode);
@@ -317,6 +320,7 @@ static int solve(net_t *q, int *iterations) {
         if (iterate(q, SCALES[s], iterations)) return 1;
         if (q->fallback) return 0;
     }
+    if (N_SWEEPS) sync_graphs(q);
     for (int s = 0; s < N_SWEEPS; s++) {
         dual_sweeps(q, SWEEPS[s]);
         memcpy(q->mode, q->guess, q->n_el * sizeof(int));

@@ -45,25 +45,18 @@ static void save(const net_t *q, const march_t *m, const record_t *o, double t, 
     memcpy(o->v + row * n, m->v, n * sizeof(double));
     memcpy(o->force + row * ne, q->f, ne * sizeof(double));
     memcpy(o->state + row * ne, m->state, ne * sizeof(double));
-    for (Py_ssize_t e = 0; e < ne; e++) o->rigid[row * ne + e] = (uint8_t)chosen(q, e, q->mode)->rigid;
+    for (Py_ssize_t e = 0; e < ne; e++) o->rigid[row * ne + e] = (uint8_t)(q->sp ? q->sp->rig[e] : chosen(q, e, q->mode)->rigid);
     if (o->low) loop_intervals(q, o->low + row * ne, o->high + row * ne);
 }
 
-/* The elements joined to driven points (the sparse step only): their indices and rate shifts. */
+/* The elements joined to driven points (the sparse step only), an entry per element and driver it is
+ * joined to (Network.driven, in its order): the element, the driver, the sign; n_drivers columns of
+ * the drivers' mean velocities per step. */
 typedef struct {
-    Py_ssize_t n;
-    const int64_t *el;
+    Py_ssize_t n, n_drivers;
+    const int64_t *el, *driver;
+    const double *sign;
 } driven_t;
-
-/* Element e's step graph from its state, shifted by its rate shift (backward_euler_network._graphs). */
-static void graph_of(net_t *q, Py_ssize_t e, double state) {
-    piece *g = q->graph + e * MAX_PIECES;
-    q->gstate[e] = state;
-    if (q->sp) q->sp->cmode[e] = -1; /* its chosen piece is read again */
-    q->count[e] = step_graph(q->kind[e], q->par + 4 * e, state, q->dt, g);
-    if (q->delta && q->delta[e] != 0.0)
-        for (int k = 0; k < q->count[e]; k++) g[k] = shift_piece(g[k], q->delta[e]);
-}
 
 /* Every step graph of the step: those whose state changed (stateful: a spring's force) and those of
  * the elements joined to driven points; the others are the ones built before, unchanged. */
@@ -77,7 +70,9 @@ static void graphs(net_t *q, const double *state, const driven_t *dv) {
  * the bad kind (3: the sparse step met a rigid loop, the step is left to Python). */
 static int step(net_t *q, const march_t *m, const double *load, const driven_t *dv, const double *shift,
                 int *iterations) {
-    for (Py_ssize_t k = 0; k < dv->n; k++) q->delta[dv->el[k]] = shift[k];
+    for (Py_ssize_t k = 0; k < dv->n; k++) q->delta[dv->el[k]] = 0.0;
+    for (Py_ssize_t k = 0; k < dv->n; k++) /* backward_euler_network._shifts: 0 + the sum, in its order */
+        q->delta[dv->el[k]] += dv->sign[k] * shift[dv->driver[k]];
     graphs(q, m->state, dv);
     for (Py_ssize_t i = 0; i < q->n_mass; i++) q->rhs[i] = q->inertia[i] * m->v[i] + 0.0;
     for (Py_ssize_t k = 0; k < q->n_load; k++) q->rhs[q->load_mass[k]] = q->inertia[q->load_mass[k]] * m->v[q->load_mass[k]] + load[k];
@@ -110,7 +105,7 @@ static int march(net_t *q, march_t *m, const record_t *o, const double *table, c
     }
     for (Py_ssize_t n = n_first; n <= n_last; n++) {
         int iterations = 0;
-        const int bad = step(q, m, table + (n - n_first) * q->n_load, dv, dv->n ? shifts + (n - n_first) * dv->n : NULL, &iterations);
+        const int bad = step(q, m, table + (n - n_first) * q->n_load, dv, dv->n ? shifts + (n - n_first) * dv->n_drivers : NULL, &iterations);
         if (bad) {
             cnt[1] = n, cnt[2] = bad;
             return bad;
@@ -336,7 +331,7 @@ static PyObject *network_block(PyObject *self, PyObject *args) {
     march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters};
     record_t o = {rb[0]->buf, rb[1]->buf, rb[2]->buf, rb[3]->buf, rb[4]->buf, rb[5]->buf,
                   kept ? rb[6]->buf : NULL, kept ? rb[7]->buf : NULL};
-    const driven_t none = {0, NULL};
+    const driven_t none = {0, 0, NULL, NULL, NULL};
     Py_BEGIN_ALLOW_THREADS
     march(&q, &m, &o, table->buf, &none, NULL, n_first, n_last, n_steps, save_every);
     Py_END_ALLOW_THREADS
@@ -355,7 +350,8 @@ fail:
 static const char *const SPARSE[] = {
     "topology[0] (kind)",      "topology[1] (par)",    "topology[2] (first)",   "topology[3] (second)",
     "topology[4] (at_pos)",    "topology[5] (inc_start)", "topology[6] (inc_el)", "topology[7] (inertia)",
-    "topology[8] (sigma)",     "topology[9] (load_mass)", "topology[10] (driven_el)"};
+    "topology[8] (sigma)",     "topology[9] (load_mass)", "topology[10] (driven_el)", "topology[11] (driven_driver)",
+    "topology[12] (driven_sign)"};
 
 /* -1 with ValueError unless at_pos lists every mass once and the incidence lists each element once
  * at its first point and once at its second. */
@@ -385,28 +381,32 @@ static int check_sparse(const net_t *q, const sparse_t *s, Py_ssize_t n_inc) {
     return bad ? -1 : 0;
 }
 
-/* Take the sparse topology tuple's 11 arrays into h, checked; set q's counts and arrays, s's, and dv. */
-static int take_sparse(held_t *h, PyObject *obj, net_t *q, sparse_t *s, driven_t *dv) {
+/* Take the sparse topology tuple's 13 arrays into h, checked; set q's counts and arrays, s's, and dv
+ * (its driver count: n_drivers). */
+static int take_sparse(held_t *h, PyObject *obj, net_t *q, sparse_t *s, driven_t *dv, Py_ssize_t n_drivers) {
     memset(q, 0, sizeof *q);
     memset(s, 0, sizeof *s);
-    PyObject *const *a = tuple_items(obj, "topology", 11);
-    const Py_buffer *b[11];
-    if (a == NULL || !(b[0] = take(h, a[0], SPARSE[0], 'q', -1, 0)) || !(b[7] = take(h, a[7], SPARSE[7], 'd', -1, 0)))
+    PyObject *const *a = tuple_items(obj, "topology", 13);
+    const Py_buffer *b[13];
+    if (a == NULL || !(b[0] = take(h, a[0], SPARSE[0], 'q', -1, 0)) || !(b[7] = take(h, a[7], SPARSE[7], 'd', -1, 0)) ||
+        !(b[10] = take(h, a[10], SPARSE[10], 'q', -1, 0)))
         return -1;
-    const Py_ssize_t n_el = items(b[0]), n_mass = items(b[7]), n_pt = n_mass + 1;
-    const Py_ssize_t count[11] = {n_el, 4 * n_el, n_el, n_el, n_mass, n_pt + 1, -1, n_mass, n_el, -1, -1};
-    for (int i = 1; i < 11; i++)
-        if (i != 7 && !(b[i] = take(h, a[i], SPARSE[i], i == 1 || i == 8 ? 'd' : 'q', count[i], 0))) return -1;
+    const Py_ssize_t n_el = items(b[0]), n_mass = items(b[7]), n_pt = n_mass + 1, n_dv = items(b[10]);
+    const Py_ssize_t count[13] = {n_el, 4 * n_el, n_el, n_el, n_mass, n_pt + 1, -1, n_mass, n_el, -1, n_dv, n_dv, n_dv};
+    for (int i = 1; i < 13; i++)
+        if (i != 7 && i != 10 && !(b[i] = take(h, a[i], SPARSE[i], i == 1 || i == 8 || i == 12 ? 'd' : 'q', count[i], 0)))
+            return -1;
     if (check_indices(SPARSE[0], b[0], 0, FRICTION + 1) < 0 || check_indices(SPARSE[2], b[2], 0, n_pt) < 0 ||
         check_indices(SPARSE[3], b[3], 0, n_pt) < 0 || check_indices(SPARSE[4], b[4], 0, n_mass) < 0 ||
         check_indices(SPARSE[5], b[5], 0, items(b[6]) + 1) < 0 || check_indices(SPARSE[6], b[6], 0, n_el) < 0 ||
-        check_indices(SPARSE[9], b[9], 0, n_mass) < 0 || check_indices(SPARSE[10], b[10], 0, n_el) < 0)
+        check_indices(SPARSE[9], b[9], 0, n_mass) < 0 || check_indices(SPARSE[10], b[10], 0, n_el) < 0 ||
+        check_indices(SPARSE[11], b[11], 0, n_drivers) < 0)
         return -1;
     q->kind = b[0]->buf, q->par = b[1]->buf, q->first = b[2]->buf, q->second = b[3]->buf;
     q->inertia = b[7]->buf, q->sigma = b[8]->buf, q->load_mass = b[9]->buf;
     q->n_mass = n_mass, q->n_el = n_el, q->n_pt = n_pt, q->n_load = items(b[9]);
     s->at_pos = b[4]->buf, s->inc_start = b[5]->buf, s->inc_el = b[6]->buf;
-    dv->n = items(b[10]), dv->el = b[10]->buf;
+    dv->n = n_dv, dv->el = b[10]->buf, dv->driver = b[11]->buf, dv->sign = b[12]->buf, dv->n_drivers = n_drivers;
     return check_sparse(q, s, items(b[6]));
 }
 
@@ -423,13 +423,17 @@ static int allocate_sparse(net_t *q, sparse_t *s) {
         return -1;
     }
     for (Py_ssize_t e = 0; e < q->n_el; e++) q->stat[e] = q->par[4 * e]; /* contiguous, for slip_rule */
+    if (!(q->lazy = calloc(q->n_el + 1, 1))) {
+        PyErr_NoMemory();
+        return -1;
+    }
     return 0;
 }
 
 static void deallocate_sparse(net_t *q, sparse_t *s) {
     deallocate(q);
     sparse_free(s);
-    free(q->delta), free(q->stat);
+    free(q->delta), free(q->stat), free(q->lazy);
 }
 
 /* sparse_solve(topology, pieces, counts, rhs, delta, solution) -> iterations (0: did not settle, -1: a
@@ -448,7 +452,7 @@ static PyObject *sparse_solve(PyObject *self, PyObject *args) {
     driven_t dv;
     Py_buffer *sb[5];
     const Py_buffer *pieces, *counts, *rhs, *delta;
-    if (take_sparse(&h, topo_obj, &q, &sp, &dv) < 0 ||
+    if (take_sparse(&h, topo_obj, &q, &sp, &dv, PY_SSIZE_T_MAX) < 0 ||
         !(pieces = take(&h, pieces_obj, "pieces", 'd', q.n_el * MAX_PIECES * 5, 0)) ||
         !(counts = take(&h, counts_obj, "counts", 'q', q.n_el, 0)) || !(rhs = take(&h, rhs_obj, "rhs", 'd', q.n_mass, 0)) ||
         !(delta = take(&h, delta_obj, "delta", 'd', q.n_el, 0)))
@@ -492,11 +496,12 @@ fail:
     return NULL;
 }
 
-/* sparse_block(topology, marching, record, table, shifts, dt, n_first, n_last, n_steps, save_every)
+/* sparse_block(topology, marching, record, table, means, dt, n_first, n_last, n_steps, save_every)
  * network_block for the sparse step: topology = (kind, par, first, second, at_pos, inc_start, inc_el,
- * inertia, sigma, load_mass, driven_el), marching and record as there (no intervals: a step whose
- * forces are not unique is a rigid loop, left to Python with counters[2] = 3), shifts (steps,
- * driven elements) the rate shift of each driven element at each step of the block. */
+ * inertia, sigma, load_mass, driven_el, driven_driver, driven_sign), marching and record as there (no
+ * intervals: a step whose forces are not unique is a rigid loop, left to Python with counters[2] = 3),
+ * means (steps, drivers) each driver's mean velocity over each step of the block: a driven element's
+ * rate shift is the sum of sign * mean over its entries. */
 static PyObject *sparse_block(PyObject *self, PyObject *args) {
     static const char *const march_names[] = {"marching[0] (x)",     "marching[1] (v)",    "marching[2] (state)",
                                               "marching[3] (modes)", "marching[4] (rest)", "marching[5] (counters)"};
@@ -504,9 +509,9 @@ static PyObject *sparse_block(PyObject *self, PyObject *args) {
                                                "record[3] (force)", "record[4] (state)", "record[5] (rigid)"};
     PyObject *topo_obj, *march_obj, *rec_obj, *table_obj, *shift_obj;
     double dt;
-    Py_ssize_t n_first, n_last, n_steps, save_every;
-    if (!PyArg_ParseTuple(args, "OOOOOdnnnn", &topo_obj, &march_obj, &rec_obj, &table_obj, &shift_obj, &dt, &n_first,
-                          &n_last, &n_steps, &save_every))
+    Py_ssize_t n_first, n_last, n_steps, save_every, n_drivers;
+    if (!PyArg_ParseTuple(args, "OOOOOdnnnnn", &topo_obj, &march_obj, &rec_obj, &table_obj, &shift_obj, &dt, &n_first,
+                          &n_last, &n_steps, &save_every, &n_drivers))
         return NULL;
     held_t h = {.n = 0};
     net_t q;
@@ -514,14 +519,18 @@ static PyObject *sparse_block(PyObject *self, PyObject *args) {
     driven_t dv;
     Py_buffer *mb[6], *rb[6];
     const Py_buffer *table, *shifts;
+    if (n_drivers < 0) {
+        PyErr_Format(PyExc_ValueError, "n_drivers must be >= 0, got %zd", n_drivers);
+        return NULL;
+    }
     if (check_real("dt", dt, 0.0, 1, 0) < 0 || check_steps(n_first, n_last, n_steps, save_every) < 0 ||
-        take_sparse(&h, topo_obj, &q, &sp, &dv) < 0)
+        take_sparse(&h, topo_obj, &q, &sp, &dv, n_drivers) < 0)
         goto fail;
     const Py_ssize_t nm = q.n_mass, ne = q.n_el, steps = n_last - n_first + 1;
     const Py_ssize_t march_sizes[] = {nm, nm, ne, ne, nm, 4};
     if (take_tuple(&h, march_obj, "marching", 6, march_names, "dddqqq", march_sizes, 1, mb) < 0 ||
         !(table = take(&h, table_obj, "table", 'd', steps * q.n_load, 0)) ||
-        !(shifts = take(&h, shift_obj, "shifts", 'd', steps * dv.n, 0)) ||
+        !(shifts = take(&h, shift_obj, "means", 'd', steps * n_drivers, 0)) ||
         !(rb[0] = take(&h, PyTuple_Check(rec_obj) && PyTuple_GET_SIZE(rec_obj) == 6 ? PyTuple_GET_ITEM(rec_obj, 0) : rec_obj,
                        record_names[0], 'd', -1, 1)))
         goto fail;

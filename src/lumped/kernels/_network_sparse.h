@@ -68,17 +68,46 @@ static int sparse_allocate(sparse_t *s, const net_t *q) {
     return 0;
 }
 
+/* Element e's chosen piece pc (in mode) as the solve reads it: rigid flag, a, b. */
+static inline void sparse_piece(sparse_t *s, Py_ssize_t e, const piece *pc, int mode) {
+    s->rig[e] = (uint8_t)pc->rigid, s->pa[e] = pc->a, s->pb[e] = pc->b;
+    s->cmode[e] = mode;
+}
+
+/* Element e's step graph from its state, shifted by its rate shift (backward_euler_network._graphs):
+ * into the table of pieces, and the chosen piece into the sparse step's arrays; a one-piece graph (a
+ * spring: rebuilt whenever its force changes) only into those arrays, the table filled when a rare
+ * path reads it (sync_graphs). */
+static void graph_of(net_t *q, Py_ssize_t e, double state) {
+    piece local[MAX_PIECES];
+    const int lazy = q->lazy && q->count[e] == 1;
+    piece *g = lazy ? local : q->graph + e * MAX_PIECES;
+    q->gstate[e] = state;
+    q->count[e] = step_graph(q->kind[e], q->par + 4 * e, state, q->dt, g);
+    if (q->delta && q->delta[e] != 0.0)
+        for (int k = 0; k < q->count[e]; k++) g[k] = shift_piece(g[k], q->delta[e]);
+    if (q->sp) sparse_piece(q->sp, e, g + q->mode[e], q->mode[e]); /* while the piece is in cache */
+    if (q->lazy) q->lazy[e] = (uint8_t)lazy;
+}
+
+/* The table of pieces brought up to date for the paths that read it (cycles, dual sweeps). */
+static void sync_graphs(net_t *q) {
+    if (!q->lazy) return;
+    for (Py_ssize_t e = 0; e < q->n_el; e++)
+        if (q->lazy[e]) {
+            q->lazy[e] = 0;
+            q->count[e] = 0; /* not lazy: graph_of writes the table */
+            graph_of(q, e, q->gstate[e]);
+        }
+}
+
 /* Step 1: each point's cluster root (s->root) and offset (q->off); the number of rigid elements,
  * or -1 if one closes a rigid loop. */
 static Py_ssize_t clusters(net_t *q, sparse_t *s, const int *mode) {
     const Py_ssize_t ground = q->n_mass;
     Py_ssize_t rigid = 0, merged = 0;
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
-        if (s->cmode[e] != mode[e]) { /* a new mode, or a graph built again (graph_of) */
-            const piece *pc = chosen(q, e, mode);
-            s->rig[e] = (uint8_t)pc->rigid, s->pa[e] = pc->a, s->pb[e] = pc->b;
-            s->cmode[e] = mode[e];
-        }
+        if (s->cmode[e] != mode[e]) sparse_piece(s, e, chosen(q, e, mode), mode[e]); /* a new mode */
         rigid += s->rig[e];
     }
     for (Py_ssize_t p = 0; p < q->n_pt; p++) s->root[p] = -1;

@@ -64,10 +64,17 @@ def _graphs(
     return graphs
 
 
-def _shifts(net: Network, times: np.ndarray, dt: float, columns: np.ndarray | None = None) -> np.ndarray | None:
-    """Each element's rate shift at each step ending at ``times`` (``(steps, elements)``, or only the
-    elements ``columns``): ``+-`` the mean velocity over the step of the driven point it is joined to (0
-    for the others); ``None`` without drivers.
+def _means(net: Network, times: np.ndarray, dt: float) -> np.ndarray:
+    """Each driver's mean velocity over each step ending at ``times``: ``(steps, drivers)``."""
+    out = np.empty((times.size, len(net.drivers)))
+    for k, d in enumerate(net.drivers):
+        out[:, k] = d.mean_velocity(times - dt, times)
+    return out
+
+
+def _shifts(net: Network, times: np.ndarray, dt: float) -> np.ndarray | None:
+    """Each element's rate shift at each step ending at ``times`` (``(steps, elements)``): ``+-`` the mean
+    velocity over the step of the driven point it is joined to (0 for the others); ``None`` without drivers.
 
     The problem sees a driven point as the ground; an element's true rate is the
     problem's plus this shift, and the mean velocity moves the point by its exact
@@ -75,13 +82,10 @@ def _shifts(net: Network, times: np.ndarray, dt: float, columns: np.ndarray | No
     """
     if not net.drivers:
         return None
-    where = range(len(net.elements)) if columns is None else columns.tolist()
-    place = {e: k for k, e in enumerate(where)}
-    out = np.zeros((times.size, len(place)))
-    means = [d.mean_velocity(times - dt, times) for d in net.drivers]
+    out = np.zeros((times.size, len(net.elements)))
+    means = _means(net, times, dt)
     for d in net.driven():
-        if d.element in place:
-            out[:, place[d.element]] += d.sign * means[d.driver]
+        out[:, d.element] += d.sign * means[:, d.driver]
     return out
 
 
@@ -313,19 +317,18 @@ def _run_sparse(
     x, v, state = start.x.copy(), start.v.copy(), np.array(start.state, dtype=float)
     marching = (x, v, state, modes, start.rest, counters)
     record = (rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid.view(np.uint8))
-    block = max(1, min(_BLOCK, _TABLE_VALUES // max(1, loaded.size + topology.driven.size)))
+    block = max(1, min(_BLOCK, _TABLE_VALUES // max(1, loaded.size + len(net.drivers))))
     most = 0
     for begin in range(1, n_steps + 1, block):
         stop = min(begin + block - 1, n_steps)
         times = np.arange(begin, stop + 1) * dt
         table = net.load_table(times, loaded)
-        shifts = _shifts(net, times, dt, topology.driven)
-        shifts = np.empty((times.size, 0)) if shifts is None else shifts
+        means = _means(net, times, dt)
         n = begin
         while n <= stop:
             steps = (n, stop, n_steps, save_every)
             sparse.march_block(
-                topology, start.inertia, start.sigma, loaded, marching, record, table[n - begin :], shifts[n - begin :], dt, steps
+                topology, start.inertia, start.sigma, loaded, marching, record, table[n - begin :], means[n - begin :], dt, steps
             )
             rec.row = int(counters[0])
             if counters[2] != 3:

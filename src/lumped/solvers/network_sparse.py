@@ -54,7 +54,8 @@ class SparsePlan(NamedTuple):
 
     ``at_pos``: the mass at each place of the ordering; ``inc_start``,
     ``inc_el``: the elements at each point (masses, then the ground);
-    ``driven``: the elements joined to a driven point.
+    ``driven``, ``driver``, ``sign``: :meth:`~lumped.model.network.Network.driven`, an entry per
+    element and driven point it is joined to.
     """
 
     kind: np.ndarray
@@ -65,6 +66,8 @@ class SparsePlan(NamedTuple):
     inc_start: np.ndarray
     inc_el: np.ndarray
     driven: np.ndarray
+    driver: np.ndarray
+    sign: np.ndarray
 
 
 def _form(el: object) -> tuple[int, tuple[float, ...], bool] | None:
@@ -147,7 +150,7 @@ def plan(net: Network) -> SparsePlan:
     points = np.concatenate([first, second])
     by_point = np.argsort(points, kind="stable")
     inc_start = np.searchsorted(points[by_point], np.arange(n_mass + 2))
-    driven = sorted({d.element for d in net.driven()})
+    driven = net.driven()
     as64 = forest._int64
     return SparsePlan(
         as64([form[0] for form in forms]),  # type: ignore[index]
@@ -157,13 +160,15 @@ def plan(net: Network) -> SparsePlan:
         ordering(n_mass, first, second),
         as64(inc_start),
         as64(by_point % max(n_el, 1)),
-        as64(driven),
+        as64([d.element for d in driven]),
+        as64([d.driver for d in driven]),
+        np.array([d.sign for d in driven], dtype=float),
     )
 
 
 def _topology(topology: SparsePlan, inertia: np.ndarray, sigma: np.ndarray, loaded: np.ndarray) -> tuple:
     t = topology
-    return (t.kind, t.par, t.first, t.second, t.at_pos, t.inc_start, t.inc_el, inertia, sigma, loaded, t.driven)
+    return (t.kind, t.par, t.first, t.second, t.at_pos, t.inc_start, t.inc_el, inertia, sigma, loaded, t.driven, t.driver, t.sign)
 
 
 def march_block(
@@ -174,25 +179,27 @@ def march_block(
     marching: tuple[np.ndarray, ...],
     record: tuple[np.ndarray, ...],
     table: np.ndarray,
-    shifts: np.ndarray,
+    means: np.ndarray,
     dt: float,
     steps: tuple[int, int, int, int],
 ) -> None:
     """Advance steps ``n_first..n_last`` in C (``steps = (n_first, n_last, n_steps, save_every)``).
 
     As :func:`lumped.solvers.network_compiled.march_block`, with ``record = (t, x, v, force, state,
-    rigid)`` and ``shifts`` (steps, ``topology.driven``) the rate shift of each driven element at each
-    step; ``counters[2] = 3`` stops the block at step ``counters[1]``, whose rigid elements close a loop
-    (the caller runs that step in Python and calls again from the next).
+    rigid)`` and ``means`` (steps, drivers) each driver's mean velocity over each step (a driven element's
+    rate shift is the sum of ``sign * mean`` over its entries, as ``backward_euler_network._shifts``);
+    ``counters[2] = 3`` stops the block at step ``counters[1]``, whose rigid elements close a loop (the
+    caller runs that step in Python and calls again from the next).
     """
     _sparse_block(
         _topology(topology, inertia, sigma, loaded),
         marching,
         record,
         np.ascontiguousarray(table, dtype=float),
-        np.ascontiguousarray(shifts, dtype=float),
+        np.ascontiguousarray(means, dtype=float),
         dt,
         *steps,
+        means.shape[1],
     )
 
 
