@@ -56,7 +56,8 @@ def doubles(monkeypatch):
         starts.append(v0)
         return closed_form_cycle(network, v0)
 
-    def continue_branches(network, parameter, start, stop, points=50, progress=None):
+    def continue_branches(network, parameter, start, stop, points=50, progress=None, *, start_branch=True):
+        continuation.calls.append((parameter, start, stop, start_branch))
         eq = steady_sliding(network)
         cycle = closed_form_cycle(network, 0.2)
         stable = eq._replace(max_real_part=-1e-14, stable=True)  # the located Hopf point, a hair on one side
@@ -69,7 +70,7 @@ def doubles(monkeypatch):
 
     monkeypatch.setattr(api, "find_cycle", find_cycle)
     continuation = types.ModuleType("lumped.drivers.cycles.continuation")  # part R, until it is on main
-    continuation.continue_branches = continue_branches
+    continuation.continue_branches, continuation.calls = continue_branches, []
     monkeypatch.setitem(sys.modules, "lumped.drivers.cycles.continuation", continuation)
     return starts
 
@@ -126,6 +127,16 @@ def test_the_api_gives_the_same_table_with_nan_where_a_value_does_not_apply(doub
     assert table.columns["branch"].tolist() == ["equilibrium", "cycle"]
     assert math.isnan(table.columns["period"][0]) and math.isnan(table.columns["max_real_part"][1])
     assert table.columns["stable"].dtype == bool
+
+
+def test_without_vary_only_the_hopf_branch_is_followed(doubles):
+    """Without ``vary`` the Hopf branch is followed from the nearest Hopf point (the Stribeck example's,
+    ``0.5298`` m/s) to the file's belt speed for its cycle there, and not the branch of the cycle found at the
+    range's start as well: that one is not wanted (and it took 25 of the command's 33 s)."""
+    lumped.cycles(load_system(STRIBECK))
+    calls = sys.modules["lumped.drivers.cycles.continuation"].calls
+    assert [(name, stop, start_branch) for name, _, stop, start_branch in calls] == [("belt.velocity", 0.8, False)]
+    assert calls[0][1] == pytest.approx(0.5298317366548037, rel=1e-12)
 
 
 def test_with_vary_the_branches_are_rows_with_the_parameter_first(doubles, tmp_path):
@@ -292,3 +303,22 @@ def test_a_block_riding_a_slow_belt_is_not_called_steady_sliding(tmp_path):
     path.write_text(text, encoding="utf-8")
     table = lumped.cycles(load_system(path))
     assert "settles on steady sliding" not in table.summary
+
+
+def test_a_slow_belt_from_cycles_gives_the_closed_form_cycle(tmp_path):
+    """``examples/belt.toml`` at 2e-7 m/s: the long run from rest cannot reach the cycle within its natural periods
+    (the block rides the belt for 2.5e6 s before it first breaks away), but the cycle crosses the section stuck, at
+    the belt's speed, which is a start of its own: one cycle row, ``belt_cycle``'s period and extremes to 1e-10
+    (relative for the period: 5e6 s), its stick time to the clock's ``8 eps`` of the period (the shooting's test)."""
+    path = tmp_path / "slow.toml"
+    path.write_text(BELT.read_text(encoding="utf-8").replace("velocity = 0.2", "velocity = 2e-7"), encoding="utf-8")
+    out = tmp_path / "c.csv"
+    run = run_lumped("cycles", "--system", path, "--output", out)
+    assert run.returncode == 0, run.stderr
+    eq, cyc = read(out)
+    ref = belt_cycle(1.0, 1.0, 1.0, 0.5, 2e-7)
+    assert float(cyc["period"]) == pytest.approx(ref.period, rel=1e-10)
+    assert [float(cyc["max_m"]), float(cyc["min_m"])] == pytest.approx([ref.x_max, ref.x_min], abs=1e-10)
+    assert float(cyc["stick_time"]) == pytest.approx(ref.stick_time, abs=8 * np.finfo(float).eps * ref.period)
+    assert (cyc["stable"], cyc["max_multiplier"]) == ("true", "0")
+    assert "1 cycle (1 stable)" in run.stderr

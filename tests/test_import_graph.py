@@ -10,9 +10,11 @@ under ``if TYPE_CHECKING``.  ``from lumped.x import y`` is an edge to
 dotted name passes through are not edges (importing ``lumped.solvers.network_step``
 runs ``lumped/network/__init__.py``, but that is Python's bookkeeping, and
 counting it would tie every module to the package's ``__init__``).  What a
-call to ``importlib.import_module`` loads is not seen:
-``lumped.studies.load`` is the one such call, and it loads a study, from
-within ``lumped.studies``.
+call to ``importlib.import_module`` loads is not seen; there are three such
+calls, each loading a module of a layer at or below its own:
+``lumped.studies.load`` (a study, from within ``lumped.studies``),
+``lumped.cli.command_module`` (a subcommand, from within ``lumped.cli``) and
+the package's ``__getattr__`` (a public name, from the layers below the API).
 """
 
 from __future__ import annotations

@@ -29,6 +29,10 @@ def _holding(pattern: str) -> list[str]:
         ("MAX_STEPS", r"^MAX_STEPS\b\s*=", ["numerics/validate.py"]),
         # the grid's check: dt > 0 is checked by validate.grid alone
         ("the grid's check", r"positive\(\s*\"dt\"", ["numerics/validate.py"]),
+        # steady sliding's position on a belt, x* = (... + sgn(V) g(|V|)) / K (issue 34)
+        ("steady sliding", r"copysign\([\w.]*\.g\(abs\(", ["drivers/cycles/equilibria.py"]),
+        # the scope of cycles: a refusal that says what cycles runs (issue 34)
+        ("the cycles scope", r"cycles runs \{", ["drivers/cycles/equilibria.py"]),
     ],
 )
 def test_one_module_holds(concept: str, pattern: str, home: list[str]) -> None:

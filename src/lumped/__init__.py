@@ -13,8 +13,8 @@ trajectories), :mod:`~lumped.kernels` (the compiled loops),
 (:func:`solve`, the one entry point, which runs any :class:`Problem` by any
 method of :data:`METHODS` and returns one :class:`Trajectory`; the sweep; the
 response curves, :func:`response_curve`; the limit cycles on a belt, :func:`cycles`), :mod:`~lumped.studies`,
-:mod:`~lumped.plotting` and :mod:`~lumped.cli`.  The names below are the
-public API.
+:mod:`~lumped.plotting` and :mod:`~lumped.cli`.  The names of :data:`__all__`
+are the public API, each imported from its module on first use (``_HOMES``).
 
 The other ways to start a run that users know are shims over :func:`solve`,
 each documented with the call it stands for and what it adds:
@@ -27,55 +27,66 @@ add what a :class:`Trajectory` does not carry (the solution in continuous
 time, the located events, a ``kernel`` or ``theta`` of one's own).
 """
 
-from lumped.drivers.cycles.api import CyclesTable, cycles
-from lumped.drivers.fit import FitResult, fit
-from lumped.drivers.methods import METHODS
-from lumped.drivers.simulation import simulate, simulate_network, solve
-from lumped.drivers.response import continue_orbits, find_orbit
-from lumped.drivers.response.curve import response_curve
-from lumped.drivers.sensitivity import one_sided_sensitivities, system_sensitivities
-from lumped.drivers.steady_sensitivity import steady_amplitude_sensitivities
-from lumped.laws import (
-    Bingham,
-    BinghamDashpot,
-    Contact,
-    Curve,
-    Dashpot,
-    DashpotState,
-    Friction,
-    HerschelBulkley,
-    HerschelBulkleyDashpot,
-    LinearDashpot,
-    LinearSpring,
-    LockingBingham,
-    MaxwellBingham,
-    Monotone,
-    MonotoneDashpot,
-    PapanastasiouDashpot,
-    SlipCurve,
-    SlipLaw,
-    Spring,
-    SpringString,
-    StribeckLaw,
-    coulomb,
-)
-from lumped.model.files import load_system, parse_system
-from lumped.model.forcing import Constant, LoadSum, SwitchedSine, Table
-from lumped.model.network import Driver, Load, Mass, Network
-from lumped.model.oscillator import Oscillator
-from lumped.model.problem import Problem
-from lumped.model.records import Record, read_record
-from lumped.model.tables import read_table
-from lumped.model.trajectory import COLUMNS, EnergyBalance, Trajectory
-from lumped.solvers.backward_euler import algorithm1, backward_euler
-from lumped.solvers.event_capturing import CapturedRun, event_capturing
-from lumped.solvers.event_driven import IntegratedSolution, solve_event_driven
-from lumped.solvers.events import Event, Phase
-from lumped.solvers.exact import ExactSolution, solve_exact
-from lumped.solvers.network_sensitivities import NetworkSensitivities
-from lumped.solvers.one_sided import one_sided
-from lumped.solvers.sensitivities import Sensitivities, sensitivities
-from lumped.solvers.theta import theta_method
+#: Where each public name lives: module -> names.  ``import lumped`` imports none of them; the first
+#: use of a name (``lumped.solve``, ``from lumped import solve``) imports its module (PEP 562,
+#: :func:`__getattr__`), so that ``python -m lumped simulate`` loads what the run needs and not the
+#: fit, the sensitivities or the limit cycles.  ``tests/test_imports.py`` holds it equal to :data:`__all__`.
+_HOMES: dict[str, tuple[str, ...]] = {
+    "lumped.drivers.cycles.api": ("CyclesTable", "cycles"),
+    "lumped.drivers.fit": ("FitResult", "fit"),
+    "lumped.drivers.methods": ("METHODS",),
+    "lumped.drivers.simulation": ("simulate", "simulate_network", "solve"),
+    "lumped.drivers.response": ("continue_orbits", "find_orbit"),
+    "lumped.drivers.response.curve": ("response_curve",),
+    "lumped.drivers.sensitivity": ("one_sided_sensitivities", "system_sensitivities"),
+    "lumped.drivers.steady_sensitivity": ("steady_amplitude_sensitivities",),
+    "lumped.laws": (
+        "Bingham",
+        "BinghamDashpot",
+        "Contact",
+        "Curve",
+        "Dashpot",
+        "DashpotState",
+        "Friction",
+        "HerschelBulkley",
+        "HerschelBulkleyDashpot",
+        "LinearDashpot",
+        "LinearSpring",
+        "LockingBingham",
+        "MaxwellBingham",
+        "Monotone",
+        "MonotoneDashpot",
+        "PapanastasiouDashpot",
+        "SlipCurve",
+        "SlipLaw",
+        "Spring",
+        "SpringString",
+        "StribeckLaw",
+        "coulomb",
+    ),
+    "lumped.model.files": ("load_system", "parse_system"),
+    "lumped.model.forcing": ("Constant", "LoadSum", "SwitchedSine", "Table"),
+    "lumped.model.network": ("Driver", "Load", "Mass", "Network"),
+    "lumped.model.oscillator": ("Oscillator",),
+    "lumped.model.problem": ("Problem",),
+    "lumped.model.records": ("Record", "read_record"),
+    "lumped.model.tables": ("read_table",),
+    "lumped.model.trajectory": ("COLUMNS", "EnergyBalance", "Trajectory"),
+    "lumped.solvers.backward_euler": ("algorithm1", "backward_euler"),
+    "lumped.solvers.event_capturing": ("CapturedRun", "event_capturing"),
+    "lumped.solvers.event_driven": ("IntegratedSolution", "solve_event_driven"),
+    "lumped.solvers.events": ("Event", "Phase"),
+    "lumped.solvers.exact": ("ExactSolution", "solve_exact"),
+    "lumped.solvers.network_sensitivities": ("NetworkSensitivities",),
+    "lumped.solvers.one_sided": ("one_sided",),
+    "lumped.solvers.sensitivities": ("Sensitivities", "sensitivities"),
+    "lumped.solvers.theta": ("theta_method",),
+}
+_HOME = {name: module for module, names in _HOMES.items() for name in names}
+
+#: The layers that ``import lumped`` made attributes when it imported every name (``lumped.laws``
+#: still works after ``import lumped`` alone, and ``dir(lumped)`` still lists them).
+_SUBPACKAGES = ("drivers", "kernels", "laws", "model", "numerics", "solvers")
 
 __all__ = [
     "Bingham",
@@ -171,4 +182,22 @@ def _version() -> str:
             return "unknown"
 
 
-__version__ = _version()
+def __getattr__(name: str) -> object:
+    """A public name, a layer or ``__version__``, imported on first use and kept (PEP 562)."""
+    from importlib import import_module
+
+    if name in _HOME:
+        value = getattr(import_module(_HOME[name]), name)
+    elif name in _SUBPACKAGES:
+        value = import_module(f"{__name__}.{name}")
+    elif name == "__version__":
+        value = _version()
+    else:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    """What ``dir(lumped)`` listed when every name was imported at once: the same whatever is loaded."""
+    return sorted(set(globals()) | set(__all__) | set(_SUBPACKAGES) | {"__version__"})

@@ -16,7 +16,9 @@ every failure removes it.  An output that is one of the command's input files
 is refused before anything else (:func:`lumped.cli.output.refuse_inputs`).
 
 This module holds the entry point (:func:`main`) and the parser
-(:func:`build_parser`); the rest, one module each:
+(:func:`build_parser`), which imports a subcommand's module only when that
+command runs (or for ``--help``), so that ``simulate`` starts as fast as it can;
+the rest, one module each:
 
 * :mod:`~lumped.cli.simulate`, :mod:`~lumped.cli.system`,
   :mod:`~lumped.cli.sweep`, :mod:`~lumped.cli.response`, :mod:`~lumped.cli.cycles` and :mod:`~lumped.cli.fit`: the
@@ -33,18 +35,23 @@ This module holds the entry point (:func:`main`) and the parser
 from __future__ import annotations
 
 import argparse
+import importlib
 import signal
 import sys
 from collections.abc import Sequence
+from types import ModuleType
 
-from lumped import __version__
-from lumped.cli import cycles, fit, response, simulate, sweep
 from lumped.cli.messages import option_message
 from lumped.cli.options import Parser, attach_values, refuse_repeats, refuse_single_mass
 from lumped.cli.output import Output, refuse_inputs
 from lumped.cli.signals import Terminated, signals_unwind
 
-__all__ = ["main", "build_parser", "option_message"]
+__all__ = ["COMMANDS", "build_parser", "main", "option_message"]
+
+#: The subcommands, each a module of this package with ``add_parser(sub)`` and ``run(args, output)``.  A
+#: command's module is imported when it is run (:func:`command_module`), all of them only for ``--help``:
+#: ``simulate`` loads no code of the fit, the response curves or the limit cycles.
+COMMANDS = ("simulate", "sweep", "response", "cycles", "fit")
 
 _DESCRIPTION = """\
 Vibrations of masses on springs and Bingham (or Coulomb) dashpots, solved as
@@ -62,13 +69,30 @@ a sweep of the initial displacement (one row per x0):
 Run "python -m lumped COMMAND --help" for the options of a command ({commands})."""
 
 
-def build_parser() -> argparse.ArgumentParser:
-    """The argument parser (defaults are the paper's values, section 3).
+def command_module(command: str) -> ModuleType:
+    """The module of ``command``, one of :data:`COMMANDS`, imported now (``lumped.cli.simulate``, ...)."""
+    return importlib.import_module(f"{__name__}.{command}")
+
+
+class _Version(argparse.Action):
+    """``--version``: the distribution's version, read only when asked (reading it costs an import)."""
+
+    def __call__(self, parser: argparse.ArgumentParser, *_: object) -> None:
+        import lumped
+
+        print(f"lumped {lumped.__version__}")  # to stdout, as argparse's own version action
+        parser.exit()
+
+
+def build_parser(commands: Sequence[str] = COMMANDS) -> argparse.ArgumentParser:
+    """The argument parser (defaults are the paper's values, section 3), with the subcommands ``commands``.
 
     Abbreviated option names are not accepted: ``--x0`` and ``--x00`` must not
     silently mean the same thing, and every option's value is checked by name.
     ``--method`` lists the names of :data:`lumped.drivers.methods.METHODS`; a bad one is
     refused by :func:`lumped.cli.options.check_method` with the API's message.
+    :func:`main` builds the parser of the one command given, which parses its
+    arguments as the whole parser does, and the whole parser otherwise (``--help``, a bad command).
     """
     parser = Parser(
         prog="lumped",
@@ -76,23 +100,21 @@ def build_parser() -> argparse.ArgumentParser:
         allow_abbrev=False,
         formatter_class=argparse.RawDescriptionHelpFormatter,
     )
-    parser.add_argument("--version", action="version", version=f"lumped {__version__}")
+    parser.add_argument("--version", action=_Version, nargs=0, help="show program's version number and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", required=True, parser_class=Parser)
-    simulate.add_parser(sub)
-    sweep.add_parser(sub)
-    response.add_parser(sub)
-    cycles.add_parser(sub)
-    fit.add_parser(sub)
-    parser.epilog = _EXAMPLE.format(commands=", ".join(sub.choices))  # each command, one line of help above
+    for command in commands:
+        command_module(command).add_parser(sub)
+    parser.epilog = _EXAMPLE.format(commands=", ".join(COMMANDS))  # each command, one line of help above
     return parser
 
 
 def _parse(argv: Sequence[str]) -> argparse.Namespace:
     """Parse the command line; raises SystemExit (usage, --help) or ValueError."""
     items = attach_values(argv)
-    if items[:1] in (["simulate"], ["sweep"], ["response"], ["cycles"], ["fit"]):
+    known = bool(items) and items[0] in COMMANDS
+    if known:
         refuse_repeats([i for i in items[1:] if not i.startswith("--vary")])
-    args = build_parser().parse_args(items)
+    args = build_parser(items[:1] if known else COMMANDS).parse_args(items)
     if getattr(args, "system", None) is not None and args.command not in ("response", "cycles", "fit"):
         refuse_single_mass(items[1:])
     return args
@@ -108,14 +130,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point; returns the exit status (0, 2 for a user error, 128 + signal)."""
     output = None
     argv = list(sys.argv[1:] if argv is None else argv)
-    command = argv[0] if argv[:1] in (["sweep"], ["response"], ["cycles"], ["fit"]) else "simulate"
+    command = argv[0] if argv[:1] and argv[0] in COMMANDS else "simulate"
     try:
         with signals_unwind():
             args = _parse(argv)
             refuse_inputs(args)
             output = Output(args.output) if args.output is not None else None
-            runs = {"sweep": sweep.run, "response": response.run, "cycles": cycles.run, "fit": fit.run}
-            summary = runs.get(command, simulate.run)(args, output)
+            summary = command_module(args.command).run(args, output)
     except SystemExit as stop:  # argparse: usage errors (status 2) and --help (status 0)
         return int(stop.code or 0)
     except (KeyboardInterrupt, Terminated) as stop:

@@ -57,8 +57,6 @@ def refuse_inputs(args: object) -> None:
 
 def _inputs(args: object) -> list[tuple[str, str]]:
     """``(what, path)`` of each file that ``args`` name as inputs."""
-    from lumped.model.files import table_files
-
     out = []
     for name in _INPUTS:
         path = getattr(args, name, None)
@@ -67,6 +65,8 @@ def _inputs(args: object) -> list[tuple[str, str]]:
         flag = "--" + name.replace("_", "-")
         out.append((f"the {flag} file", path))
         if name == "system":
+            from lumped.model.files import table_files  # the system files' reader, only with --system
+
             out += [(f"the file of {entry} in {flag} {path!r}", str(p)) for entry, p in table_files(path)]
     return out
 

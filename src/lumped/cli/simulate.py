@@ -12,7 +12,6 @@ from lumped.cli.output import Output, check_output
 from lumped.cli.reference import methods_help
 from lumped.cli.sensitivity import check_sensitivities, sensitivity_columns
 from lumped.drivers.methods import METHODS, OPTIONS
-from lumped.drivers.sensitivity import plan
 from lumped.model.parameters import PARAMETERS
 from lumped.numerics import validate
 
@@ -64,6 +63,8 @@ def run(args: argparse.Namespace, output: Output) -> str:
     values = _clean(args)
     network = _network(values) if args.sensitivities is not None else None
     if network is not None:
+        from lumped.drivers.sensitivity import plan  # the sensitivities' code, only when asked for
+
         plan(network, args.sensitivities, "--sensitivities")  # before the output is created
     output.create()
     traj = _compute(values, args.method)

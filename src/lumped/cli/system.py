@@ -14,7 +14,6 @@ from lumped.cli.options import check_method, method_options
 from lumped.cli.output import Output, check_output
 from lumped.cli.sensitivity import refuse_ground_mass, sensitivity_columns
 from lumped.drivers.methods import METHODS
-from lumped.drivers.sensitivity import plan
 from lumped.model.parameters import PARAMETERS
 from lumped.numerics import validate
 
@@ -33,6 +32,8 @@ def run(args: argparse.Namespace, output: Output) -> str:
     if not METHODS[args.method].runs_networks and not _piecewise(network, args.method, args.system):
         _one_mass(network, args)
     if args.sensitivities is not None:
+        from lumped.drivers.sensitivity import plan  # the sensitivities' code, only when asked for
+
         params = plan(network, args.sensitivities, "--sensitivities")[0]  # before the output is created
         refuse_ground_mass(args.system, params, "--sensitivities")
     output.create()

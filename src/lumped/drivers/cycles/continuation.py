@@ -35,7 +35,9 @@ come to it, the branch of the cycle found at ``start`` from the belt's speed
 speed, so that this is its fixed point), if there is one: the stick-slip
 branch need not be joined to a Hopf point's within the range.  A branch ends
 where it leaves the range (its last row is at the range's end), where it
-comes back to half the Hopf amplitude (another Hopf point), or where the step
+comes back to half the Hopf amplitude (another Hopf point: the row of kind
+``hopf`` there ends it, and no second branch is followed from that point,
+which would walk the same one back), or where the step
 falls below :data:`MIN_STEP` of the largest; before that, where steps fail
 below :data:`KINK_STEP` of the largest, the other piece of a fold at a kink is
 looked for at the same value (:meth:`_Family.across`).
@@ -482,6 +484,11 @@ def _at_edge(fam: _Family, p: _Point, q: _Point, walk: _Walk) -> _Point | None:
     return None if at is None else fam.point(at.cycle.section, value)  # at the end's value exactly
 
 
+def _hopf_row(fam: _Family, hopf: float) -> BranchPoint:
+    """The cycle row of zero amplitude at the Hopf point ``hopf`` (module Notes)."""
+    return BranchPoint(hopf, "cycle", None, _hopf_cycle(steady_sliding(fam.member(hopf)), fam.belt(hopf)), "hopf")
+
+
 def _from_hopf(
     fam: _Family, hopf: float, walk: _Walk, steps: int, progress: Callable[[float], None]
 ) -> list[BranchPoint]:
@@ -489,9 +496,8 @@ def _from_hopf(
     :data:`HOPF_AMPLITUDE` of the belt's speed (``p`` solved for), and on along growing amplitude; the first
     alone where no small cycle is found or the map is neutral there (``F_v = F_p = 0``: a centre, no isolated
     cycle to follow)."""
-    net = fam.member(hopf)
-    belt = model(net).V
-    rows = [BranchPoint(hopf, "cycle", None, _hopf_cycle(steady_sliding(net), belt), "hopf")]
+    rows = [_hopf_row(fam, hopf)]
+    belt = fam.belt(hopf)
     guess = np.array([HOPF_AMPLITUDE * abs(belt) / fam.v_s, hopf / fam.p_s])
     # v fixed, p solved for; F = v (P'(0) - 1 + O(v^2)) is that small: the tolerance is relative to v
     first = fam._newton(guess, np.array([1.0, 0.0]), tol=CORRECTOR_TOL * guess[0])
@@ -527,6 +533,8 @@ def continue_branches(
     stop: float,
     points: int = 50,
     progress: Callable[[int, int], None] | None = None,
+    *,
+    start_branch: bool = True,
 ) -> list[BranchPoint]:
     """Steady sliding and its limit cycles from ``parameter = start`` to ``stop`` (the module docstring).
 
@@ -544,6 +552,9 @@ def continue_branches(
         at most in one.
     progress : callable, optional
         ``progress(done, 1000)``: how far the branches have come through the range.
+    start_branch : bool
+        Whether to follow the branch of the cycle found at ``start`` too (module docstring); false: the branches
+        from the Hopf points alone (``cycles`` without ``vary`` wants the Hopf branch's cycle and no other).
 
     Returns
     -------
@@ -573,9 +584,19 @@ def continue_branches(
         SPEED_STEP,
         0.5 * HOPF_AMPLITUDE * slowest / fam.v_s,
     )
+    reached: list[float] = []  # Hopf points where a branch followed from another one came back to zero amplitude
     for h in hopf:
-        rows += _from_hopf(fam, h, walk, 50 * points, report)
-    rows += _from_start(fam, start, walk, 50 * points, report, rows)
+        if h in reached:
+            continue  # its branch is the one that came to it: no second walk along it
+        branch = _from_hopf(fam, h, walk, 50 * points, report)
+        rows += branch
+        end = branch[-1]
+        others = [g for g in hopf if g != h]
+        if len(branch) > 1 and end.cycle.section < walk.floor * fam.v_s and others:  # type: ignore[union-attr]
+            reached.append(min(others, key=lambda g: abs(g - end.value)))
+            rows.append(_hopf_row(fam, reached[-1]))
+    if start_branch:
+        rows += _from_start(fam, start, walk, 50 * points, report, rows)
     if progress is not None:
         progress(1000, 1000)
     return rows
