@@ -186,3 +186,55 @@ def test_a_chain_on_a_belt_agrees_with_the_python_step(velocity) -> None:
     contacts = [e for e, el in enumerate(net.elements) if el.kind == "friction"]
     assert np.array_equal(a.states[:, contacts], b.states[:, contacts])
     assert a.rigid[:, 0].any() and not a.rigid[:, 0].all()  # stick and slip
+
+
+# -- the binding refuses bad arguments (tests/test_bindings.py's harness: each call in a child) -------
+
+
+def _sparse_args(**change: object) -> list:
+    """``sparse_block``'s arguments for the first 10 steps of a 3-block chain on a belt; ``change`` replaces
+    items of the topology by index (``t<i>``) or ``n_drivers``."""
+    from lumped.solvers.backward_euler_network import _means, _sigma
+
+    net, dt, steps = belt_chain(3, 0.3), 1e-3, 10
+    plan = sparse.plan(net)
+    inertia = np.array([m.mass / dt for m in net.masses])
+    n_mass, n_el, rows = len(net.masses), len(net.elements), steps + 1
+    topology = [*plan[:7], inertia, _sigma(net, inertia, dt), np.empty(0, dtype=np.int64), *plan[7:]]
+    for key, value in change.items():
+        if key.startswith("t"):
+            topology[int(key[1:])] = value
+    marching = (np.zeros(n_mass), np.full(n_mass, 0.3), np.zeros(n_el), np.full(n_el, -1, dtype=np.int64),
+                np.zeros(n_mass, dtype=np.int64), np.array([1, 0, 0, 0]))
+    record = (np.zeros(rows), np.zeros((rows, n_mass)), np.zeros((rows, n_mass)), np.zeros((rows, n_el)),
+              np.zeros((rows, n_el)), np.zeros((rows, n_el), dtype=np.uint8))
+    means = _means(net, np.arange(1, steps + 1) * dt, dt)
+    return [tuple(topology), marching, record, np.empty(0), means, dt, 1, steps, steps, 1, change.get("n_drivers", 1)]
+
+
+def test_the_valid_sparse_block_runs() -> None:
+    from test_bindings import outcome
+
+    from lumped.kernels import _network_kernel
+
+    assert outcome(lambda: _network_kernel.sparse_block(*_sparse_args())) == ("ok", "")
+
+
+@pytest.mark.parametrize(
+    "change, name",
+    [
+        ({"t0": np.full(8, 7, dtype=np.int64)}, "topology[0] (kind)"),
+        ({"t4": np.zeros(3, dtype=np.int64)}, "topology[4] (at_pos)"),
+        ({"t6": np.zeros(16, dtype=np.int64)}, "topology[6] (inc_el)"),
+        ({"t11": np.full(3, 1, dtype=np.int64)}, "topology[11] (driven_driver)"),
+        ({"n_drivers": -1}, "n_drivers"),
+        ({"n_drivers": 2}, "means"),
+    ],
+    ids=["kind", "at_pos", "inc_el", "driver", "negative-drivers", "means"],
+)
+def test_sparse_block_refuses(change: dict, name: str) -> None:
+    from test_bindings import assert_refused
+
+    from lumped.kernels import _network_kernel
+
+    assert_refused(lambda: _network_kernel.sparse_block(*_sparse_args(**change)), name)
