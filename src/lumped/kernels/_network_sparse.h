@@ -237,20 +237,9 @@ static void assemble_solve(net_t *q, sparse_t *s, const int *mode, Py_ssize_t m)
 /* Step 5, the rigid elements: leaf to root of the rigid forest, each takes what balances its leaf. */
 static void peel(net_t *q, sparse_t *s, const int *mode) {
     const Py_ssize_t ground = q->n_mass;
-    double *gap = s->gap;
+    double *gap = s->gap, *pushed = q->R; /* pushed and deg: summed by sparse_linear's last pass */
     for (Py_ssize_t i = 0; i < q->n_mass; i++) gap[i] = q->rhs[i] - q->inertia[i] * q->vall[i];
     gap[ground] = 0.0;
-    double *pushed = q->R; /* scratch, n_pt */
-    for (Py_ssize_t p = 0; p < q->n_pt; p++) pushed[p] = 0.0, s->deg[p] = 0;
-    for (Py_ssize_t e = 0; e < q->n_el; e++) {
-        s->used[e] = 0;
-        if (s->rig[e]) {
-            s->deg[q->first[e]]++, s->deg[q->second[e]]++;
-            continue;
-        }
-        pushed[q->second[e]] += q->f[e];
-        pushed[q->first[e]] -= q->f[e];
-    }
     Py_ssize_t top = 0;
     for (Py_ssize_t i = 0; i < q->n_pt; i++) {
         gap[i] = gap[i] - pushed[i];
@@ -285,12 +274,18 @@ static int sparse_linear(net_t *q, const int *mode) {
     assemble_solve(q, s, mode, m);
     for (Py_ssize_t p = 0; p < q->n_pt; p++) q->vall[p] = s->col[p] < 0 ? q->off[p] : s->u[s->col[p]] + q->off[p];
     q->vall[ground] = 0.0;
+    double *pushed = q->R; /* the free forces' sum at each point, and the rigid elements there: for peel */
+    if (rigid)
+        for (Py_ssize_t p = 0; p < q->n_pt; p++) pushed[p] = 0.0, s->deg[p] = 0;
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        const int64_t i = q->first[e], j = q->second[e];
         if (s->rig[e]) {
             q->w[e] = s->pa[e], q->f[e] = 0.0;
+            if (rigid) s->used[e] = 0, s->deg[i]++, s->deg[j]++;
         } else {
-            q->w[e] = q->vall[q->second[e]] - q->vall[q->first[e]];
+            q->w[e] = q->vall[j] - q->vall[i];
             q->f[e] = s->pa[e] + s->pb[e] * q->w[e];
+            if (rigid) pushed[j] += q->f[e], pushed[i] -= q->f[e];
         }
     }
     if (rigid) peel(q, s, mode);
