@@ -35,7 +35,7 @@ from lumped import Driver, Friction, Mass, Network, Spring, simulate_network
 from lumped.solvers import network_compiled as kernel
 
 sys.path.insert(0, os.path.dirname(__file__))
-from bench_network import chain as forest_chain  # noqa: E402
+from bench_network import chain as forest_chain
 
 DT = 1e-3
 
@@ -53,7 +53,7 @@ def floor_chain(n: int, seed: int = 1) -> Network:
     return Network(masses, elements, (), [Driver("plate", 0.1)])
 
 
-def best_of(repeats: int, fn) -> np.ndarray:  # noqa: ANN001
+def best_of(repeats: int, fn) -> np.ndarray:
     """Smallest wall and CPU times (s) of ``repeats`` calls of ``fn``."""
     times = []
     for _ in range(repeats):
@@ -66,7 +66,7 @@ def best_of(repeats: int, fn) -> np.ndarray:  # noqa: ANN001
 def per_mass_step(net: Network, steps: int, repeats: int) -> tuple[np.ndarray, str, float]:
     """Cost (s, wall and CPU) per mass and step without the set-up, the path that ran, the share of
     saved block-steps slipping."""
-    run = lambda k: simulate_network(net, k * DT, DT, save_every=min(k, 500), solver="active-set")  # noqa: E731
+    run = lambda k: simulate_network(net, k * DT, DT, save_every=min(k, 500), solver="active-set")
     tr = run(steps)
     moving = float((tr.velocities != 0).mean())
     setup = best_of(repeats, lambda: run(1))

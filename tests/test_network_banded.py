@@ -77,13 +77,24 @@ def _random_network(seed: int) -> Network:
     swaying velocity with leaf springs or contacts to it, and a sine load."""
     rng = np.random.default_rng(seed)
     n = int(rng.integers(2, 7))
-    masses = [Mass(f"m{i}", float(rng.uniform(0.5, 2.0)), float(rng.uniform(-0.05, 0.05)), float(rng.uniform(-0.5, 0.5))) for i in range(n)]
+    masses = [
+        Mass(f"m{i}", float(rng.uniform(0.5, 2.0)), float(rng.uniform(-0.05, 0.05)), float(rng.uniform(-0.5, 0.5)))
+        for i in range(n)
+    ]
     elements = []
     plate = rng.random() < 0.6
     for i in range(n):
         static = float(rng.uniform(0.2, 2.0))
         if rng.random() < 0.7:
-            elements.append(Friction(f"c{i}", (f"m{i}", "ground"), static=static, kinetic=static * float(rng.uniform(0.3, 1.0)), viscous=float(rng.choice([0.0, 0.3]))))
+            elements.append(
+                Friction(
+                    f"c{i}",
+                    (f"m{i}", "ground"),
+                    static=static,
+                    kinetic=static * float(rng.uniform(0.3, 1.0)),
+                    viscous=float(rng.choice([0.0, 0.3])),
+                )
+            )
         else:
             elements.append(Bingham(f"c{i}", ("ground", f"m{i}"), static, float(rng.uniform(0.5, 5.0))))
     pairs = set()
@@ -98,7 +109,9 @@ def _random_network(seed: int) -> Network:
         elif roll < 0.75:
             elements.append(LinearDashpot(f"d{k}", (f"m{i}", f"m{j}"), float(rng.uniform(0.1, 2.0))))
         elif roll < 0.9:
-            elements.append(Bingham(f"b{k}", (f"m{i}", f"m{j}"), float(rng.uniform(0.1, 1.0)), float(rng.uniform(0.5, 5.0))))
+            elements.append(
+                Bingham(f"b{k}", (f"m{i}", f"m{j}"), float(rng.uniform(0.1, 1.0)), float(rng.uniform(0.5, 5.0)))
+            )
         else:
             elements.append(Friction(f"f{k}", (f"m{i}", f"m{j}"), static=0.8, kinetic=0.5))
     drivers = []
@@ -107,7 +120,11 @@ def _random_network(seed: int) -> Network:
         drivers.append(Driver("plate", velocity))
         for i in rng.choice(n, int(rng.integers(1, n + 1)), replace=False):
             elements.append(Spring(f"leaf{i}", ("plate", f"m{i}"), float(rng.uniform(10.0, 80.0))))
-    loads = [Load(f"m{int(rng.integers(n))}", lumped.SwitchedSine(float(rng.uniform(0.5, 3.0)), float(rng.uniform(3.0, 15.0))))]
+    loads = [
+        Load(
+            f"m{int(rng.integers(n))}", lumped.SwitchedSine(float(rng.uniform(0.5, 3.0)), float(rng.uniform(3.0, 15.0)))
+        )
+    ]
     return Network(masses, elements, loads, drivers)
 
 
@@ -204,10 +221,22 @@ def _sparse_args(**change: object) -> list:
     for key, value in change.items():
         if key.startswith("t"):
             topology[int(key[1:])] = value
-    marching = (np.zeros(n_mass), np.full(n_mass, 0.3), np.zeros(n_el), np.full(n_el, -1, dtype=np.int64),
-                np.zeros(n_mass, dtype=np.int64), np.array([1, 0, 0, 0]))
-    record = (np.zeros(rows), np.zeros((rows, n_mass)), np.zeros((rows, n_mass)), np.zeros((rows, n_el)),
-              np.zeros((rows, n_el)), np.zeros((rows, n_el), dtype=np.uint8))
+    marching = (
+        np.zeros(n_mass),
+        np.full(n_mass, 0.3),
+        np.zeros(n_el),
+        np.full(n_el, -1, dtype=np.int64),
+        np.zeros(n_mass, dtype=np.int64),
+        np.array([1, 0, 0, 0]),
+    )
+    record = (
+        np.zeros(rows),
+        np.zeros((rows, n_mass)),
+        np.zeros((rows, n_mass)),
+        np.zeros((rows, n_el)),
+        np.zeros((rows, n_el)),
+        np.zeros((rows, n_el), dtype=np.uint8),
+    )
     means = _means(net, np.arange(1, steps + 1) * dt, dt)
     return [tuple(topology), marching, record, np.empty(0), means, dt, 1, steps, steps, 1, change.get("n_drivers", 1)]
 

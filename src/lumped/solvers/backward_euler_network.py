@@ -6,7 +6,9 @@ problem (:func:`lumped.solvers.network_step.solve_step`), and advances
 ``x_{n+1} = x_n + dt v_{n+1}`` and each element's state.  The loop runs in
 Python (:func:`_run_python`) or, block by block, in the compiled kernel
 (:mod:`lumped.solvers.network_compiled`), or for one mass with a friction
-contact in the compiled friction loop (:mod:`lumped.solvers.friction_compiled`).
+contact in the compiled friction loop (:mod:`lumped.solvers.friction_compiled`),
+or in the compiled sparse step (:mod:`lumped.solvers.network_sparse`, any other
+network it runs; a step whose rigid elements close a loop runs :func:`_python_step`).
 
 :func:`march` takes arguments already checked at the boundary
 (:func:`lumped.drivers.network.run_network`: the grid, the output's size,
@@ -20,12 +22,12 @@ from typing import NamedTuple
 
 import numpy as np
 
+from lumped.laws.step_graph import shifted
 from lumped.model.network import Network, listed
 from lumped.model.trajectory import Jump, Trajectory
 from lumped.solvers import friction_compiled as friction
 from lumped.solvers import network_compiled as kernel
 from lumped.solvers import network_sparse as sparse
-from lumped.laws.step_graph import shifted
 from lumped.solvers.network_step import StepError, default_bound, solve_step, unsettled
 
 __all__ = ["march"]
@@ -133,7 +135,7 @@ class _Record:
         self.row = 0
         self.python_steps = 0  # steps the sparse step left to the Python step
 
-    def save(self, t: float, x, v, f, state, rigid, low=None, high=None) -> None:  # noqa: ANN001
+    def save(self, t: float, x, v, f, state, rigid, low=None, high=None) -> None:
         r = self.row
         self.t[r], self.x[r], self.v[r], self.force[r] = t, x, v, f
         self.state[r], self.rigid[r] = state, rigid
@@ -168,8 +170,8 @@ class _Start(NamedTuple):
 
 def march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, path: str) -> Trajectory:
     """Backward Euler on ``net`` for ``n_steps`` steps of ``dt``, saving every ``save_every``-th
-    (``rows`` rows in all) with the step of ``path`` (``"compiled"``, ``"python"`` or
-    :data:`lumped.solvers.friction_compiled.PATH`)."""
+    (``rows`` rows in all) with the step of ``path`` (``"compiled"``, ``"python"``,
+    :data:`lumped.solvers.friction_compiled.PATH` or :data:`lumped.solvers.network_sparse.PATH`)."""
     first, second = net.incidence()
     x, v, state, sol = _initial(net, first, second, path)
     inertia = np.array([m.mass / dt for m in net.masses])
@@ -237,7 +239,9 @@ def _run_python(
         table, shifts = net.load_table(times), _shifts(net, times, dt)
         for n in range(begin, stop + 1):
             delta = None if shifts is None else shifts[n - begin]
-            sol, x, state = _python_step(net, dt, (n, n_steps, save_every), rec, start, (x, v, state, modes), table[n - begin], delta)
+            sol, x, state = _python_step(
+                net, dt, (n, n_steps, save_every), rec, start, (x, v, state, modes), table[n - begin], delta
+            )
             v, modes, most = sol.v, sol.modes, max(most, sol.iterations)
             rest[v != 0] = n + 1
     return v, most
@@ -269,7 +273,8 @@ def _python_step(
     w = sol.w if delta is None else sol.w + delta  # the true rates of elements joined to drivers
     before = state
     state = [
-        el.next_state(s, dt, float(we), float(fe), r) for el, s, we, fe, r in zip(net.elements, before, w, sol.f, sol.rigid)
+        el.next_state(s, dt, float(we), float(fe), r)
+        for el, s, we, fe, r in zip(net.elements, before, w, sol.f, sol.rigid)
     ]
     for e, el in enumerate(net.elements):
         if el.jumps and state[e] != before[e]:
@@ -328,7 +333,16 @@ def _run_sparse(
         while n <= stop:
             steps = (n, stop, n_steps, save_every)
             sparse.march_block(
-                topology, start.inertia, start.sigma, loaded, marching, record, table[n - begin :], means[n - begin :], dt, steps
+                topology,
+                start.inertia,
+                start.sigma,
+                loaded,
+                marching,
+                record,
+                table[n - begin :],
+                means[n - begin :],
+                dt,
+                steps,
             )
             rec.row = int(counters[0])
             if counters[2] != 3:

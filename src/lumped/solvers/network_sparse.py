@@ -34,12 +34,11 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.laws.step_graph import Piece
 from lumped.model.network import Network, listed
 from lumped.solvers import network_compiled as forest
 from lumped.solvers.network_step import StepError, StepSolution, default_bound, unsettled
 
-__all__ = ["PATH", "SparsePlan", "ineligible", "plan", "ordering", "march_block", "solve_graphs"]
+__all__ = ["PATH", "SparsePlan", "ineligible", "march_block", "ordering", "plan", "solve_graphs"]
 
 #: The trajectory's ``solver`` when this step ran it.
 PATH = "compiled-banded"
@@ -168,7 +167,21 @@ def plan(net: Network) -> SparsePlan:
 
 def _topology(topology: SparsePlan, inertia: np.ndarray, sigma: np.ndarray, loaded: np.ndarray) -> tuple:
     t = topology
-    return (t.kind, t.par, t.first, t.second, t.at_pos, t.inc_start, t.inc_el, inertia, sigma, loaded, t.driven, t.driver, t.sign)
+    return (
+        t.kind,
+        t.par,
+        t.first,
+        t.second,
+        t.at_pos,
+        t.inc_start,
+        t.inc_el,
+        inertia,
+        sigma,
+        loaded,
+        t.driven,
+        t.driver,
+        t.sign,
+    )
 
 
 def march_block(
@@ -228,7 +241,11 @@ def solve_graphs(
     modes, rigid = np.full(n_el, -1, dtype=np.int64), np.zeros(n_el, dtype=bool)
     topo = _topology(topology, inertia, sigma, np.empty(0, dtype=np.int64))
     iterations = _sparse_solve(
-        topo, pieces, counts, np.ascontiguousarray(rhs, dtype=float), np.ascontiguousarray(delta, dtype=float),
+        topo,
+        pieces,
+        counts,
+        np.ascontiguousarray(rhs, dtype=float),
+        np.ascontiguousarray(delta, dtype=float),
         (v, w, f, modes, rigid.view(np.uint8)),
     )
     if iterations < 0:
