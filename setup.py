@@ -64,6 +64,7 @@ setup(
                     "src/lumped/kernels/_network_elements.h",
                     "src/lumped/kernels/_network_forest.h",
                     "src/lumped/kernels/_network_loop.h",
+                    "src/lumped/kernels/_network_sparse.h",
                     "src/lumped/kernels/_stick.h",
                 ],
             ),

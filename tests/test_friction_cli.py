@@ -180,7 +180,7 @@ def test_the_output_adds_each_drivers_position_and_velocity(tmp_path: Path) -> N
     assert np.abs(gap - gap[0]).max() <= 1e-15
     assert (
         result.stderr.strip()
-        == "lumped simulate (backward-euler): m still moving at t = 1 s (x = 0.1 m); wrote out.csv"
+        == "lumped simulate (backward-euler): m still moving at t = 1 s (x = 0.1 m); compiled step (banded); wrote out.csv"
     )
     npz = _simulate(tmp_path, text, output="out.npz")
     assert npz.returncode == 0, npz.stderr

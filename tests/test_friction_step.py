@@ -209,13 +209,17 @@ def test_drivers_are_checked_at_the_boundary():
         Network([Mass("m", 1.0)], [Spring("s", ("m", G), 1.0)], drivers=[Driver("m", 1.0)])
 
 
-def test_methods_that_do_not_run_drivers_refuse_them():
-    """The network kernel runs no driven point; the one-mass friction loop runs only constant velocities
-    (a belt at a constant speed is its to run: tests/test_friction_kernel.py)."""
+def test_a_swaying_belt_runs_the_compiled_sparse_step():
+    """The one-mass friction loop runs only constant velocities (tests/test_friction_kernel.py); a belt
+    whose velocity is a history takes the compiled sparse step (tests/test_network_banded.py), which
+    agrees with the Python step."""
     swaying = Driver("belt", lumped.SwitchedSine(0.2, 1.0))
     net = one_mass(Friction("d", ("m", "belt"), static=1.0, kinetic=1.0), drivers=[swaying])
-    with pytest.raises(ValueError, match="driven points"):
-        lumped.simulate_network(net, 1.0, 1e-3, solver="compiled")
+    compiled = lumped.simulate_network(net, 1.0, 1e-3, solver="compiled")
+    python = lumped.simulate_network(net, 1.0, 1e-3, solver="python")
+    assert compiled.solver == "compiled-banded"
+    assert np.array_equal(compiled.rigid, python.rigid)
+    np.testing.assert_allclose(compiled.positions, python.positions, rtol=0, atol=1e-12)
 
 
 # -- one law contract ------------------------------------------------------------------------------------

@@ -46,7 +46,31 @@ def run(args: argparse.Namespace, output: Output) -> str:
     if args.sensitivities is not None:
         columns |= sensitivity_columns(network, traj.t, args.sensitivities)
     output.commit(columns)
-    return traj.summary()
+    clause = step_clause(traj.solver)
+    return traj.summary() + (f"; {clause}" if clause else "")
+
+
+#: What the trajectory's ``solver`` says of the step that ran (backward Euler's paths).
+_STEPS = {
+    "algorithm1": "Algorithm 1's compiled loop",
+    "resolvent": "the law's resolvent step",
+    "compiled": "compiled step (forest)",
+    "compiled-banded": "compiled step (banded)",
+    "one-mass-friction": "compiled step (one-mass friction loop)",
+    "python": "Python step",
+}
+
+
+def step_clause(solver: str) -> str:
+    """The summary's clause naming the step solver that ran (``""`` for a method's own stepper), e.g.
+    ``"compiled step (banded)"``, or with the steps a rigid loop left to Python: ``"compiled step
+    (banded; 3 of 2000 steps in the Python step)"``."""
+    path, _, rest = solver.partition("+python (")
+    if path not in _STEPS:
+        return ""
+    if not rest:
+        return _STEPS[path]
+    return f"{_STEPS[path][:-1]}; {rest.rstrip(')')} in the Python step)"
 
 
 def _grid(args: argparse.Namespace) -> dict[str, float]:

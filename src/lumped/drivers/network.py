@@ -15,7 +15,9 @@ step is then the law's resolvent (a root solve).  Every other network takes
 the active-set step, in C (:mod:`lumped.solvers.network_compiled`) when its elements
 are piecewise linear and its links form a forest or close one loop, else, for one
 mass with a friction contact (a block on a belt), in the compiled friction loop
-(:mod:`lumped.solvers.friction_compiled`), else in Python.
+(:mod:`lumped.solvers.friction_compiled`), else in the compiled sparse step
+(:mod:`lumped.solvers.network_sparse`: any network of piecewise-linear elements and
+friction contacts without a fall, loops through the ground included), else in Python.
 """
 
 from __future__ import annotations
@@ -29,6 +31,7 @@ from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 from lumped.solvers import friction_compiled as friction
 from lumped.solvers import network_compiled as kernel
+from lumped.solvers import network_sparse as sparse
 from lumped.solvers.backward_euler_network import march
 from lumped.solvers.uniqueness import check_step
 
@@ -42,7 +45,10 @@ SOLVERS = NETWORK_SOLVERS
 #: (benchmarks/bench_network.py, chains): Python about 2e-5 + 1e-5 per
 #: element; compiled about 1e-6 + 4e-8 to 1e-7 per element; a margin of 2.
 #: The one-mass friction loop: about 3e-8 s a step (benchmarks/bench_belt.py), a margin of 10.
-_COST = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7), friction.PATH: (3e-7, 0.0)}
+#: The sparse step: about 0.04 to 0.12 us per block and step on the floor chain of
+#: benchmarks/bench_chain.py (three elements a block: 1.5e-8 to 4e-8 s per element, CPU
+#: time; the wall time on the busy machine up to twice that), a margin of 2 to 3.
+_COST = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7), friction.PATH: (3e-7, 0.0), sparse.PATH: (4e-6, 1e-7)}
 
 
 def _paper_form(net: Network) -> OneMass | None:
@@ -88,9 +94,11 @@ def run_network(network: Network, t_end: float, dt: float, *, save_every: int = 
         the compiled one-mass friction loop when
         :func:`lumped.solvers.friction_compiled.ineligible` allows (one mass, linear
         springs and dashpots, one friction contact of a ``kernel_form``, drivers at
-        constant velocities; ``Trajectory.solver`` is then ``"one-mass-friction"``), and in
-        Python otherwise.  ``"compiled"`` and ``"python"`` force one path
-        (``"compiled"`` refuses a network neither compiled loop can run).
+        constant velocities; ``Trajectory.solver`` is then ``"one-mass-friction"``), in the
+        compiled sparse step when :func:`lumped.solvers.network_sparse.ineligible` allows
+        (``"compiled-banded"``; ``"compiled-banded+python (k of n steps)"`` when rigid loops
+        left ``k`` steps to the Python step), and in Python otherwise.  ``"compiled"`` and
+        ``"python"`` force one path (``"compiled"`` refuses a network no compiled step can run).
 
     Returns
     -------
@@ -140,7 +148,8 @@ def paper_form(network: Network, solver: str = "auto") -> OneMass | None:
 
 def _path(net: Network, solver: str) -> str:
     """``"compiled"``, :data:`lumped.solvers.friction_compiled.PATH` (one mass with a friction contact
-    that the network kernel cannot run) or ``"python"``: the active-set step's path for ``solver``."""
+    that the network kernel cannot run), :data:`lumped.solvers.network_sparse.PATH` (any other network
+    the sparse step runs) or ``"python"``: the active-set step's path for ``solver``."""
     if solver == "python":
         return "python"
     reason = kernel.ineligible(net)
@@ -149,8 +158,9 @@ def _path(net: Network, solver: str) -> str:
     other = friction.ineligible(net)
     if other is None:
         return friction.PATH
+    general = sparse.ineligible(net)
+    if general is None:
+        return sparse.PATH
     if solver == "compiled":
-        if any(el.slip_law() is not None for el in net.elements):  # the friction loop's reason too
-            reason = f"{reason} (the network kernel); {other} (the one-mass friction loop)"
-        raise ValueError(f"solver: 'compiled' cannot run this network: {reason}")
+        raise ValueError(f"solver: 'compiled' cannot run this network: {general}")
     return "python"

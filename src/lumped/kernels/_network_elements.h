@@ -18,7 +18,11 @@
 #include "_stick.h" /* sticks1: the stick test of every kernel */
 
 #define MAX_PIECES 5
-enum { SPRING = 0, STRING = 1, BINGHAM = 2, MAXWELL = 3, DASHPOT = 4, LOCKING = 5 };
+enum { SPRING = 0, STRING = 1, BINGHAM = 2, MAXWELL = 3, DASHPOT = 4, LOCKING = 5, FRICTION = 6 };
+/* FRICTION: a friction contact with a linear slip curve g(s) = a + b s (laws.step_graph.SlipGraph), its
+ * parameters (static, a, b); only the sparse step (_network_sparse.h) is handed one.  Its modes are the
+ * indices of its three pieces, SLIP_BACK 0, STICK 1, SLIP_FORWARD 2, picked by slip_rule. */
+enum { SLIP_BACK = 0, STICK_PIECE = 1, SLIP_FORWARD = 2 };
 
 typedef struct {
     int rigid;
@@ -68,6 +72,11 @@ static int step_graph(int64_t kind, const double *p, double s, double dt, piece 
     case DASHPOT:
         g[0] = free_piece(0.0, p[0], -INFINITY, INFINITY);
         return 1;
+    case FRICTION: /* SlipGraph: slip back, stick, slip forward */
+        g[0] = free_piece(-p[1], p[2], -INFINITY, 0.0);
+        g[1] = rigid_piece(0.0, -p[0], p[0]);
+        g[2] = free_piece(p[1], p[2], 0.0, INFINITY);
+        return 3;
     case LOCKING: { /* tau, c, v_lock */
         const double lock = p[2], edge = p[0] + p[1] * p[2];
         g[0] = rigid_piece(-lock, -INFINITY, -edge);
@@ -79,6 +88,9 @@ static int step_graph(int64_t kind, const double *p, double s, double dt, piece 
     return 0; /* not reached: the bindings refuse any other code (take_topology) */
 }
 
+/* True if the kind's step graph depends on its state (step_graph reads s), so is built every step. */
+static int stateful(int64_t kind) { return kind == SPRING || kind == STRING || kind == MAXWELL; }
+
 /* Element.next_state for each kind. */
 static double next_state(int64_t kind, const double *p, double s, double dt, double w, double f, int rigid) {
     switch (kind) {
@@ -87,6 +99,8 @@ static double next_state(int64_t kind, const double *p, double s, double dt, dou
         return f;
     case STRING:
         return rigid ? p[1] : s + dt * w;
+    case FRICTION: /* SlipElement.next_state: the direction the step ends in */
+        return rigid || w == 0.0 ? 0.0 : copysign(1.0, w);
     default:
         return 0.0;
     }
@@ -104,5 +118,25 @@ static int mode_of(const piece *g, int n, double z, double sigma) {
     for (int k = 0; k < n - 1; k++)
         if (!g[k].rigid && z <= g[k].a + (g[k].b + sigma) * g[k].hi) return k;
     return n - 1;
+}
+
+/* step_graph._slip_rule: a stuck contact stays stuck while |f| <= static and slips the way it is
+ * pulled beyond; a slipping one slips while its (true) rate keeps its direction, else sticks. */
+static int slip_rule(int old, double w, double f, double stat) {
+    if (old == STICK_PIECE) return f > stat ? SLIP_FORWARD : f < -stat ? SLIP_BACK : STICK_PIECE;
+    if (old == SLIP_FORWARD) return w > 0 ? SLIP_FORWARD : STICK_PIECE;
+    return w < 0 ? SLIP_BACK : STICK_PIECE;
+}
+
+/* StepGraph.initial_mode: the middle piece, or a contact's piece from its state (its direction). */
+static int initial_mode(int64_t kind, double state, int count) {
+    if (kind == FRICTION && count == 3) return state > 0 ? SLIP_FORWARD : state < 0 ? SLIP_BACK : STICK_PIECE;
+    return count / 2;
+}
+
+/* step_graph._shift_piece: p in the rate w of an element whose true rate is w + delta. */
+static piece shift_piece(piece p, double delta) {
+    if (p.rigid) return rigid_piece(p.a - delta, p.lo, p.hi);
+    return free_piece(p.a + p.b * delta, p.b, p.lo - delta, p.hi - delta);
 }
 #endif

@@ -61,6 +61,14 @@ typedef struct {
     Py_ssize_t n_loop;
     int64_t *loop_el;
     double *loop_n, *loop_f0;
+    /* the sparse step (_network_sparse.h): its arrays, or NULL for the forest's elimination; each
+     * element's rate shift by a driven point (NULL: none); fallback set when a step needs the Python step */
+    struct sparse_s *sp;
+    double *delta;
+    int fallback;
+    double *gstate; /* the state each element's step graph was built from (the kernel's graphs()) */
+    uint8_t *lazy;  /* the sparse step's one-piece graphs kept only in its arrays (sync_graphs), or NULL */
+    double *stat;   /* a friction contact's static threshold (slip_rule), by element; the sparse step's */
 } net_t;
 
 /* q's work arrays for n_mass masses and n_el elements: 0, or -1 if memory ran
@@ -72,7 +80,7 @@ static int allocate(net_t *q, Py_ssize_t n_mass, Py_ssize_t n_el) {
     q->graph = malloc((n_el * MAX_PIECES + 1) * sizeof(piece));
     q->count = malloc((4 * n_el + 1) * sizeof(int));
     q->rig = malloc(n_pt * sizeof(int64_t));
-    q->D = malloc((12 * n_pt + 5 * n_el) * sizeof(double));
+    q->D = malloc((12 * n_pt + 6 * n_el) * sizeof(double));
     q->seen = malloc(q->bound * sizeof(uint64_t));
     q->loop_el = malloc((n_el + 1 + n_pt) * sizeof(int64_t)); /* and hold_chord's scratch */
     if (!q->graph || !q->count || !q->rig || !q->D || !q->seen || !q->loop_el) return -1;
@@ -81,7 +89,7 @@ static int allocate(net_t *q, Py_ssize_t n_mass, Py_ssize_t n_el) {
     q->A = q->K + n_pt, q->off = q->A + n_pt, q->vall = q->off + n_pt, q->rhs = q->vall + n_pt;
     q->w = q->rhs + n_pt, q->f = q->w + n_el, q->z = q->f + n_el;
     q->Ry = q->z + n_el, q->numy = q->Ry + n_pt, q->vy = q->numy + n_pt;
-    q->loop_n = q->vy + n_pt, q->loop_f0 = q->loop_n + n_el;
+    q->loop_n = q->vy + n_pt, q->loop_f0 = q->loop_n + n_el, q->gstate = q->loop_f0 + n_el;
     q->n_loop = 0, q->rigid_loop = 0;
     return 0;
 }
@@ -95,6 +103,28 @@ static const piece *chosen(const net_t *q, Py_ssize_t e, const int *mode) {
 }
 
 #include "_network_loop.h" /* the chord: chord_loads, chord_velocities, chord_forces, loop_intervals */
+
+/* The mode after an iteration (StepGraph.next_mode): a friction contact's rule, in its true rate
+ * w + delta (step_graph.Shifted), or the piece holding z = f + sigma w. */
+static int next_mode(const net_t *q, Py_ssize_t e, double sigma) {
+    if (q->kind[e] == FRICTION && q->count[e] == 3) {
+        const double d = q->delta ? q->delta[e] : 0.0;
+        return slip_rule(q->mode[e], d != 0.0 ? q->w[e] + d : q->w[e], q->f[e], q->stat[e]);
+    }
+    if (q->count[e] == 1) return 0; /* Pieces.mode of one piece: that piece */
+    return mode_of(q->graph + e * MAX_PIECES, q->count[e], q->f[e] + sigma * q->w[e], sigma);
+}
+
+/* StepGraph.mode (the dual sweeps' choice): a shifted contact asks its own graph with z + sigma delta. */
+static int resolvent_mode(const net_t *q, Py_ssize_t e, double z, double sigma) {
+    const double d = q->delta ? q->delta[e] : 0.0;
+    if (q->kind[e] == FRICTION && q->count[e] == 3 && d != 0.0) {
+        piece g[3];
+        for (int k = 0; k < 3; k++) g[k] = shift_piece(q->graph[e * MAX_PIECES + k], -d);
+        return mode_of(g, 3, z + sigma * d, sigma);
+    }
+    return mode_of(q->graph + e * MAX_PIECES, q->count[e], z, sigma);
+}
 
 /* Leaf to root: fold each point's subtree into its parent. */
 static void eliminate(net_t *q, const int *mode) {
@@ -171,6 +201,17 @@ static void substitute(net_t *q, const int *mode) {
     if (q->chord_end > q->chord_start) chord_forces(q, mode);
 }
 
+static int sparse_linear(net_t *q, const int *mode); /* _network_sparse.h */
+static void sync_graphs(net_t *q);                     /* _network_sparse.h */
+
+/* One linear solve with the modes fixed: 0 if the sparse step met what it leaves to Python. */
+static int linear(net_t *q, const int *mode) {
+    if (q->sp) return sparse_linear(q, mode);
+    eliminate(q, mode);
+    substitute(q, mode);
+    return 1;
+}
+
 static uint64_t hash_modes(const int *m, Py_ssize_t n) {
     uint64_t h = 1469598103934665603ULL; /* FNV-1a */
     for (Py_ssize_t i = 0; i < n; i++) {
@@ -209,12 +250,13 @@ static int iterate(net_t *q, double scale, int *iterations) {
     int seen = 0, cycling = 0, round = 0;
     uint64_t first = 0;
     for (int it = 1; it <= q->bound; it++) {
-        eliminate(q, q->mode);
-        substitute(q, q->mode);
+        if (!linear(q, q->mode)) {
+            q->fallback = 1;
+            return 0;
+        }
         int settled = 1;
         for (Py_ssize_t e = 0; e < q->n_el; e++) {
-            const double s = q->sigma[e] * scale;
-            q->next[e] = mode_of(q->graph + e * MAX_PIECES, q->count[e], q->f[e] + s * q->w[e], s);
+            q->next[e] = next_mode(q, e, q->sigma[e] * scale);
             settled &= q->next[e] == q->mode[e];
         }
         if (settled) {
@@ -224,6 +266,7 @@ static int iterate(net_t *q, double scale, int *iterations) {
         const uint64_t h = hash_modes(q->next, q->n_el);
         for (int j = 0; j < seen && !cycling; j++) cycling = q->seen[j] == h;
         if (cycling) {
+            sync_graphs(q);
             if (on_pieces(q, q->mode)) {
                 for (Py_ssize_t e = 0; e < q->n_el; e++) {
                     const piece *p = chosen(q, e, q->mode);
@@ -256,7 +299,7 @@ static void dual_sweeps(net_t *q, int sweeps) {
             const int64_t i = q->first[e], j = q->second[e];
             const double sigma = 1.0 / (inv[i] + inv[j]);
             const double z = f[e] + sigma * (v[j] - v[i]);
-            const int k = q->guess[e] = mode_of(q->graph + e * MAX_PIECES, q->count[e], z, sigma);
+            const int k = q->guess[e] = resolvent_mode(q, e, z, sigma);
             const piece *p = q->graph + e * MAX_PIECES + k;
             const double fresh = p->rigid ? z - sigma * p->a : p->a + p->b * (z - p->a) / (p->b + sigma);
             const double delta = fresh - f[e];
@@ -271,14 +314,18 @@ static void dual_sweeps(net_t *q, int sweeps) {
 /* step.solve_step from the warm start in q->mode: 1 if settled. */
 static int solve(net_t *q, int *iterations) {
     memcpy(q->guess, q->mode, q->n_el * sizeof(int));
+    q->fallback = 0;
     for (int s = 0; s < N_SCALES; s++) {
         memcpy(q->mode, q->guess, q->n_el * sizeof(int));
         if (iterate(q, SCALES[s], iterations)) return 1;
+        if (q->fallback) return 0;
     }
+    if (N_SWEEPS) sync_graphs(q);
     for (int s = 0; s < N_SWEEPS; s++) {
         dual_sweeps(q, SWEEPS[s]);
         memcpy(q->mode, q->guess, q->n_el * sizeof(int));
         if (iterate(q, 1.0, iterations)) return 1;
+        if (q->fallback) return 0;
     }
     return 0;
 }

@@ -25,6 +25,7 @@
 #include "_binding_checks.h"
 #include "_network_elements.h" /* piece, step_graph, next_state: the elements by kind code */
 #include "_network_forest.h"   /* net_t, allocate, solve: the one-step problem */
+#include "_network_sparse.h"   /* sparse_linear: the linear solve of any network */
 
 typedef struct {
     double *x, *v, *state;
@@ -44,17 +45,38 @@ static void save(const net_t *q, const march_t *m, const record_t *o, double t, 
     memcpy(o->v + row * n, m->v, n * sizeof(double));
     memcpy(o->force + row * ne, q->f, ne * sizeof(double));
     memcpy(o->state + row * ne, m->state, ne * sizeof(double));
-    for (Py_ssize_t e = 0; e < ne; e++) o->rigid[row * ne + e] = (uint8_t)chosen(q, e, q->mode)->rigid;
+    for (Py_ssize_t e = 0; e < ne; e++) o->rigid[row * ne + e] = (uint8_t)(q->sp ? q->sp->rig[e] : chosen(q, e, q->mode)->rigid);
     if (o->low) loop_intervals(q, o->low + row * ne, o->high + row * ne);
 }
 
-/* One step to t = n dt with the loads `load`: 0 on success, else the bad kind. */
-static int step(net_t *q, const march_t *m, const double *load, int *iterations) {
+/* The elements joined to driven points (the sparse step only), an entry per element and driver it is
+ * joined to (Network.driven, in its order): the element, the driver, the sign; n_drivers columns of
+ * the drivers' mean velocities per step. */
+typedef struct {
+    Py_ssize_t n, n_drivers;
+    const int64_t *el, *driver;
+    const double *sign;
+} driven_t;
+
+/* Every step graph of the step: those whose state changed (stateful: a spring's force) and those of
+ * the elements joined to driven points; the others are the ones built before, unchanged. */
+static void graphs(net_t *q, const double *state, const driven_t *dv) {
     for (Py_ssize_t e = 0; e < q->n_el; e++)
-        q->count[e] = step_graph(q->kind[e], q->par + 4 * e, m->state[e], q->dt, q->graph + e * MAX_PIECES);
+        if (state[e] != q->gstate[e] && stateful(q->kind[e])) graph_of(q, e, state[e]);
+    for (Py_ssize_t k = 0; k < dv->n; k++) graph_of(q, dv->el[k], state[dv->el[k]]);
+}
+
+/* One step to t = n dt with the loads `load` and the drivers' rate shifts `shift`: 0 on success, else
+ * the bad kind (3: the sparse step met a rigid loop, the step is left to Python). */
+static int step(net_t *q, const march_t *m, const double *load, const driven_t *dv, const double *shift,
+                int *iterations) {
+    for (Py_ssize_t k = 0; k < dv->n; k++) q->delta[dv->el[k]] = 0.0;
+    for (Py_ssize_t k = 0; k < dv->n; k++) /* backward_euler_network._shifts: 0 + the sum, in its order */
+        q->delta[dv->el[k]] += dv->sign[k] * shift[dv->driver[k]];
+    graphs(q, m->state, dv);
     for (Py_ssize_t i = 0; i < q->n_mass; i++) q->rhs[i] = q->inertia[i] * m->v[i] + 0.0;
     for (Py_ssize_t k = 0; k < q->n_load; k++) q->rhs[q->load_mass[k]] = q->inertia[q->load_mass[k]] * m->v[q->load_mass[k]] + load[k];
-    if (!solve(q, iterations)) return 1;
+    if (!solve(q, iterations)) return q->fallback ? 3 : 1;
     int finite = 1;
     for (Py_ssize_t i = 0; i < q->n_mass; i++) finite &= isfinite(q->vall[i]);
     for (Py_ssize_t e = 0; e < q->n_el; e++) finite &= isfinite(q->f[e]);
@@ -64,23 +86,26 @@ static int step(net_t *q, const march_t *m, const double *load, int *iterations)
         m->x[i] = m->x[i] + q->dt * m->v[i];
     }
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
-        const int rigid = chosen(q, e, q->mode)->rigid;
-        m->state[e] = next_state(q->kind[e], q->par + 4 * e, m->state[e], q->dt, q->w[e], q->f[e], rigid);
+        const int rigid = q->sp ? q->sp->rig[e] : chosen(q, e, q->mode)->rigid;
+        const double w = q->delta ? q->w[e] + q->delta[e] : q->w[e]; /* the true rate */
+        m->state[e] = next_state(q->kind[e], q->par + 4 * e, m->state[e], q->dt, w, q->f[e], rigid);
         m->modes[e] = q->mode[e];
     }
     return 0;
 }
 
-static int march(net_t *q, march_t *m, const record_t *o, const double *table, Py_ssize_t n_first,
-                 Py_ssize_t n_last, Py_ssize_t n_steps, Py_ssize_t save_every) {
+static int march(net_t *q, march_t *m, const record_t *o, const double *table, const driven_t *dv,
+                 const double *shifts, Py_ssize_t n_first, Py_ssize_t n_last, Py_ssize_t n_steps,
+                 Py_ssize_t save_every) {
     int64_t *cnt = m->counters;
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
         q->count[e] = step_graph(q->kind[e], q->par + 4 * e, m->state[e], q->dt, q->graph + e * MAX_PIECES);
-        q->mode[e] = m->modes[e] < 0 ? q->count[e] / 2 : (int)m->modes[e];
+        q->gstate[e] = m->state[e];
+        q->mode[e] = m->modes[e] < 0 ? initial_mode(q->kind[e], m->state[e], q->count[e]) : (int)m->modes[e];
     }
     for (Py_ssize_t n = n_first; n <= n_last; n++) {
         int iterations = 0;
-        const int bad = step(q, m, table + (n - n_first) * q->n_load, &iterations);
+        const int bad = step(q, m, table + (n - n_first) * q->n_load, dv, dv->n ? shifts + (n - n_first) * dv->n_drivers : NULL, &iterations);
         if (bad) {
             cnt[1] = n, cnt[2] = bad;
             return bad;
@@ -306,14 +331,230 @@ static PyObject *network_block(PyObject *self, PyObject *args) {
     march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters};
     record_t o = {rb[0]->buf, rb[1]->buf, rb[2]->buf, rb[3]->buf, rb[4]->buf, rb[5]->buf,
                   kept ? rb[6]->buf : NULL, kept ? rb[7]->buf : NULL};
+    const driven_t none = {0, 0, NULL, NULL, NULL};
     Py_BEGIN_ALLOW_THREADS
-    march(&q, &m, &o, table->buf, n_first, n_last, n_steps, save_every);
+    march(&q, &m, &o, table->buf, &none, NULL, n_first, n_last, n_steps, save_every);
     Py_END_ALLOW_THREADS
     deallocate(&q);
     release_held(&h);
     Py_RETURN_NONE;
 fail_alloc:
     deallocate(&q);
+fail:
+    release_held(&h);
+    return NULL;
+}
+
+/* ---- the sparse step's bindings (_network_sparse.h) ---------------------- */
+
+static const char *const SPARSE[] = {
+    "topology[0] (kind)",      "topology[1] (par)",    "topology[2] (first)",   "topology[3] (second)",
+    "topology[4] (at_pos)",    "topology[5] (inc_start)", "topology[6] (inc_el)", "topology[7] (inertia)",
+    "topology[8] (sigma)",     "topology[9] (load_mass)", "topology[10] (driven_el)", "topology[11] (driven_driver)",
+    "topology[12] (driven_sign)"};
+
+/* -1 with ValueError unless at_pos lists every mass once and the incidence lists each element once
+ * at its first point and once at its second. */
+static int check_sparse(const net_t *q, const sparse_t *s, Py_ssize_t n_inc) {
+    const Py_ssize_t n = q->n_mass > q->n_el ? q->n_mass : q->n_el;
+    uint8_t *seen = calloc(2 * n + 2, 1);
+    if (seen == NULL) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    const char *bad = NULL;
+    for (Py_ssize_t k = 0; k < q->n_mass && !bad; k++)
+        if (seen[s->at_pos[k]]++) bad = "topology[4] (at_pos) must list every mass once";
+    memset(seen, 0, 2 * n + 2);
+    if (!bad && (s->inc_start[0] != 0 || s->inc_start[q->n_pt] != n_inc || n_inc != 2 * q->n_el))
+        bad = "topology[5] (inc_start) must run from 0 to the length of topology[6] (inc_el), twice the elements";
+    for (Py_ssize_t p = 0; p < q->n_pt && !bad; p++) {
+        if (s->inc_start[p + 1] < s->inc_start[p]) bad = "topology[5] (inc_start) must not decrease";
+        for (int64_t k = s->inc_start[p]; k < s->inc_start[p + 1] && !bad; k++) {
+            const int64_t e = s->inc_el[k];
+            const int at = q->first[e] == p ? 0 : q->second[e] == p ? 1 : -1;
+            if (at < 0 || seen[2 * e + at]++) bad = "topology[6] (inc_el) must list each element once at each of its points";
+        }
+    }
+    free(seen);
+    if (bad) PyErr_SetString(PyExc_ValueError, bad);
+    return bad ? -1 : 0;
+}
+
+/* Take the sparse topology tuple's 13 arrays into h, checked; set q's counts and arrays, s's, and dv
+ * (its driver count: n_drivers). */
+static int take_sparse(held_t *h, PyObject *obj, net_t *q, sparse_t *s, driven_t *dv, Py_ssize_t n_drivers) {
+    memset(q, 0, sizeof *q);
+    memset(s, 0, sizeof *s);
+    PyObject *const *a = tuple_items(obj, "topology", 13);
+    const Py_buffer *b[13];
+    if (a == NULL || !(b[0] = take(h, a[0], SPARSE[0], 'q', -1, 0)) || !(b[7] = take(h, a[7], SPARSE[7], 'd', -1, 0)) ||
+        !(b[10] = take(h, a[10], SPARSE[10], 'q', -1, 0)))
+        return -1;
+    const Py_ssize_t n_el = items(b[0]), n_mass = items(b[7]), n_pt = n_mass + 1, n_dv = items(b[10]);
+    const Py_ssize_t count[13] = {n_el, 4 * n_el, n_el, n_el, n_mass, n_pt + 1, -1, n_mass, n_el, -1, n_dv, n_dv, n_dv};
+    for (int i = 1; i < 13; i++)
+        if (i != 7 && i != 10 && !(b[i] = take(h, a[i], SPARSE[i], i == 1 || i == 8 || i == 12 ? 'd' : 'q', count[i], 0)))
+            return -1;
+    if (check_indices(SPARSE[0], b[0], 0, FRICTION + 1) < 0 || check_indices(SPARSE[2], b[2], 0, n_pt) < 0 ||
+        check_indices(SPARSE[3], b[3], 0, n_pt) < 0 || check_indices(SPARSE[4], b[4], 0, n_mass) < 0 ||
+        check_indices(SPARSE[5], b[5], 0, items(b[6]) + 1) < 0 || check_indices(SPARSE[6], b[6], 0, n_el) < 0 ||
+        check_indices(SPARSE[9], b[9], 0, n_mass) < 0 || check_indices(SPARSE[10], b[10], 0, n_el) < 0 ||
+        check_indices(SPARSE[11], b[11], 0, n_drivers) < 0)
+        return -1;
+    q->kind = b[0]->buf, q->par = b[1]->buf, q->first = b[2]->buf, q->second = b[3]->buf;
+    q->inertia = b[7]->buf, q->sigma = b[8]->buf, q->load_mass = b[9]->buf;
+    q->n_mass = n_mass, q->n_el = n_el, q->n_pt = n_pt, q->n_load = items(b[9]);
+    s->at_pos = b[4]->buf, s->inc_start = b[5]->buf, s->inc_el = b[6]->buf;
+    dv->n = n_dv, dv->el = b[10]->buf, dv->driver = b[11]->buf, dv->sign = b[12]->buf, dv->n_drivers = n_drivers;
+    return check_sparse(q, s, items(b[6]));
+}
+
+/* q's and s's work arrays, and the rate shifts (zero): 0, or -1 with MemoryError. */
+static int allocate_sparse(net_t *q, sparse_t *s) {
+    if (allocate(q, q->n_mass, q->n_el) < 0 || sparse_allocate(s, q) < 0 ||
+        !(q->delta = calloc(q->n_el + 1, sizeof(double)))) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    q->sp = s;
+    if (!(q->stat = malloc((q->n_el + 1) * sizeof(double)))) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    for (Py_ssize_t e = 0; e < q->n_el; e++) q->stat[e] = q->par[4 * e]; /* contiguous, for slip_rule */
+    if (!(q->lazy = calloc(q->n_el + 1, 1))) {
+        PyErr_NoMemory();
+        return -1;
+    }
+    return 0;
+}
+
+static void deallocate_sparse(net_t *q, sparse_t *s) {
+    deallocate(q);
+    sparse_free(s);
+    free(q->delta), free(q->stat), free(q->lazy);
+}
+
+/* sparse_solve(topology, pieces, counts, rhs, delta, solution) -> iterations (0: did not settle, -1: a
+ * rigid loop, left to Python).  network_solve for the sparse step: one step problem with the given
+ * graphs, pieces (elements, 5, 5) as there, delta (elements,) each element's rate shift (a friction
+ * contact's rule reads its true rate w + delta). */
+static PyObject *sparse_solve(PyObject *self, PyObject *args) {
+    static const char *const names[] = {"solution[0] (v)", "solution[1] (w)", "solution[2] (f)",
+                                        "solution[3] (modes)", "solution[4] (rigid)"};
+    PyObject *topo_obj, *pieces_obj, *counts_obj, *rhs_obj, *delta_obj, *sol_obj;
+    if (!PyArg_ParseTuple(args, "OOOOOO", &topo_obj, &pieces_obj, &counts_obj, &rhs_obj, &delta_obj, &sol_obj))
+        return NULL;
+    held_t h = {.n = 0};
+    net_t q;
+    sparse_t sp;
+    driven_t dv;
+    Py_buffer *sb[5];
+    const Py_buffer *pieces, *counts, *rhs, *delta;
+    if (take_sparse(&h, topo_obj, &q, &sp, &dv, PY_SSIZE_T_MAX) < 0 ||
+        !(pieces = take(&h, pieces_obj, "pieces", 'd', q.n_el * MAX_PIECES * 5, 0)) ||
+        !(counts = take(&h, counts_obj, "counts", 'q', q.n_el, 0)) || !(rhs = take(&h, rhs_obj, "rhs", 'd', q.n_mass, 0)) ||
+        !(delta = take(&h, delta_obj, "delta", 'd', q.n_el, 0)))
+        goto fail;
+    const Py_ssize_t sizes[] = {q.n_mass, q.n_el, q.n_el, q.n_el, q.n_el};
+    if (take_tuple(&h, sol_obj, "solution", 5, names, "dddqB", sizes, 1, sb) < 0 ||
+        check_indices("counts", counts, 1, MAX_PIECES + 1) < 0)
+        goto fail;
+    const Py_ssize_t n_el = q.n_el;
+    if (allocate_sparse(&q, &sp) < 0) goto fail_alloc;
+    const double *pc = pieces->buf, *r = rhs->buf, *d = delta->buf;
+    const int64_t *cnt = counts->buf, *warm = sb[3]->buf;
+    for (Py_ssize_t e = 0; e < n_el; e++) q.count[e] = (int)cnt[e], q.delta[e] = d[e];
+    if (check_modes(names[3], warm, q.count, n_el) < 0) goto fail_alloc;
+    for (Py_ssize_t e = 0; e < n_el; e++) {
+        for (int k = 0; k < q.count[e]; k++) {
+            const double *row = pc + (e * MAX_PIECES + k) * 5;
+            q.graph[e * MAX_PIECES + k] = row[0] != 0.0 ? rigid_piece(row[1], row[3], row[4]) : free_piece(row[1], row[2], row[3], row[4]);
+        }
+        q.mode[e] = warm[e] < 0 ? q.count[e] / 2 : (int)warm[e];
+    }
+    for (Py_ssize_t i = 0; i < q.n_mass; i++) q.rhs[i] = r[i];
+    int iterations = 0;
+    const int ok = solve(&q, &iterations);
+    double *v = sb[0]->buf, *w = sb[1]->buf, *f = sb[2]->buf;
+    int64_t *modes = sb[3]->buf;
+    uint8_t *rigid = sb[4]->buf;
+    for (Py_ssize_t i = 0; i < q.n_mass; i++) v[i] = q.vall[i];
+    for (Py_ssize_t e = 0; e < n_el; e++) {
+        w[e] = q.w[e], f[e] = q.f[e], modes[e] = q.mode[e];
+        rigid[e] = (uint8_t)chosen(&q, e, q.mode)->rigid;
+    }
+    const int fallback = q.fallback;
+    deallocate_sparse(&q, &sp);
+    release_held(&h);
+    return PyLong_FromLong(ok ? iterations : fallback ? -1 : 0);
+fail_alloc:
+    deallocate_sparse(&q, &sp);
+fail:
+    release_held(&h);
+    return NULL;
+}
+
+/* sparse_block(topology, marching, record, table, means, dt, n_first, n_last, n_steps, save_every)
+ * network_block for the sparse step: topology = (kind, par, first, second, at_pos, inc_start, inc_el,
+ * inertia, sigma, load_mass, driven_el, driven_driver, driven_sign), marching and record as there (no
+ * intervals: a step whose forces are not unique is a rigid loop, left to Python with counters[2] = 3),
+ * means (steps, drivers) each driver's mean velocity over each step of the block: a driven element's
+ * rate shift is the sum of sign * mean over its entries. */
+static PyObject *sparse_block(PyObject *self, PyObject *args) {
+    static const char *const march_names[] = {"marching[0] (x)",     "marching[1] (v)",    "marching[2] (state)",
+                                              "marching[3] (modes)", "marching[4] (rest)", "marching[5] (counters)"};
+    static const char *const record_names[] = {"record[0] (t)",     "record[1] (x)",     "record[2] (v)",
+                                               "record[3] (force)", "record[4] (state)", "record[5] (rigid)"};
+    PyObject *topo_obj, *march_obj, *rec_obj, *table_obj, *shift_obj;
+    double dt;
+    Py_ssize_t n_first, n_last, n_steps, save_every, n_drivers;
+    if (!PyArg_ParseTuple(args, "OOOOOdnnnnn", &topo_obj, &march_obj, &rec_obj, &table_obj, &shift_obj, &dt, &n_first,
+                          &n_last, &n_steps, &save_every, &n_drivers))
+        return NULL;
+    held_t h = {.n = 0};
+    net_t q;
+    sparse_t sp;
+    driven_t dv;
+    Py_buffer *mb[6], *rb[6];
+    const Py_buffer *table, *shifts;
+    if (n_drivers < 0) {
+        PyErr_Format(PyExc_ValueError, "n_drivers must be >= 0, got %zd", n_drivers);
+        return NULL;
+    }
+    if (check_real("dt", dt, 0.0, 1, 0) < 0 || check_steps(n_first, n_last, n_steps, save_every) < 0 ||
+        take_sparse(&h, topo_obj, &q, &sp, &dv, n_drivers) < 0)
+        goto fail;
+    const Py_ssize_t nm = q.n_mass, ne = q.n_el, steps = n_last - n_first + 1;
+    const Py_ssize_t march_sizes[] = {nm, nm, ne, ne, nm, 4};
+    if (take_tuple(&h, march_obj, "marching", 6, march_names, "dddqqq", march_sizes, 1, mb) < 0 ||
+        !(table = take(&h, table_obj, "table", 'd', steps * q.n_load, 0)) ||
+        !(shifts = take(&h, shift_obj, "means", 'd', steps * n_drivers, 0)) ||
+        !(rb[0] = take(&h, PyTuple_Check(rec_obj) && PyTuple_GET_SIZE(rec_obj) == 6 ? PyTuple_GET_ITEM(rec_obj, 0) : rec_obj,
+                       record_names[0], 'd', -1, 1)))
+        goto fail;
+    const Py_ssize_t rows = items(rb[0]);
+    const Py_ssize_t record_sizes[] = {rows, rows * nm, rows * nm, rows * ne, rows * ne, rows * ne};
+    if (take_tuple(&h, rec_obj, "record", 6, record_names, "dddddB", record_sizes, 1, rb) < 0) goto fail;
+    int64_t *counters = mb[5]->buf;
+    if (check_rows(record_names[0], counters[0], rows, n_first, n_last, n_steps, save_every) < 0) goto fail;
+    if (allocate_sparse(&q, &sp) < 0) goto fail_alloc;
+    const double *state = mb[2]->buf;
+    for (Py_ssize_t e = 0; e < ne; e++)
+        q.count[e] = step_graph(q.kind[e], q.par + 4 * e, state[e], dt, q.graph + e * MAX_PIECES);
+    if (check_modes(march_names[3], mb[3]->buf, q.count, ne) < 0) goto fail_alloc;
+    q.dt = dt;
+    march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters};
+    record_t o = {rb[0]->buf, rb[1]->buf, rb[2]->buf, rb[3]->buf, rb[4]->buf, rb[5]->buf, NULL, NULL};
+    Py_BEGIN_ALLOW_THREADS
+    march(&q, &m, &o, table->buf, &dv, shifts->buf, n_first, n_last, n_steps, save_every);
+    Py_END_ALLOW_THREADS
+    deallocate_sparse(&q, &sp);
+    release_held(&h);
+    Py_RETURN_NONE;
+fail_alloc:
+    deallocate_sparse(&q, &sp);
 fail:
     release_held(&h);
     return NULL;
@@ -357,6 +598,8 @@ static PyMethodDef methods[] = {
     {"network_settings", network_settings, METH_VARARGS, "The iteration's sigma scales and dual sweep counts."},
     {"network_block", network_block, METH_VARARGS, "Backward Euler for a forest network, one block of steps."},
     {"network_solve", network_solve, METH_VARARGS, "One step problem of a forest network with given graphs."},
+    {"sparse_block", sparse_block, METH_VARARGS, "Backward Euler for any network (the sparse step), one block of steps."},
+    {"sparse_solve", sparse_solve, METH_VARARGS, "One step problem of any network with given graphs (the sparse step)."},
     {NULL, NULL, 0, NULL}};
 
 static struct PyModuleDef module = {PyModuleDef_HEAD_INIT, "_network_kernel", NULL, -1, methods};

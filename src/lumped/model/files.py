@@ -27,9 +27,9 @@ Names of masses, drivers and elements are 1 to 64 ASCII letters, digits, ``_``,
 ``.`` and ``-``, starting with a letter or ``_``
 (:data:`~lumped.laws.element.NAME_PATTERN`): they become column names
 of the output.  A file holds at most
-:data:`~lumped.model.network.MAX_MASSES` (10,000) masses,
-:data:`~lumped.model.network.MAX_ELEMENTS` (30,000) elements and
-:data:`~lumped.model.network.MAX_LOADS` (20,000) forces, the ground's
+:data:`~lumped.model.network.MAX_MASSES` (100,000) masses,
+:data:`~lumped.model.network.MAX_ELEMENTS` (300,000) elements and
+:data:`~lumped.model.network.MAX_LOADS` (200,000) forces, the ground's
 load on every mass included, and at most
 :data:`MAX_FILE_BYTES` (16 MiB); a larger file is refused before it is
 parsed, one with more entries (``count`` tables counted N times) before any entry is built.

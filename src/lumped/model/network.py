@@ -30,14 +30,16 @@ __all__ = [
     "listed",
 ]
 
-#: Largest network accepted (masses, elements, loads).  A backward-Euler step of
-#: :func:`lumped.solve` (backward Euler) costs about 14 us per mass
-#: for a chain with a spring and a Bingham element on every mass (0.14 s a step
-#: at 10,000 masses, measured on one core), so 10,000 masses run a thousand
-#: steps in minutes; a million masses (issue 19) took 4 minutes and 4.1 GB
-#: before their first message, and would take about 14 s a step.  Elements: three per mass (notebook 08's
-#: chain has two, a spring and a friction element); forces: two per mass (one, and the ground's ``-m a_g``).
-MAX_MASSES = 10_000
+#: Largest network accepted (masses, elements, loads).  The compiled sparse step
+#: (:mod:`lumped.solvers.network_sparse`) runs a chain of blocks, each on a friction
+#: contact to the floor with a leaf spring to a moving plate and coupling springs,
+#: at about 0.1 us per block and step (benchmarks/bench_chain.py), so 100,000 blocks
+#: run a thousand steps in tens of seconds; building such a network in Python takes
+#: about a minute, and the output's size and the run time are refused beyond their
+#: own limits (:mod:`lumped.numerics.validate`).  Elements: three per mass (a
+#: contact, a leaf spring, a coupling spring); forces: two per mass (one, and the
+#: ground's ``-m a_g``).
+MAX_MASSES = 100_000
 MAX_ELEMENTS = 3 * MAX_MASSES
 MAX_LOADS = 2 * MAX_MASSES
 _SHOWN = 5  # names listed in a message before "... and N more"

@@ -98,9 +98,12 @@ class Trajectory:
         from the saved points.
     solver : str
         The path that ran: ``"algorithm1"``, ``"resolvent"`` (a law's
-        resolvent), ``"compiled"`` or ``"python"`` (the network's active-set
-        step), ``"one-mass-friction"`` (the compiled loop of one mass with a
-        friction contact, :mod:`lumped.solvers.friction_compiled`), or the method's name.
+        resolvent), ``"compiled"``, ``"compiled-banded"`` (the sparse step,
+        :mod:`lumped.solvers.network_sparse`; ``"compiled-banded+python (k of n
+        steps)"`` when rigid loops left ``k`` steps to Python) or ``"python"``
+        (the network's active-set step), ``"one-mass-friction"`` (the compiled
+        loop of one mass with a friction contact,
+        :mod:`lumped.solvers.friction_compiled`), or the method's name.
     iterations : int
         Largest number of active-set iterations in a step (0 when none ran).
     events : tuple

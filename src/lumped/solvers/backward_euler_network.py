@@ -6,7 +6,9 @@ problem (:func:`lumped.solvers.network_step.solve_step`), and advances
 ``x_{n+1} = x_n + dt v_{n+1}`` and each element's state.  The loop runs in
 Python (:func:`_run_python`) or, block by block, in the compiled kernel
 (:mod:`lumped.solvers.network_compiled`), or for one mass with a friction
-contact in the compiled friction loop (:mod:`lumped.solvers.friction_compiled`).
+contact in the compiled friction loop (:mod:`lumped.solvers.friction_compiled`),
+or in the compiled sparse step (:mod:`lumped.solvers.network_sparse`, any other
+network it runs; a step whose rigid elements close a loop runs :func:`_python_step`).
 
 :func:`march` takes arguments already checked at the boundary
 (:func:`lumped.drivers.network.run_network`: the grid, the output's size,
@@ -20,11 +22,12 @@ from typing import NamedTuple
 
 import numpy as np
 
+from lumped.laws.step_graph import shifted
 from lumped.model.network import Network, listed
 from lumped.model.trajectory import Jump, Trajectory
 from lumped.solvers import friction_compiled as friction
 from lumped.solvers import network_compiled as kernel
-from lumped.laws.step_graph import shifted
+from lumped.solvers import network_sparse as sparse
 from lumped.solvers.network_step import StepError, default_bound, solve_step, unsettled
 
 __all__ = ["march"]
@@ -63,6 +66,14 @@ def _graphs(
     return graphs
 
 
+def _means(net: Network, times: np.ndarray, dt: float) -> np.ndarray:
+    """Each driver's mean velocity over each step ending at ``times``: ``(steps, drivers)``."""
+    out = np.empty((times.size, len(net.drivers)))
+    for k, d in enumerate(net.drivers):
+        out[:, k] = d.mean_velocity(times - dt, times)
+    return out
+
+
 def _shifts(net: Network, times: np.ndarray, dt: float) -> np.ndarray | None:
     """Each element's rate shift at each step ending at ``times`` (``(steps, elements)``): ``+-`` the mean
     velocity over the step of the driven point it is joined to (0 for the others); ``None`` without drivers.
@@ -74,9 +85,9 @@ def _shifts(net: Network, times: np.ndarray, dt: float) -> np.ndarray | None:
     if not net.drivers:
         return None
     out = np.zeros((times.size, len(net.elements)))
-    means = [d.mean_velocity(times - dt, times) for d in net.drivers]
+    means = _means(net, times, dt)
     for d in net.driven():
-        out[:, d.element] += d.sign * means[d.driver]
+        out[:, d.element] += d.sign * means[:, d.driver]
     return out
 
 
@@ -99,9 +110,12 @@ def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str):
     inertia = np.array([m.mass for m in net.masses])
     f0 = net.load_table(np.zeros(1))[0]
     graphs, sigma = _graphs(net, state, None, w0, acceleration if net.drivers else None), _sigma(net, inertia, 1.0)
+    sol = None
     if path == "compiled" and not kernel.has_chord(kernel.plan(net)):  # a loop's intervals: the Python step
         sol = kernel.solve_graphs(kernel.plan(net), inertia, sigma, graphs, f0)
-    else:
+    elif path == sparse.PATH:  # None if its rigid elements close a loop
+        sol = sparse.solve_graphs(sparse.plan(net), inertia, sigma, graphs, f0, acceleration)
+    if sol is None:
         sol = solve_step(first, second, inertia, f0, graphs, sigma, ranges=True)
     return x[:-1], v[:-1], state, sol
 
@@ -119,8 +133,9 @@ class _Record:
         self.low: np.ndarray | None = None  # the compiled loop's intervals, every row
         self.high: np.ndarray | None = None
         self.row = 0
+        self.python_steps = 0  # steps the sparse step left to the Python step
 
-    def save(self, t: float, x, v, f, state, rigid, low=None, high=None) -> None:  # noqa: ANN001
+    def save(self, t: float, x, v, f, state, rigid, low=None, high=None) -> None:
         r = self.row
         self.t[r], self.x[r], self.v[r], self.force[r] = t, x, v, f
         self.state[r], self.rigid[r] = state, rigid
@@ -155,16 +170,18 @@ class _Start(NamedTuple):
 
 def march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, path: str) -> Trajectory:
     """Backward Euler on ``net`` for ``n_steps`` steps of ``dt``, saving every ``save_every``-th
-    (``rows`` rows in all) with the step of ``path`` (``"compiled"``, ``"python"`` or
-    :data:`lumped.solvers.friction_compiled.PATH`)."""
+    (``rows`` rows in all) with the step of ``path`` (``"compiled"``, ``"python"``,
+    :data:`lumped.solvers.friction_compiled.PATH` or :data:`lumped.solvers.network_sparse.PATH`)."""
     first, second = net.incidence()
     x, v, state, sol = _initial(net, first, second, path)
     inertia = np.array([m.mass / dt for m in net.masses])
     rec = _Record(rows, len(net.masses), len(net.elements))
     rec.save(0.0, x, v, sol.f, state, False, sol.low, sol.high)
     start = _Start(x, v, state, inertia, _sigma(net, inertia, dt), np.where(v == 0, 0, 1).astype(np.int64))
-    run = {"compiled": _run_compiled, friction.PATH: _run_friction}.get(path, _run_python)
+    run = {"compiled": _run_compiled, friction.PATH: _run_friction, sparse.PATH: _run_sparse}.get(path, _run_python)
     v, most = run(net, dt, n_steps, save_every, rec, start)
+    if rec.python_steps:  # the sparse step left some steps (rigid loops) to the Python step
+        path = f"{path}+python ({rec.python_steps} of {n_steps} steps)"
     still = v != 0
     rest_time = np.where(still, np.nan, np.minimum(start.rest, n_steps) * dt)
     rest_position = np.where(still, np.nan, rec.x[rec.row - 1])
@@ -214,40 +231,59 @@ def _run_python(
     net: Network, dt: float, n_steps: int, save_every: int, rec: _Record, start: _Start
 ) -> tuple[np.ndarray, int]:
     """The Python step, one step at a time; returns the last velocities and the most iterations."""
-    first, second = net.incidence()
     v, x, state, rest = start.v, start.x, start.state, start.rest
     modes, most = None, 0
-    jumping = [e for e, el in enumerate(net.elements) if el.jumps]
     for begin in range(1, n_steps + 1, _BLOCK):
         stop = min(begin + _BLOCK - 1, n_steps)
         times = np.arange(begin, stop + 1) * dt
         table, shifts = net.load_table(times), _shifts(net, times, dt)
         for n in range(begin, stop + 1):
-            rhs = start.inertia * v + table[n - begin]
             delta = None if shifts is None else shifts[n - begin]
-            graphs = _graphs(net, state, dt, None, delta)
-            saved = n % save_every == 0 or n == n_steps
-            try:
-                sol = solve_step(first, second, start.inertia, rhs, graphs, start.sigma, modes, ranges=saved)
-            except StepError as err:
-                raise _failed(net, n, dt, err) from None
+            sol, x, state = _python_step(
+                net, dt, (n, n_steps, save_every), rec, start, (x, v, state, modes), table[n - begin], delta
+            )
             v, modes, most = sol.v, sol.modes, max(most, sol.iterations)
-            x = x + dt * v
-            w = sol.w if delta is None else sol.w + delta  # the true rates of elements joined to drivers
-            before = state
-            state = [
-                el.next_state(s, dt, float(we), float(fe), r)
-                for el, s, we, fe, r in zip(net.elements, before, w, sol.f, sol.rigid)
-            ]
-            for e in jumping:
-                if state[e] != before[e]:
-                    rec.jumps.append(Jump(n * dt, net.elements[e].name, int(before[e]), int(state[e])))
-            if not (np.isfinite(v).all() and np.isfinite(sol.f).all()):
-                raise _overflowed(n, dt)
             rest[v != 0] = n + 1
-            if saved:
-                rec.save(n * dt, x, v, sol.f, state, sol.rigid, sol.low, sol.high)
     return v, most
+
+
+def _python_step(
+    net: Network,
+    dt: float,
+    steps: tuple[int, int, int],
+    rec: _Record,
+    start: _Start,
+    now: tuple,
+    load: np.ndarray,
+    delta: np.ndarray | None,
+) -> tuple:
+    """The Python step to ``t = n dt`` (``steps = (n, n_steps, save_every)``) from ``now = (x, v, state,
+    modes)``, the step's loads and rate shifts; saves the row if it is one; returns ``(sol, x, state)``."""
+    n, n_steps, save_every = steps
+    x, v, state, modes = now
+    first, second = net.incidence()
+    rhs = start.inertia * v + load
+    graphs = _graphs(net, state, dt, None, delta)
+    saved = n % save_every == 0 or n == n_steps
+    try:
+        sol = solve_step(first, second, start.inertia, rhs, graphs, start.sigma, modes, ranges=saved)
+    except StepError as err:
+        raise _failed(net, n, dt, err) from None
+    x = x + dt * sol.v
+    w = sol.w if delta is None else sol.w + delta  # the true rates of elements joined to drivers
+    before = state
+    state = [
+        el.next_state(s, dt, float(we), float(fe), r)
+        for el, s, we, fe, r in zip(net.elements, before, w, sol.f, sol.rigid)
+    ]
+    for e, el in enumerate(net.elements):
+        if el.jumps and state[e] != before[e]:
+            rec.jumps.append(Jump(n * dt, el.name, int(before[e]), int(state[e])))
+    if not (np.isfinite(sol.v).all() and np.isfinite(sol.f).all()):
+        raise _overflowed(n, dt)
+    if saved:
+        rec.save(n * dt, x, sol.v, sol.f, state, sol.rigid, sol.low, sol.high)
+    return sol, x, state
 
 
 def _run_compiled(
@@ -273,6 +309,61 @@ def _run_compiled(
             n = int(counters[1])
             raise _unsettled(n, dt, len(net.elements)) if counters[2] == 1 else _overflowed(n, dt)
     return marching[1], int(counters[3])
+
+
+def _run_sparse(
+    net: Network, dt: float, n_steps: int, save_every: int, rec: _Record, start: _Start
+) -> tuple[np.ndarray, int]:
+    """The compiled sparse step (:mod:`lumped.solvers.network_sparse`), block by block; a step it leaves to
+    Python (a rigid loop) runs :func:`_python_step`, and C resumes after it.  Same contract."""
+    topology, loaded = sparse.plan(net), np.array(net.loaded_masses(), dtype=np.int64)
+    counters = np.array([rec.row, 0, 0, 0], dtype=np.int64)
+    modes = np.full(len(net.elements), -1, dtype=np.int64)
+    x, v, state = start.x.copy(), start.v.copy(), np.array(start.state, dtype=float)
+    marching = (x, v, state, modes, start.rest, counters)
+    record = (rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid.view(np.uint8))
+    block = max(1, min(_BLOCK, _TABLE_VALUES // max(1, loaded.size + len(net.drivers))))
+    most = 0
+    for begin in range(1, n_steps + 1, block):
+        stop = min(begin + block - 1, n_steps)
+        times = np.arange(begin, stop + 1) * dt
+        table = net.load_table(times, loaded)
+        means = _means(net, times, dt)
+        n = begin
+        while n <= stop:
+            steps = (n, stop, n_steps, save_every)
+            sparse.march_block(
+                topology,
+                start.inertia,
+                start.sigma,
+                loaded,
+                marching,
+                record,
+                table[n - begin :],
+                means[n - begin :],
+                dt,
+                steps,
+            )
+            rec.row = int(counters[0])
+            if counters[2] != 3:
+                break
+            n = int(counters[1])  # its rigid elements close a loop: this step in Python
+            counters[2] = 0
+            delta = _shifts(net, times[n - begin : n - begin + 1], dt)
+            full = net.load_table(times[n - begin : n - begin + 1])[0]
+            now = (x.copy(), v.copy(), state.tolist(), modes.tolist())
+            sol, new_x, new_state = _python_step(
+                net, dt, (n, n_steps, save_every), rec, start, now, full, None if delta is None else delta[0]
+            )
+            counters[0] = rec.row
+            x[:], v[:], state[:], modes[:] = new_x, sol.v, new_state, sol.modes
+            start.rest[v != 0] = n + 1
+            most, n = max(most, sol.iterations), n + 1
+            rec.python_steps += 1
+        if counters[2]:
+            n = int(counters[1])
+            raise _unsettled(n, dt, len(net.elements)) if counters[2] == 1 else _overflowed(n, dt)
+    return v, max(most, int(counters[3]))
 
 
 def _run_friction(
