@@ -61,6 +61,7 @@ setup(
                 "_network_kernel",
                 [
                     "src/lumped/kernels/_binding_checks.h",
+                    "src/lumped/kernels/_network_curve.h",
                     "src/lumped/kernels/_network_elements.h",
                     "src/lumped/kernels/_network_forest.h",
                     "src/lumped/kernels/_network_loop.h",

@@ -210,7 +210,7 @@ def test_a_chain_on_a_belt_agrees_with_the_python_step(velocity) -> None:
 
 def _sparse_args(**change: object) -> list:
     """``sparse_block``'s arguments for the first 10 steps of a 3-block chain on a belt; ``change`` replaces
-    items of the topology by index (``t<i>``) or ``n_drivers``."""
+    items of the topology by index (``t<i>``), ``n_drivers`` or the marching ``points``."""
     from lumped.solvers.backward_euler_network import _means, _sigma
 
     net, dt, steps = belt_chain(3, 0.3), 1e-3, 10
@@ -228,6 +228,7 @@ def _sparse_args(**change: object) -> list:
         np.full(n_el, -1, dtype=np.int64),
         np.zeros(n_mass, dtype=np.int64),
         np.array([1, 0, 0, 0]),
+        change.get("points", np.zeros(n_el * sparse.POINT_WIDTH)),
     )
     record = (
         np.zeros(rows),
@@ -252,14 +253,17 @@ def test_the_valid_sparse_block_runs() -> None:
 @pytest.mark.parametrize(
     "change, name",
     [
-        ({"t0": np.full(8, 7, dtype=np.int64)}, "topology[0] (kind)"),
+        ({"t0": np.full(8, 10, dtype=np.int64)}, "topology[0] (kind)"),
+        # Stribeck contacts (kind 7) whose v_s (par[2]) is 0
+        ({"t0": np.array([7, 0, 7, 0, 0, 7, 0, 0]), "t1": np.tile([1.0, 0.5, 0.0, 0.0], (8, 1))}, "topology[1] (par) stribeck_velocity"),
+        ({"points": np.zeros(8)}, "marching[6] (points)"),
         ({"t4": np.zeros(3, dtype=np.int64)}, "topology[4] (at_pos)"),
         ({"t6": np.zeros(16, dtype=np.int64)}, "topology[6] (inc_el)"),
         ({"t11": np.full(3, 1, dtype=np.int64)}, "topology[11] (driven_driver)"),
         ({"n_drivers": -1}, "n_drivers"),
         ({"n_drivers": 2}, "means"),
     ],
-    ids=["kind", "at_pos", "inc_el", "driver", "negative-drivers", "means"],
+    ids=["kind", "stribeck-law", "points", "at_pos", "inc_el", "driver", "negative-drivers", "means"],
 )
 def test_sparse_block_refuses(change: dict, name: str) -> None:
     from test_bindings import assert_refused

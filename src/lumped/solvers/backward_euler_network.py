@@ -320,7 +320,8 @@ def _run_sparse(
     counters = np.array([rec.row, 0, 0, 0], dtype=np.int64)
     modes = np.full(len(net.elements), -1, dtype=np.int64)
     x, v, state = start.x.copy(), start.v.copy(), np.array(start.state, dtype=float)
-    marching = (x, v, state, modes, start.rest, counters)
+    points = sparse.points(net)
+    marching = (x, v, state, modes, start.rest, counters, points)
     record = (rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid.view(np.uint8))
     block = max(1, min(_BLOCK, _TABLE_VALUES // max(1, loaded.size + len(net.drivers))))
     most = 0
@@ -351,12 +352,13 @@ def _run_sparse(
             counters[2] = 0
             delta = _shifts(net, times[n - begin : n - begin + 1], dt)
             full = net.load_table(times[n - begin : n - begin + 1])[0]
-            now = (x.copy(), v.copy(), state.tolist(), modes.tolist())
+            now = (x.copy(), v.copy(), state.tolist(), sparse.python_modes(topology, modes, points))
             sol, new_x, new_state = _python_step(
                 net, dt, (n, n_steps, save_every), rec, start, now, full, None if delta is None else delta[0]
             )
             counters[0] = rec.row
-            x[:], v[:], state[:], modes[:] = new_x, sol.v, new_state, sol.modes
+            x[:], v[:], state[:] = new_x, sol.v, new_state
+            sparse.store_modes(sol.modes, modes, points)
             start.rest[v != 0] = n + 1
             most, n = max(most, sol.iterations), n + 1
             rec.python_steps += 1
