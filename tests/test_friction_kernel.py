@@ -208,7 +208,9 @@ def test_networks_it_cannot_run_go_to_the_python_step():
     leine = Network([Mass("m", 1.0)], [Spring("spring", (G, "m"), 1.0), curve], drivers=[Driver("belt", 0.2)])
     assert friction.ineligible(leine) == "the slip curve of 'contact' has no kernel form"
     assert lumped.simulate_network(leine, 0.1, DT).solver == "python"
-    message = "solver: 'compiled' cannot run this network: element 'contact' has a slip curve the compiled step does not know"
+    message = (
+        "solver: 'compiled' cannot run this network: element 'contact' has a slip curve the compiled step does not know"
+    )
     with pytest.raises(ValueError, match=f"^{re.escape(message)}$"):
         lumped.simulate_network(leine, 0.1, DT, solver="compiled")
     two = Network(

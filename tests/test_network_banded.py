@@ -224,9 +224,7 @@ def belt_chain(n: int, velocity: float | lumped.SwitchedSine, decay: str | None 
     elements = []
     fall = {"stribeck_velocity": 0.1, "decay": decay} if decay else {}
     for i in range(n):
-        elements.append(
-            Friction(f"c{i}", (f"m{i}", "belt"), static=1.0 + 0.05 * i, kinetic=0.5, viscous=0.1, **fall)
-        )
+        elements.append(Friction(f"c{i}", (f"m{i}", "belt"), static=1.0 + 0.05 * i, kinetic=0.5, viscous=0.1, **fall))
         elements.append(Spring(f"h{i}", ("ground", f"m{i}"), 20.0))
         if i:
             elements.append(Spring(f"k{i}", (f"m{i - 1}", f"m{i}"), 30.0))
@@ -344,7 +342,10 @@ def test_the_valid_sparse_block_runs() -> None:
     [
         ({"t0": np.full(8, 10, dtype=np.int64)}, "topology[0] (kind)"),
         # Stribeck contacts (kind 7) whose v_s (par[2]) is 0
-        ({"t0": np.array([7, 0, 7, 0, 0, 7, 0, 0]), "t1": np.tile([1.0, 0.5, 0.0, 0.0], (8, 1))}, "topology[1] (par) stribeck_velocity"),
+        (
+            {"t0": np.array([7, 0, 7, 0, 0, 7, 0, 0]), "t1": np.tile([1.0, 0.5, 0.0, 0.0], (8, 1))},
+            "topology[1] (par) stribeck_velocity",
+        ),
         ({"points": np.zeros(8)}, "marching[6] (points)"),
         ({"t4": np.zeros(3, dtype=np.int64)}, "topology[4] (at_pos)"),
         ({"t6": np.zeros(16, dtype=np.int64)}, "topology[6] (inc_el)"),

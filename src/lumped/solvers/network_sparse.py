@@ -221,8 +221,9 @@ def march_block(
 ) -> None:
     """Advance steps ``n_first..n_last`` in C (``steps = (n_first, n_last, n_steps, save_every)``).
 
-    As :func:`lumped.solvers.network_compiled.march_block`, with ``record = (t, x, v, force, state,
-    rigid)`` and ``means`` (steps, drivers) each driver's mean velocity over each step (a driven element's
+    As :func:`lumped.solvers.network_compiled.march_block`, with ``marching = (x, v, state, modes, rest,
+    counters, points)`` (``points``: :func:`points`, the Stribeck contacts' warm start), ``record = (t, x,
+    v, force, state, rigid)`` and ``means`` (steps, drivers) each driver's mean velocity over each step (a driven element's
     rate shift is the sum of ``sign * mean`` over its entries, as ``backward_euler_network._shifts``);
     ``counters[2] = 3`` stops the block at step ``counters[1]``, whose rigid elements close a loop (the
     caller runs that step in Python and calls again from the next).
