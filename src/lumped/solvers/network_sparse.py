@@ -290,10 +290,10 @@ def solve_graphs(
         If the iteration does not settle.
     """
     n_el = len(graphs)
-    pieces = np.zeros((n_el, 5, 5))
-    for e, graph in enumerate(graphs):
-        pieces[e, : len(graph)] = [tuple(p) for p in graph]
-    counts = np.array([len(g) for g in graphs], dtype=np.int64)
+    counts = np.fromiter(map(len, graphs), dtype=np.int64, count=n_el)
+    pieces = np.zeros((n_el, 5, 5))  # every graph's pieces in one array op (a loop over 1e5 elements took 1 s)
+    rows = np.repeat(np.arange(n_el), counts), np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)
+    pieces[rows] = np.array([tuple(p) for graph in graphs for p in graph], dtype=float).reshape(-1, 5)
     v, w, f = np.empty(inertia.size), np.empty(n_el), np.empty(n_el)
     modes, rigid = np.full(n_el, -1, dtype=np.int64), np.zeros(n_el, dtype=bool)
     topo = _topology(topology, inertia, sigma, np.empty(0, dtype=np.int64))
