@@ -213,6 +213,29 @@ def test_a_rigid_loop_is_left_to_the_python_step_and_said() -> None:
     np.testing.assert_array_equal(a.force_min, b.force_min)
 
 
+def test_stribeck_contacts_keep_their_points_across_steps_left_to_the_python_step() -> None:
+    """Two blocks on falling floors joined by a Bingham element: while all three stick they close a rigid
+    loop, whose steps run in Python; the falling contacts' modes (a point on the branch and the points
+    before it) pass from C to Python and back (``network_sparse.python_modes``, ``store_modes``), so the
+    run is the Python step's: positions to 1e-12 relative (as above), the same active sets."""
+    net = Network(
+        [Mass("a", 1.0), Mass("b", 1.0)],
+        [
+            Friction("ca", ("a", "ground"), static=2.0, kinetic=1.0, stribeck_velocity=0.05),
+            Friction("cb", ("b", "ground"), static=2.0, kinetic=1.0, stribeck_velocity=0.05, decay="rational"),
+            Bingham("ab", ("a", "b"), 1.0, 1.0),
+        ],
+        [Load("a", lumped.SwitchedSine(4.0, 3.0))],
+    )
+    a = simulate_network(net, 2.0, 1e-3, solver="compiled")
+    b = simulate_network(net, 2.0, 1e-3, solver="python")
+    assert a.solver.startswith(f"{sparse.PATH}+python (")
+    assert np.abs(a.positions - b.positions).max() <= 1e-12 * np.abs(b.positions).max()
+    assert np.array_equal(a.rigid, b.rigid) and np.array_equal(a.states[:, :2], b.states[:, :2])
+    slipping = ~a.rigid[1:, 0]
+    assert slipping.sum() > 100 and (slipping[1:] & ~slipping[:-1]).sum() >= 2  # slips, sticks, slips again
+
+
 # -- a chain on a belt -------------------------------------------------------------------------------
 
 
