@@ -18,8 +18,6 @@ the run time, the path); it does not check them again.
 from __future__ import annotations
 
 import functools
-
-import math
 from typing import NamedTuple
 
 import numpy as np
