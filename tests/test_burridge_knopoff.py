@@ -5,6 +5,7 @@ Hill's closed form and a sample of known exponent."""
 
 from __future__ import annotations
 
+import json
 import math
 
 import numpy as np
@@ -46,7 +47,7 @@ def test_catalogue_counts_connected_bursts():
     assert list(c.blocks) == [1, 3, 1, 2]
     assert list(c.moment) == [0.25, 0.5, 0.125, 0.5]  # 0.125 per cell: exact in binary
     assert list(c.duration) == [1.0, 1.0, 0.5, 1.5]
-    assert (c.unfinished, c.back_steps) == (0, 0)
+    assert (c.unfinished, c.back_steps, c.slip_steps) == (0, 0, len(cells))
 
 
 def test_catalogue_leaves_out_bursts_cut_by_the_data_and_counts_back_steps():
@@ -56,7 +57,7 @@ def test_catalogue_leaves_out_bursts_cut_by_the_data_and_counts_back_steps():
     x = np.cumsum(v * 0.5, axis=0)
     c = bk.catalogue(t, x, v)
     assert list(c.blocks) == [1] and list(c.moment) == [-0.125]
-    assert (c.unfinished, c.back_steps) == (2, 1)
+    assert (c.unfinished, c.back_steps, c.slip_steps) == (2, 1, 4)
 
 
 @pytest.mark.parametrize(("periodic", "events"), [(False, 2), (True, 1)])
@@ -93,7 +94,8 @@ def test_the_catalogue_does_not_see_the_cuts_of_a_run():
     for name in ("start_time", "first_block", "blocks", "duration"):
         assert np.array_equal(getattr(whole.catalogue, name), getattr(cut.catalogue, name)), name
     assert np.abs(whole.catalogue.moment - cut.catalogue.moment).max() <= 1e-12
-    assert whole.catalogue.unfinished == cut.catalogue.unfinished
+    for name in ("unfinished", "back_steps", "slip_steps"):
+        assert getattr(whole.catalogue, name) == getattr(cut.catalogue, name), name
 
 
 def test_one_block_against_the_event_driven_solution():
@@ -163,3 +165,29 @@ def test_bad_inputs_are_refused_in_one_line(call, message):
     with pytest.raises(ValueError, match=message) as err:
         call()
     assert "\n" not in str(err.value)
+
+
+def test_the_pipeline_script_writes_a_catalogue_that_reads_back(tmp_path):
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    script = Path(__file__).resolve().parents[1] / "scripts" / "burridge_knopoff.py"
+    out = tmp_path / "bk.csv"
+    done = subprocess.run([sys.executable, str(script), "3", "1.1", "0.02", str(out)], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    table = bk.read_catalogue(out)
+    facts = json.loads(out.with_suffix(".json").read_text())
+    assert table["blocks"].dtype == np.int64 and len(table["moment"]) == facts["events"] >= 1
+    assert facts["steps"] == 5500 and facts["blocks"] == 3
+    bad = subprocess.run([sys.executable, str(script), "3", "1", "0.5", str(out)], capture_output=True, text=True)
+    assert bad.returncode == 2 and bad.stderr.count("\n") == 1 and "dt" in bad.stderr
+
+
+@pytest.mark.parametrize(("key", "value"), [("bk_blocks", 0), ("bk_blocks", 2.5), ("bk_travel", -1.0), ("bk_dt", 0.2)])
+def test_the_configuration_refuses_bad_chain_keys(key, value):
+    import lumped.studies.config
+
+    raw = {**lumped.studies.config.default(), key: value}
+    (line,) = lumped.studies.config.problems(raw)
+    assert line.startswith(f"config: {key}")

@@ -40,6 +40,7 @@ from __future__ import annotations
 import math
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
+from pathlib import Path
 from typing import NamedTuple
 
 import numpy as np
@@ -51,6 +52,7 @@ from lumped.model.network import Driver, Mass, Network
 from lumped.model.problem import Problem
 from lumped.numerics import validate
 from lumped.numerics.roots import brentq
+from lumped.studies import read_csv
 
 __all__ = [
     "COLUMNS",
@@ -65,7 +67,9 @@ __all__ = [
     "chain",
     "fit_power_law",
     "initial_positions",
+    "read_catalogue",
     "run",
+    "run_facts",
 ]
 
 #: The catalogue file's columns, in order (``*_block`` and ``blocks`` are integers).
@@ -186,7 +190,9 @@ class Catalogue:
     unfinished : int
         Events still slipping at the end of the data (left out of the arrays).
     back_steps : int
-        (block, step) cells with a negative velocity.
+        (block, step) cells with a negative velocity (backward slip, which Carlson and Langer forbid).
+    slip_steps : int
+        (block, step) cells with a velocity other than zero.
     """
 
     start_time: np.ndarray
@@ -196,6 +202,7 @@ class Catalogue:
     duration: np.ndarray
     unfinished: int = 0
     back_steps: int = 0
+    slip_steps: int = 0
 
     def __len__(self) -> int:
         return len(self.blocks)
@@ -265,10 +272,10 @@ def catalogue(t: np.ndarray, x: np.ndarray, v: np.ndarray, periodic: bool = Fals
     """
     t, x, v = np.asarray(t, float), np.asarray(x, float), np.asarray(v, float)
     scan = _Scan(t, x, v, periodic)
-    return _as_catalogue(scan.table, scan.left_out + scan.open, int((v[1:] < 0).sum()))
+    return _as_catalogue(scan.table, scan.left_out + scan.open, int((v[1:] < 0).sum()), int((v[1:] != 0).sum()))
 
 
-def _as_catalogue(table: Mapping[str, list], unfinished: int, back_steps: int) -> Catalogue:
+def _as_catalogue(table: Mapping[str, list], unfinished: int, back_steps: int, slip_steps: int) -> Catalogue:
     """The events of ``table`` in order of their start (ties by first block)."""
     start, block = np.asarray(table["start_time"], float), np.asarray(table["first_block"], int)
     order = np.lexsort((block, start))
@@ -280,6 +287,7 @@ def _as_catalogue(table: Mapping[str, list], unfinished: int, back_steps: int) -
         duration=np.asarray(table["duration"], float)[order],
         unfinished=unfinished,
         back_steps=back_steps,
+        slip_steps=slip_steps,
     )
 
 
@@ -296,9 +304,10 @@ def initial_positions(p: Parameters, seed: int = 0, roughness: float = 1e-3) -> 
 
 
 class Run(NamedTuple):
-    """A run of the chain: its :class:`Catalogue`, its end time (s) and final state (m, m/s)."""
+    """A run of the chain: its :class:`Catalogue`, its steps, end time (s) and final state (m from the plate's point, m/s)."""
 
     catalogue: Catalogue
+    steps: int
     t_end: float
     positions: np.ndarray
     velocities: np.ndarray
@@ -313,7 +322,7 @@ class Cataloguer:
 
     def __init__(self, t0: float, x0: np.ndarray, v0: np.ndarray, periodic: bool = False) -> None:
         self.t, self.x, self.v = np.array([t0], float), np.array(x0, float)[None, :], np.array(v0, float)[None, :]
-        self.periodic, self.seen, self.back, self.open, self.left_out = periodic, 0, 0, 0, 0
+        self.periodic, self.seen, self.back, self.slips, self.open, self.left_out = periodic, 0, 0, 0, 0, 0
         self.table: dict[str, list] = {c: [] for c in COLUMNS if c != "plate"}
 
     def add(self, t: np.ndarray, x: np.ndarray, v: np.ndarray) -> None:
@@ -321,6 +330,7 @@ class Cataloguer:
         self.t = np.concatenate([self.t, t])
         self.x, self.v = np.vstack([self.x, x]), np.vstack([self.v, v])
         self.back += int((np.asarray(v) < 0).sum())
+        self.slips += int((np.asarray(v) != 0).sum())
         scan = _Scan(self.t, self.x, self.v, self.periodic, self.seen)
         for c, values in scan.table.items():
             self.table[c] += values
@@ -329,7 +339,7 @@ class Cataloguer:
 
     def catalogue(self) -> Catalogue:
         """The events complete so far; those still slipping are counted as ``unfinished``."""
-        return _as_catalogue(self.table, self.open + self.left_out, self.back)
+        return _as_catalogue(self.table, self.open + self.left_out, self.back, self.slips)
 
 
 def run(p: Parameters, travel: float, dt: float, *, x0: np.ndarray | None = None, segment: int | None = None) -> Run:
@@ -355,7 +365,7 @@ def run(p: Parameters, travel: float, dt: float, *, x0: np.ndarray | None = None
         # times from step numbers, so that the cuts leave them be
         events.add(dt * np.arange(done + 1, done + n + 1), piece.positions[1:] + shift, piece.velocities[1:])
         done += n
-    return Run(events.catalogue(), done * dt, x - p.plate_speed * done * dt, v)
+    return Run(events.catalogue(), done, done * dt, x - p.plate_speed * done * dt, v)
 
 
 def catalogue_table(p: Parameters, events: Catalogue) -> dict[str, np.ndarray]:
@@ -367,6 +377,30 @@ def catalogue_table(p: Parameters, events: Catalogue) -> dict[str, np.ndarray]:
         "blocks": events.blocks,
         "moment": events.moment / p.length,
         "duration": events.duration * p.omega,
+    }
+
+
+def read_catalogue(path: str | Path) -> dict[str, np.ndarray]:
+    """A catalogue file written by the pipeline (:data:`COLUMNS`), ``first_block`` and ``blocks`` as integers."""
+    table = read_csv(path, COLUMNS)
+    return {c: table[c].astype(np.int64) if c in ("first_block", "blocks") else table[c] for c in COLUMNS}
+
+
+def run_facts(p: Parameters, travel: float, dt: float, result: Run) -> dict[str, float | int | str]:
+    """What a catalogue file does not say about its run: the parameters, the events left out, back steps."""
+    return {
+        "blocks": p.blocks,
+        "ell": p.ell,
+        "alpha": p.alpha,
+        "nu": p.nu,
+        "ends": p.ends,
+        "travel": travel,
+        "dt": dt,
+        "steps": result.steps,
+        "events": len(result.catalogue),
+        "unfinished": result.catalogue.unfinished,
+        "back_steps": result.catalogue.back_steps,
+        "slip_steps": result.catalogue.slip_steps,
     }
 
 
