@@ -14,6 +14,7 @@ include: "rules/common.smk"
 include: "rules/figures.smk"
 include: "rules/accuracy.smk"
 include: "rules/studies.smk"
+include: "rules/sweeps.smk"
 include: "rules/paper.smk"
 include: "rules/site.smk"
 

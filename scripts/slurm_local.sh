@@ -11,10 +11,12 @@
 #    an srun wrapper for the jobs (write_slurm_conf says why);
 # 3. waits until `sinfo` shows the node idle;
 # 4. copies the repository's files (tracked and untracked, not ignored) twice
-#    and builds the rest study in one copy through the profile on SLURM and in
-#    the other with `snakemake --cores 2`;
+#    and builds the rest study and the two-block system sweep (both in chunks)
+#    in one copy through the profile on SLURM and in the other with
+#    `snakemake --cores 2`;
 # 5. prints the SLURM jobs (sacct), both wall times and compares the two
-#    results/studies/rest.csv byte for byte (exit status 1 if they differ);
+#    results/studies/rest.csv and results/sweeps/two_blocks.csv byte for byte
+#    (exit status 1 if they differ);
 # 6. stops every daemon it started and removes the directory, also on error
 #    or Ctrl-C (set LUMPED_SLURM_KEEP=1 to keep the directory and its logs).
 #
@@ -26,7 +28,7 @@ set -euo pipefail
 
 REPO="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 readonly REPO
-readonly TARGET="results/studies/rest.csv"
+readonly TARGETS=("results/studies/rest.csv" "results/sweeps/two_blocks.csv")
 readonly PACKAGES=(slurm-wlm slurmdbd munge mariadb-server)
 readonly WAIT_DAEMON=60     # s, for each daemon to answer
 readonly WAIT_RUN=900       # s, for each snakemake run
@@ -42,7 +44,7 @@ die() {
 }
 
 usage() {
-    sed -n '2,24p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
+    sed -n '2,26p' "${BASH_SOURCE[0]}" | sed 's/^# \{0,1\}//'
 }
 
 # wait_for SECONDS WHAT COMMAND...: retry COMMAND every second until it succeeds.
@@ -247,18 +249,18 @@ copy_repository() {
         tar -C "$dest" -xf - || die "could not copy the repository into $dest"
 }
 
-# run_study DIR LABEL ARGS...: build TARGET in DIR with snakemake ARGS; print
+# run_study DIR LABEL ARGS...: build TARGETS in DIR with snakemake ARGS; print
 # snakemake's lines that name SLURM job ids and its summary, then the wall time.
 run_study() {
     local dir=$1 label=$2 log="$WORK/log/snakemake-$2.log" start end
     shift 2
     start=$(date +%s.%N)
-    if ! (cd "$dir" && timeout "$WAIT_RUN" snakemake "$@" "$TARGET") > "$log" 2>&1; then
+    if ! (cd "$dir" && timeout "$WAIT_RUN" snakemake "$@" "${TARGETS[@]}") > "$log" 2>&1; then
         tail -n 40 "$log" >&2
         die "snakemake ($label) failed or took over ${WAIT_RUN} s (the end of its log is above)"
     fi
     end=$(date +%s.%N)
-    grep -E "^Using profile|submitted with SLURM jobid|^Job stats|^(job|total|study_rest[a-z_]*) +[0-9a-z]|steps \(100%\) done" "$log" |
+    grep -E "^Using profile|submitted with SLURM jobid|^Job stats|^(job|total|study_rest[a-z_]*|sweep_system[a-z_]*) +[0-9a-z]|steps \(100%\) done" "$log" |
         sed -e "s|$WORK/||g" -e 's/^/  /'
     awk -v label="$label" -v s="$start" -v e="$end" 'BEGIN {printf "== %s: wall time %.1f s\n", label, e - s}'
 }
@@ -287,21 +289,24 @@ main() {
     copy_repository "$WORK/local"
     local since
     since=$(date +%Y-%m-%dT%H:%M:%S)
-    echo "== the rest study through profiles/cluster (account $ACCOUNT, partition $PARTITION)"
+    echo "== the rest study and the system sweep through profiles/cluster (account $ACCOUNT, partition $PARTITION)"
     LUMPED_SLURM_ACCOUNT=$ACCOUNT LUMPED_SLURM_PARTITION=$PARTITION run_study "$WORK/on-slurm" slurm \
         --profile profiles/cluster --slurm-init-seconds-before-status-checks 2
     echo "== the SLURM jobs (sacct)"
     sacct -X --starttime "$since" --format=JobID,Comment%40,Partition,Account,State,ExitCode,Elapsed,NodeList
-    echo "== the same study built here (snakemake --cores 2)"
+    echo "== the same built here (snakemake --cores 2)"
     run_study "$WORK/local" local --cores 2
-    echo "== results/studies/rest.csv, SLURM against local"
-    sha256sum "$WORK/on-slurm/$TARGET" "$WORK/local/$TARGET" | sed "s|$WORK/||"
-    if cmp "$WORK/on-slurm/$TARGET" "$WORK/local/$TARGET"; then
-        echo "== identical, byte for byte ($(wc -l < "$WORK/local/$TARGET") lines)"
-    else
-        echo "== the two files DIFFER" >&2
-        exit 1
-    fi
+    local target
+    for target in "${TARGETS[@]}"; do
+        echo "== $target, SLURM against local"
+        sha256sum "$WORK/on-slurm/$target" "$WORK/local/$target" | sed "s|$WORK/||"
+        if cmp "$WORK/on-slurm/$target" "$WORK/local/$target"; then
+            echo "== identical, byte for byte ($(wc -l < "$WORK/local/$target") lines)"
+        else
+            echo "== the two files DIFFER" >&2
+            exit 1
+        fi
+    done
 }
 
 main "$@"

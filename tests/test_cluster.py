@@ -80,11 +80,16 @@ def test_the_script_parses_and_builds_what_the_workflow_names():
     done = subprocess.run(["bash", "-n", str(SCRIPT)], capture_output=True, text=True, timeout=30)
     assert (done.returncode, done.stdout, done.stderr) == (0, "", "")
     text = SCRIPT.read_text()
-    (target,) = re.findall(r'^readonly TARGET="([^"]+)"$', text, re.M)
-    studies = (ROOT / "rules" / "studies.smk").read_text()
-    (outputs,) = re.findall(r"^rule study_rest:.*?\n    output:\n(.*?)\n    log:", studies, re.M | re.S)
-    assert re.findall(r'"([^"]+)"', outputs) == [target] == ["results/studies/rest.csv"]
-    assert re.search(r"^rule study_rest_chunk:", studies, re.M)  # the grep's study_rest[a-z_]* lines
+    (targets,) = re.findall(r"^readonly TARGETS=\((.*)\)$", text, re.M)
+    targets = re.findall(r'"([^"]+)"', targets)
+    merged = []
+    for smk, rule in (("studies", "study_rest"), ("sweeps", "sweep_system")):
+        rules = (ROOT / "rules" / f"{smk}.smk").read_text()
+        (outputs,) = re.findall(rf"^rule {rule}:.*?\n    output:\n(.*?)\n    log:", rules, re.M | re.S)
+        merged += re.findall(r'"([^"]+)"', outputs)
+        assert re.search(rf"^rule {rule}_chunk:", rules, re.M)  # the grep's {rule}[a-z_]* lines
+        assert f"|{rule}[a-z_]*" in text
+    assert targets == merged == ["results/studies/rest.csv", "results/sweeps/two_blocks.csv"]
     (ports,) = re.findall(r"^readonly (PORT_CTLD=.*)$", text, re.M)
     numbers = [int(p.split("=")[1]) for p in ports.split()]
     assert len(numbers) == len(set(numbers)) == 4 and all(1024 <= n < 65536 for n in numbers)
@@ -109,3 +114,28 @@ def test_the_scripts_help_is_its_header():
     done = subprocess.run(["bash", str(SCRIPT), "--help"], capture_output=True, text=True, timeout=30)
     assert done.returncode == 0 and "profiles/cluster" in done.stdout and "LUMPED_SLURM_KEEP" in done.stdout
     assert done.stdout.rstrip().endswith("CI does not run it."), "--help stops short of the header's last line"
+
+
+def test_a_dry_run_through_the_profile_plans_the_system_sweeps_chunks_with_the_profiles_resources():
+    """The network sweep of rules/sweeps.smk: one SLURM job per chunk (``sweep --chunk I/N``), then the merge."""
+    pytest.importorskip("snakemake_executor_plugin_slurm", reason="snakemake-executor-plugin-slurm is not installed")
+    env = {**os.environ, "LUMPED_SLURM_ACCOUNT": "acct-test", "LUMPED_SLURM_PARTITION": "part-test"}
+    args = ["--profile", str(PROFILE.parent), "--dry-run", "--forceall", "--"]
+    done = subprocess.run(
+        [SNAKEMAKE, "--nolock", *args, "results/sweeps/two_blocks.csv"],
+        cwd=ROOT,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 0, done.stdout + done.stderr
+    jobs = _jobs(done.stdout + done.stderr)
+    chunks = sorted(f["output"] for rule, f in jobs if rule == "sweep_system_chunk")
+    assert chunks == sorted(f"results/sweeps/two_blocks/chunk-{i}.csv" for i in range(4))
+    assert [rule for rule, _ in jobs].count("sweep_system") == 1 and len(jobs) == len(chunks) + 1
+    per_rule = yaml.safe_load(PROFILE.read_text())["set-resources"]
+    for rule, fields in jobs:
+        resources = dict(item.split("=", 1) for item in fields["resources"].split(", "))
+        assert resources["slurm_account"] == "acct-test" and resources["slurm_partition"] == "part-test"
+        assert {k: resources[k] for k in per_rule[rule]} == {k: str(v) for k, v in per_rule[rule].items()}, rule

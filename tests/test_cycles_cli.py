@@ -292,3 +292,22 @@ def test_a_block_riding_a_slow_belt_is_not_called_steady_sliding(tmp_path):
     path.write_text(text, encoding="utf-8")
     table = lumped.cycles(load_system(path))
     assert "settles on steady sliding" not in table.summary
+
+
+def test_a_slow_belt_from_cycles_gives_the_closed_form_cycle(tmp_path):
+    """``examples/belt.toml`` at 2e-7 m/s: the long run from rest cannot reach the cycle within its natural periods
+    (the block rides the belt for 2.5e6 s before it first breaks away), but the cycle crosses the section stuck, at
+    the belt's speed, which is a start of its own: one cycle row, ``belt_cycle``'s period and extremes to 1e-10
+    (relative for the period: 5e6 s), its stick time to the clock's ``8 eps`` of the period (the shooting's test)."""
+    path = tmp_path / "slow.toml"
+    path.write_text(BELT.read_text(encoding="utf-8").replace("velocity = 0.2", "velocity = 2e-7"), encoding="utf-8")
+    out = tmp_path / "c.csv"
+    run = run_lumped("cycles", "--system", path, "--output", out)
+    assert run.returncode == 0, run.stderr
+    eq, cyc = read(out)
+    ref = belt_cycle(1.0, 1.0, 1.0, 0.5, 2e-7)
+    assert float(cyc["period"]) == pytest.approx(ref.period, rel=1e-10)
+    assert [float(cyc["max_m"]), float(cyc["min_m"])] == pytest.approx([ref.x_max, ref.x_min], abs=1e-10)
+    assert float(cyc["stick_time"]) == pytest.approx(ref.stick_time, abs=8 * np.finfo(float).eps * ref.period)
+    assert (cyc["stable"], cyc["max_multiplier"]) == ("true", "0")
+    assert "1 cycle (1 stable)" in run.stderr

@@ -264,11 +264,6 @@ def test_the_stick_slip_branch_folds_where_it_meets_the_unstable_sliding_cycles(
 
 
 @pytest.mark.slow
-@pytest.mark.xfail(
-    strict=True,
-    reason="the shooting misses a stop shorter than an integrator step (solvers/event_driven.py's first_stop tests "
-    "the speed's sign at step ends only): the sliding cycles run on 1.0e-6 m/s past the grazing speed",
-)
 def test_the_stick_slip_onset_is_where_the_sliding_cycle_reaches_the_belt_speed(onset_rows):
     """The Hopf point's unstable cycles grow until their largest speed is the belt's (0.2717890 m/s), where the
     contact first sticks: the ``stick-slip-onset`` row there, and the stick-slip piece's end (the ``fold`` row)

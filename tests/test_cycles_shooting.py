@@ -38,6 +38,8 @@ from lumped.model.network import Driver, Load, Mass, Network
 from lumped.solvers.closed_form_belt import belt_cycle
 from lumped.solvers.event_driven_network import solve_contact
 
+EPS = float(np.finfo(float).eps)
+
 #: Just above the Veraszto-Stepan Hopf speed: steady sliding is stable and the Hopf bifurcation subcritical, so an
 #: unstable slip-only cycle surrounds the equilibrium (at v = 0.0554 m/s on the section) inside the stick-slip one.
 V_ABOVE = 1.02 * V_HOPF
@@ -84,6 +86,69 @@ def test_the_static_kinetic_cycle_is_the_closed_form(m, k, static, kinetic, V):
     assert cycle.stick_time == pytest.approx(ref.stick_time, abs=1e-10)
     assert cycle.section == V and cycle.stick_phases == 1 and cycle.min_slip_speed == 0.0
     assert cycle.max_multiplier == 0.0 and cycle.stable  # a stop collapses the map
+
+
+@pytest.mark.parametrize("law", [{}, {"stribeck_velocity": 0.1, "viscous": 0.05}], ids=["closed-form", "dop853"])
+@pytest.mark.parametrize("offset", [1, 1e-13 / EPS, -1, -1e-13 / EPS], ids=["ulp", "1e-13", "-ulp", "-1e-13"])
+def test_a_cycle_started_off_the_belts_speed_by_newtons_error_sticks_once(law: dict, offset: float):
+    """The stick-slip cycle crosses the section stuck, at the belt's speed ``V``.  Newton started within its own
+    tolerance of ``V`` (1e-12 relative: one ulp, or 1e-13, above or below it) returns at once, and the flight from
+    there slips from ``u = v - V`` back to 0 before the stick: a slip of round-off length that is no motion.  One
+    stick phase per period, and the period's stick time that of the cycle started at ``V`` exactly (the static/
+    kinetic belt's is ``belt_cycle``'s; the merged slip lasts ``|v - V| m / |force|``, 1e-13 s at most here, and
+    each flight's own round-off is ~1e-15 of the 5 s stuck, so 1e-12).  Below ``V`` on the static/kinetic belt
+    (a centre) the harmonic cycle never reaches the belt: no stick there, whatever the offset."""
+    V = 0.2
+    net = belt_system(Friction("f", ("belt", "m"), static=1.0, kinetic=0.5, **law), V)
+    exact = find_cycle(net, V)
+    cycle = find_cycle(net, V * (1 + offset * EPS))
+    if not law and offset < 0:
+        assert (cycle.stick_phases, cycle.stick_time) == (0, 0.0)
+        return
+    assert exact.stick_phases == cycle.stick_phases == 1
+    assert cycle.stick_time == pytest.approx(exact.stick_time, abs=1e-12)
+    if not law:
+        assert exact.stick_time == pytest.approx(belt_cycle(1.0, 1.0, 1.0, 0.5, V).stick_time, abs=1e-12)
+
+
+@pytest.mark.parametrize("V", [2e-7, 1e-3, 1e3, 1e8])
+def test_the_static_kinetic_cycle_on_a_very_slow_or_fast_belt_is_the_closed_form(V: float):
+    """The edges of the belt's speed, from the belt's speed (the cycle crosses the section stuck, at ``V``).  At 2e-7
+    m/s the stick lasts 5e6 s, 8e5 natural periods: the return counts only its slip against its bound.  At 1e8 m/s
+    the slip's stop, ``acos(V / (R omega))`` with ``R omega = V (1 + 1.25e-17)``, is taken without the cancellation.
+    Period and extremes to 1e-10 relative (the issue's bound; closed forms, a few ulps each).  The stick time is a
+    difference of times on the return's clock (the breakaway, the stop, the crossing: a few ulps of the period
+    each), so to ``8 eps`` of the period: at 1e8 m/s that is 1e-14 s of a stick of 1e-8 s."""
+    net = belt_system(Friction("f", ("belt", "m"), static=1.0, kinetic=0.5), V)
+    ref = belt_cycle(1.0, 1.0, 1.0, 0.5, V)
+    cycle = find_cycle(net, V)
+    scale = max(abs(ref.x_max), abs(ref.x_min))
+    assert cycle.period == pytest.approx(ref.period, rel=1e-10)
+    assert cycle.x_max[0] == pytest.approx(ref.x_max, abs=1e-10 * scale)
+    assert cycle.x_min[0] == pytest.approx(ref.x_min, abs=1e-10 * scale)
+    assert cycle.stick_time == pytest.approx(ref.stick_time, abs=8 * EPS * ref.period)
+    assert cycle.stick_phases == 1 and cycle.stable
+
+
+def test_a_belt_too_slow_for_the_returns_clock_is_refused_in_one_line():
+    """At 1e-10 m/s the return lasts 1e10 s, past ``sqrt(2e-12) / (omega eps)`` = 6.4e9 s, where the clock's round-off
+    of the phases' angles (``omega eps t``) moves the positions by more than 1e-12 of their scale."""
+    net = belt_system(Friction("f", ("belt", "m"), static=1.0, kinetic=0.5), 1e-10)
+    with pytest.raises(
+        ValueError, match=r"^v: the return from the section at v = 1e-10 m/s lasts beyond 6.37e\+09 s"
+    ) as err:
+        find_cycle(net, 1e-10)
+    assert "no cycle is vouched for" in str(err.value) and "\n" not in str(err.value)
+
+
+def test_the_extremes_of_an_orbit_sampled_on_its_turning_point():
+    """On a belt at 1e3 m/s an orbit about ``kinetic/k`` with speed 0.5 m/s never reaches the belt (a neutral orbit
+    of the centre, ``P' = 1``): its extremes are ``kinetic/k +- 0.5``, though ``u + V`` rounds to exactly 0 on the
+    samples at its turning points (``u`` = -1e3 there)."""
+    net = belt_system(Friction("f", ("belt", "m"), static=1.0, kinetic=0.5), 1e3)
+    cycle = find_cycle(net, 0.5)
+    assert cycle.max_multiplier == 1.0 and not cycle.stable and cycle.stick_phases == 0
+    assert (cycle.x_max[0], cycle.x_min[0]) == pytest.approx((1.0, 0.0), abs=1e-12)
 
 
 def test_inside_the_static_kinetic_cycle_every_orbit_is_neutral():

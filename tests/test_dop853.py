@@ -234,3 +234,26 @@ def test_overflow_is_a_rejected_step_then_a_failure():
     while ours.status == "running" and ours.step():
         steps += 1
     assert ours.status == "failed" and ours.t < 1e-150
+
+
+def test_the_critical_times_are_the_dense_outputs_extrema_and_the_spread_bounds_it():
+    """``x = sin t`` from t = 1 to 10: the steps' critical times of ``x`` are the maxima and minima ``pi/2 + j pi``,
+    each found once.  The harmonic flow is a rotation, so the state's error after ``n`` steps is at most ``n``
+    local errors (``rtol |y| + atol``, ``|y| = 1``), a shift of the phase by as much; the interpolant's own error
+    (order 7, of the same size) moves the extremum by no more: ``4 n rtol``.  On every step the dense output stays
+    above ``min(x(a), x(b)) - piece_spread`` (:func:`dop853.piece_spread`'s inequality, on 65 points a step)."""
+    rtol = 1e-12
+    solver = dop853.Dop853(lambda t, y: (y[1], -y[0]), 1.0, (math.sin(1.0), math.cos(1.0)), 10.0, rtol, (1e-15, 1e-15))
+    found, steps = [], 0
+    theta = np.linspace(0.0, 1.0, 65)
+    while solver.status == "running":
+        assert solver.step()
+        steps += 1
+        piece = solver.dense_output()
+        found += [(t, steps) for t in dop853.piece_critical_times(piece, 0)]
+        x = [dop853.piece_value(piece, piece.t_old + th * piece.h, 0) for th in theta]
+        assert min(x) >= min(x[0], x[-1]) - dop853.piece_spread(piece, 0)
+    expected = [math.pi / 2 + j * math.pi for j in range(3)]
+    assert len(found) == len(expected)
+    for (t, n), ref in zip(found, expected):
+        assert t == pytest.approx(ref, abs=4 * n * rtol)

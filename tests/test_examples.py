@@ -23,7 +23,11 @@
   ``two_mass_response.toml`` without friction has the linear two-degree-of-
   freedom response (``tests/test_response_network.py``); ``belt.toml`` meets
   the closed-form stick-slip cycle and ``stribeck_belt.toml`` the linearised
-  motion about steady sliding (``tests/test_friction_cli.py``).
+  motion about steady sliding (``tests/test_friction_cli.py``);
+  ``block_chain.toml``'s identical blocks move as one block, that block on a
+  belt seen from the plate, and its ``count`` tables are the tables written one
+  by one (``tests/test_repeated_tables.py``); ``two_blocks.toml``'s sweep in the
+  pipeline's chunks is the whole sweep's file (``tests/test_sweep_system.py``).
 * ``scripts/ground_record.py`` writes the committed record, byte for byte.
 """
 
@@ -55,11 +59,13 @@ TESTS = {
     "figure2_beside_dashpot": "test_examples.py::test_figure2_beside_the_dashpot_holds_at_the_strings_length",
     "friction_pads": "test_examples.py::test_two_pads_move_as_one_and_share_the_held_force",
     "belt": "test_friction_cli.py::test_the_belt_example_meets_the_closed_form_cycle",
+    "block_chain": "test_repeated_tables.py::test_the_block_chain_moves_as_one_block_on_a_belt",
     "stribeck_belt": "test_friction_cli.py::test_the_stribeck_example_is_the_linearised_motion",
     "s_curve": "test_curve_element.py::test_the_s_curve_example_prints_its_jumps",
     "two_mass_response": (
         "test_response_network.py::test_without_friction_the_example_is_the_linear_two_degree_of_freedom_response"
     ),
+    "two_blocks": "test_sweep_system.py::test_the_pipelines_chunked_sweep_is_the_whole_sweep_byte_for_byte",
 }
 #: The examples whose elements close a loop that is rigid at some saved point: their non-unique forces.
 INTERVALS = {"figure2_beside_dashpot": ["string", "dashpot"], "friction_pads": ["pad1", "pad2"]}

@@ -109,6 +109,41 @@ def test_a_contact_to_the_ground_stops_where_the_closed_form_says():
     assert np.all(tr.velocities[tr.t > tr.rest_times[0], 0] == 0.0)
 
 
+@pytest.mark.parametrize("depth", [1e-9, -1e-9])
+def test_a_slip_speed_that_touches_zero_inside_one_step_stops_there(depth: float):
+    """A stop shorter than an integrator step.  Slipping back on the belt (``u = v - V < 0``) the mass oscillates
+    harmonically about ``kinetic/k`` (``m = k = 1``): from ``x0 = kinetic/k``, ``v0 = -A`` the speed is
+    ``-A cos t`` and the slip speed's largest value, at ``t = pi``, is ``A - V = depth``.  With ``depth = 1e-9``
+    the slip speed is at or above 0 for ``2 arccos(V/A) = 2e-4`` s, inside one DOP853 step (about 0.08 s here,
+    asserted), and the contact stops at ``t* = pi - arccos(V/A)`` (a holding force ``k x``, about ``kinetic``,
+    within ``static``: it sticks); with ``depth = -1e-9`` it never reaches the belt's speed and slips on.
+
+    Tolerance: each step errs in ``u`` by at most ``rtol |u| + atol`` (``|u| <= 2 V``), and the undamped
+    oscillator does not grow errors (its flow is a rotation in ``(x, u)``), so ``u`` errs by at most
+    ``steps (rtol 2 V + atol)`` at ``t*``: the zero moves by that over the slip speed's slope there,
+    ``A sin(arccos(V/A))``, about 2e-5 m/s^2 (Brent's 4 eps on ``t*`` is far below)."""
+    V, static, kinetic, rtol = 0.2, 1.0, 0.5, 1e-13
+    A = V + depth
+    elements = [Spring("k", ("ground", "m"), 1.0), Friction("f", ("belt", "m"), static=static, kinetic=kinetic)]
+    net = Network([Mass("m", 1.0, kinetic, -A)], elements, drivers=[Driver("belt", V)])
+    sol = solve_contact(net, 4.0, rtol=rtol)
+    opening = 2 * math.asin(math.sqrt(abs(depth) / A / 2))  # arccos(V/A), without the cancellation in 1 - V/A
+    slip = sol.phases[0].motion
+    if depth < 0:
+        assert sol.events == [] and [p.kind for p in sol.phases] == ["slip"]
+        steps = slip.steps
+        # the touch lies inside one step: no step ends within the dip's span (pi -+ opening)
+        assert not np.any(np.abs(steps - math.pi) <= opening)
+        return
+    assert [(e.kind, p.kind) for e, p in zip(sol.events, sol.phases[1:])] == [("stop", "stick")]
+    t_star = math.pi - opening
+    slope = A * math.sin(opening)
+    steps = slip.steps
+    bound = len(steps) * (rtol * 2 * V + 1e-3 * rtol * static) / slope  # atol: 1e-3 rtol (static / sqrt(k m))
+    assert sol.events[0].time == pytest.approx(t_star, abs=bound)
+    assert steps[-2] < t_star - 10 * opening  # the step that holds the stop began well before the touch
+
+
 # -- Leine et al.'s benchmark --------------------------------------------------------------------------------
 
 V_LEINE, FS, DELTA = 0.2, 1.0, 3.0

@@ -30,6 +30,7 @@ TAKES_VALUE = frozenset(API_TO_OPTION.values()) - {"--t-end/--dt"} | {
     "--method",
     "--output",
     "--system",
+    "--chunk",
     *LOAD_FLAGS,
     *RESPONSE_FLAGS,
     *FIT_FLAGS,

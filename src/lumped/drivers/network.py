@@ -32,7 +32,7 @@ from lumped.solvers import network_compiled as kernel
 from lumped.solvers.backward_euler_network import march
 from lumped.solvers.uniqueness import check_step
 
-__all__ = ["run_network", "SOLVERS"]
+__all__ = ["SOLVERS", "check_active_set", "paper_form", "run_network"]
 
 #: Step solvers by name (see :func:`run_network`): a view of the registry
 #: (:data:`lumped.drivers.methods.NETWORK_SOLVERS`, those of the method that runs any network).
@@ -111,6 +111,17 @@ def run_network(network: Network, t_end: float, dt: float, *, save_every: int = 
     pair = _paper_form(network) if solver == "auto" else None
     if pair is not None:
         return _via_algorithm1(network, pair, t_end, dt, save_every)
+    path, rows, _ = check_active_set(network, dt, n_steps, save_every, solver)
+    return march(network, dt, n_steps, save_every, rows, path)
+
+
+def check_active_set(network: Network, dt: float, n_steps: int, save_every: int, solver: str) -> tuple[str, int, float]:
+    """The checks of an active-set run before any step: the step's uniqueness bound, the path, the loads'
+    span, the output's size and the estimated time; returns ``(path, saved rows, estimated seconds)``.
+
+    :func:`run_network` makes them before its time loop, and a sweep of a system file
+    (:mod:`lumped.drivers.sweep.system`) for every row before the first runs.
+    """
     check_step(network, dt)
     path = _path(network, solver)
     for load in network.loads:
@@ -118,8 +129,13 @@ def run_network(network: Network, t_end: float, dt: float, *, save_every: int = 
     width = 1 + 2 * len(network.masses) + 3 * len(network.elements)
     rows = validate.output_size(n_steps, save_every, width)
     fixed, per_element = _COST[path]
-    validate.run_time(n_steps, fixed + per_element * len(network.elements), f"the network step ({path})")
-    return march(network, dt, n_steps, save_every, rows, path)
+    seconds = validate.run_time(n_steps, fixed + per_element * len(network.elements), f"the network step ({path})")
+    return path, rows, seconds
+
+
+def paper_form(network: Network, solver: str = "auto") -> OneMass | None:
+    """The oscillator :func:`run_network` hands to Algorithm 1 with ``solver``, or ``None`` (the active-set step)."""
+    return _paper_form(network) if solver == "auto" else None
 
 
 def _path(net: Network, solver: str) -> str:

@@ -8,7 +8,8 @@
 * :mod:`~lumped.model.tables`: load histories read from CSV files;
 * :mod:`~lumped.model.parameters`: every parameter's name, default, unit,
   range and help, in one table;
-* :mod:`~lumped.model.files`: system files (TOML);
+* :mod:`~lumped.model.files`: system files (TOML); :mod:`~lumped.model.repeated`: their
+  ``count = N`` tables;
 * :mod:`~lumped.model.problem`: :class:`Problem`, a system over a span, which every
   method takes, and the one-mass form of a network;
 * :mod:`~lumped.model.trajectory`: what every run returns, for one mass or many,

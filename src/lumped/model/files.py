@@ -17,6 +17,12 @@ relative to the ground; ``[[driver]]`` tables with ``name`` and
 is a ``ValueError`` of one line naming the file, the entry and the problem
 (non-ASCII characters in it escaped).
 
+A ``[[mass]]``, ``[[element]]``, ``[[force]]`` or ``[[driver]]`` table with
+``count = N`` stands for N tables, ``i = 1 .. N``: ``{i}``, ``{i+1}``, ``{i-1}``
+in its strings, an array of N numbers or a grading ``{ from = a, to = b }``
+for a number (:mod:`lumped.model.repeated`), so that a chain of thousands of
+blocks is a file of a few lines.
+
 Names of masses, drivers and elements are 1 to 64 ASCII letters, digits, ``_``,
 ``.`` and ``-``, starting with a letter or ``_``
 (:data:`~lumped.laws.element.NAME_PATTERN`): they become column names
@@ -26,7 +32,7 @@ of the output.  A file holds at most
 :data:`~lumped.model.network.MAX_LOADS` (20,000) forces, the ground's
 load on every mass included, and at most
 :data:`MAX_FILE_BYTES` (16 MiB); a larger file is refused before it is
-parsed, one with more entries before any entry is built.
+parsed, one with more entries (``count`` tables counted N times) before any entry is built.
 """
 
 from __future__ import annotations
@@ -41,6 +47,7 @@ from lumped.laws.element import Element
 from lumped.laws.kinds import KINDS
 from lumped.model.forcing import Constant, SwitchedSine
 from lumped.model.network import Driver, Load, Mass, Network, check_count
+from lumped.model.repeated import Origin, count_of, expand
 from lumped.model.tables import read_table
 
 __all__ = ["MAX_FILE_BYTES", "load_system", "parse_system", "table_files"]
@@ -81,8 +88,8 @@ def load_system(path: str | Path) -> Network:
 
 def table_files(path: str | Path) -> list[tuple[str, Path]]:
     """The table files that the system file ``path`` names, as ``(entry, file)``: ``("[[force]] 2", folder /
-    file)``, ``("[ground] acceleration", ...)`` or ``("[[driver]] 1 velocity", ...)``, each resolved as
-    :func:`load_system` reads it.
+    file)``, ``("[ground] acceleration", ...)`` or ``("[[driver]] 1 velocity", ...)`` (``"[[force]] 2, i =
+    7"`` for a ``count`` table's seventh), each resolved as :func:`load_system` reads it.
 
     What cannot be read is left out (a file that is not TOML names none): :func:`load_system` refuses it.
     """
@@ -91,13 +98,13 @@ def table_files(path: str | Path) -> list[tuple[str, Path]]:
         if path.stat().st_size > MAX_FILE_BYTES:
             return []
         data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeError, tomllib.TOMLDecodeError, RecursionError):
+        tables = _expanded(data)
+    except (OSError, UnicodeError, tomllib.TOMLDecodeError, RecursionError, ValueError):
         return []
-    forces, drivers = data.get("force", []), data.get("driver", [])
     ground = data.get("ground", {})
-    entries = [(f"[[force]] {i}", raw) for i, raw in enumerate(forces if isinstance(forces, list) else [], 1)]
-    for i, raw in enumerate(drivers if isinstance(drivers, list) else [], 1):
-        entries.append((f"[[driver]] {i} velocity", raw.get("velocity") if isinstance(raw, dict) else None))
+    entries = [(origin.label("force"), raw) for origin, raw in tables["force"]]
+    for origin, raw in tables["driver"]:
+        entries.append((f"{origin.label('driver')} velocity", raw.get("velocity")))
     if isinstance(ground, dict):
         entries.append(("[ground] acceleration", ground.get("acceleration")))
     return [
@@ -142,23 +149,15 @@ def _parse(text: str, source: str, folder: Path) -> Network:
             f"{source}: unknown table {unknown[0]!r:.40}; expected [[mass]], [[element]], [[force]], [[driver]] "
             "and [ground]"
         )
-    tables = {}
-    for key in sorted(_TABLES):
-        value = data.get(key, [])
-        if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
-            raise ValueError(f"{source}: {key} must be written as [[{key}]] tables")
-        try:
-            check_count(_COUNTED[key], len(value))
-        except ValueError as err:
-            raise ValueError(f"{source}: {err}") from None
-        tables[key] = value
-    masses = [_entry(source, "mass", i, t, _mass) for i, t in enumerate(tables["mass"], 1)]
-    elements = [_entry(source, "element", i, t, _element) for i, t in enumerate(tables["element"], 1)]
-    loads = [_entry(source, "force", i, t, lambda raw: _force(raw, folder)) for i, t in enumerate(tables["force"], 1)]
+    try:
+        tables = _expanded(data)
+    except ValueError as err:
+        raise ValueError(f"{source}: {err}") from None
+    masses = [_entry(source, "mass", o, t, _mass) for o, t in tables["mass"]]
+    elements = [_entry(source, "element", o, t, _element) for o, t in tables["element"]]
+    loads = [_entry(source, "force", o, t, lambda raw: _force(raw, folder)) for o, t in tables["force"]]
     loads += _ground(source, data.get("ground"), masses, folder)
-    drivers = [
-        _entry(source, "driver", i, t, lambda raw: _driver(raw, folder)) for i, t in enumerate(tables["driver"], 1)
-    ]
+    drivers = [_entry(source, "driver", o, t, lambda raw: _driver(raw, folder)) for o, t in tables["driver"]]
     try:
         net = Network(masses, elements, loads, drivers)
         _initial_check(net)
@@ -167,9 +166,29 @@ def _parse(text: str, source: str, folder: Path) -> Network:
     return net
 
 
-def _entry(source: str, table: str, number: int, raw: dict, build) -> object:  # noqa: ANN001
+def _expanded(data: dict) -> dict[str, list[tuple[Origin, dict]]]:
+    """The file's tables by kind, each ``count`` table expanded (:mod:`lumped.model.repeated`), their
+    numbers checked against the network's limits before any is expanded."""
+    tables = {}
+    for key in sorted(_TABLES):
+        value = data.get(key, [])
+        if not isinstance(value, list) or not all(isinstance(v, dict) for v in value):
+            raise ValueError(f"{key} must be written as [[{key}]] tables")
+        check_count(_COUNTED[key], len(value))
+        total = 0
+        for number, raw in enumerate(value, 1):
+            try:
+                total += count_of(raw)
+            except ValueError as err:
+                raise ValueError(f"[[{key}]] {number}: {err}") from None
+        check_count(_COUNTED[key], total)
+        tables[key] = expand(value, key)
+    return tables
+
+
+def _entry(source: str, table: str, origin: Origin, raw: dict, build) -> object:  # noqa: ANN001
     label = raw.get("name", raw.get("on")) if isinstance(raw, dict) else None
-    where = f"[[{table}]] {number}" + (f" ({label!a:.40})" if isinstance(label, str) else "")
+    where = origin.label(table) + (f" ({label!a:.40})" if isinstance(label, str) else "")
     try:
         return build(raw)
     except ValueError as err:

@@ -7,6 +7,11 @@ each number in it is then ``<name>.<key>``: a mass's ``mass``, ``x0`` or
 load, that load's ``force.amplitude``, ``force.omega``, ``force.phase``,
 ``force.until`` (a sine) or ``force.value``, ``force.until`` (a constant),
 and a driven point's ``velocity`` where it is one number (``belt.velocity``).
+A table with ``count`` (:mod:`lumped.model.repeated`) gives its tables' own
+names, so ``b17.mass`` is the 17th block's mass and varies that block alone;
+the pattern's name (``b{i}.mass``) is refused in one line: the tables of a
+pattern are independent entries once read, and a value that changes them
+all is changed in the file.
 The sensitivities (``simulate --sensitivities``) and the fit (``lumped
 fit``) name their parameters so; :func:`system_parameters` reads such
 names and :func:`with_values` writes new values into a system.
@@ -16,6 +21,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import re
 from collections.abc import Sequence
 from typing import NamedTuple
 
@@ -68,6 +74,11 @@ def _one(network: Network, name: str, what: str) -> SystemParameter:
     item, dot, key = name.rpartition(".")
     if not dot or not item or not key:
         raise ValueError(f"{what}: {name!r} is not a parameter's name; write it element.key or mass.key (m.x0)")
+    if "{" in item:
+        raise ValueError(
+            f"{what}: {name!r} names a pattern of a count table, not one parameter; name one of its tables "
+            f"(such as {re.sub(r'[{][^{}]*[}]', '1', item)[:40]}.{key}), or change the value in the file to change them all"
+        )
     for i, m in enumerate(network.masses):
         if m.name == item and key in MASS_KEYS:
             return SystemParameter(name, "mass", i, key, float(getattr(m, key)))

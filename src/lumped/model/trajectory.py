@@ -19,7 +19,7 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.laws import GROUND
-from lumped.model.network import Network
+from lumped.model.network import Network, listed
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import OneMass, one_mass_form, oscillator_network
 
@@ -277,17 +277,48 @@ class Trajectory:
         return tuple(e for e in self.events if isinstance(e, Jump))
 
     def summary(self, shown: int = 10) -> str:
-        """Each mass's rest time and position, or that it still moves (the first ``shown`` masses); then the
-        jumps between branches, each element's count and its first three."""
-        parts, names = [], self.network.mass_names
-        times, places = self.rest_times, self.rest_positions
-        for i, name in enumerate(names[:shown]):
+        """One line: the masses' motion at the end, then the jumps between branches (each element's count
+        and its first three), as clauses joined by ``"; "``.
+
+        Up to ``shown`` masses: each one's rest time and position, or that it still moves.  More: how many
+        rest at the end (the last to stop, when and which) and which still move, and the largest
+        displacement over the saved points, which mass and when (:meth:`_many_masses`).
+        """
+        few = len(self.network.mass_names) <= shown
+        clauses = self._each_mass() if few else self._many_masses()
+        return "; ".join(clauses) + _jumps_line(self.jumps)
+
+    def _each_mass(self) -> list[str]:
+        """``m1 at rest from t = 3.1458 s at x = 0.0017 m`` or ``m1 still moving at t = 20 s (x = ...)``."""
+        parts, times, places = [], self.rest_times, self.rest_positions
+        for i, name in enumerate(self.network.mass_names):
             if math.isnan(times[i]):
                 parts.append(f"{name} still moving at t = {self.t[-1]:.6g} s (x = {self.positions[-1, i]:.9g} m)")
             else:
                 parts.append(f"{name} at rest from t = {times[i]:.10g} s at x = {places[i]:.10g} m")
-        more = f"; ... and {len(names) - shown} more masses" if len(names) > shown else ""
-        return "; ".join(parts) + more + _jumps_line(self.jumps)
+        return parts
+
+    def _many_masses(self) -> list[str]:
+        """``1000 masses: 998 at rest at the end, the last from t = 1.93 s ('b17')``, ``2 still moving at
+        t = 2 s ('b3', 'b4')`` (``all`` when none or every one moves) and ``largest |x| 0.0123 m ('b17' at
+        t = 1.2 s)``, the largest displacement over the saved points."""
+        names, times, end = self.network.mass_names, self.rest_times, f"{self.t[-1]:.6g}"
+        moving = np.flatnonzero(np.isnan(times))
+        if moving.size == len(names):
+            clauses = [f"{len(names)} masses: all still moving at t = {end} s"]
+        else:
+            last = int(np.nanargmax(times))
+            rest = "all" if moving.size == 0 else str(len(names) - moving.size)
+            clauses = [
+                f"{len(names)} masses: {rest} at rest at the end, the last from t = {times[last]:.6g} s "
+                f"({names[last]!r})"
+            ]
+            if moving.size:
+                still = listed([names[i] for i in moving])
+                clauses.append(f"{moving.size} still moving at t = {end} s ({still})")
+        at, mass = np.unravel_index(int(np.argmax(np.abs(self.positions))), self.positions.shape)
+        clauses.append(f"largest |x| {abs(self.positions[at, mass]):.6g} m ({names[mass]!r} at t = {self.t[at]:.6g} s)")
+        return clauses
 
     # -- the paper's system: one mass ------------------------------------------
 

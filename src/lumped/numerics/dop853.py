@@ -34,10 +34,11 @@ from operator import mul
 from typing import NamedTuple
 
 import numpy as np
+from numpy.polynomial import polynomial as npoly
 
 from lumped.numerics.dop853_tableau import E3, E5, N_STAGES, N_STAGES_EXTENDED, A, C, D
 
-__all__ = ["Dop853", "Piece", "PiecewiseDense", "piece_value"]
+__all__ = ["Dop853", "Piece", "PiecewiseDense", "piece_critical_times", "piece_spread", "piece_value"]
 
 Rhs = Callable[[float, Sequence[float]], Sequence[float]]
 SAFETY, MIN_FACTOR, MAX_FACTOR = 0.9, 0.2, 10.0  # SciPy's rk.py
@@ -61,6 +62,34 @@ def piece_value(piece: Piece, t: float, c: int) -> float:
         y = (y + f) * ((1 - x) if odd else x)
         odd = not odd
     return y + piece.y_old[c]
+
+
+def piece_spread(piece: Piece, c: int) -> float:
+    """A bound on how far component ``c`` of the dense output strays below its chord over the step.
+
+    With ``theta = (t - t_old)/h`` in ``[0, 1]`` the dense output is ``y_old + theta F0 + theta (1 - theta) R``,
+    ``R = F1 + theta (F2 + (1 - theta) (F3 + ...))`` (module Notes): every factor lies in ``[0, 1]``, so
+    ``|R| <= |F1| + ... + |F6|`` and ``theta (1 - theta) <= 1/4``.  The component stays within
+    ``(|F1| + ... + |F6|) / 4`` of the chord ``y_old + theta F0``, hence above ``min(y_old, y_old + F0)`` minus it.
+    """
+    return sum(abs(f) for f in piece.F[c][1:]) / 4
+
+
+def piece_critical_times(piece: Piece, c: int) -> list[float]:
+    """The times inside the step, increasing, where component ``c`` of the dense output has a zero derivative.
+
+    The dense output is a polynomial of degree 7 in ``theta`` (module Notes); its derivative's roots (numpy's
+    companion-matrix eigenvalues) with real part in ``(0, 1)`` are mapped to times.  The real part of a complex
+    pair is kept too (a near-double root split by rounding): a time that is no extremum only adds a point at
+    which the caller evaluates the component.  Every extremum of the polynomial inside the step is in the list.
+    """
+    poly = np.zeros(1)
+    theta, one_minus = np.array([0.0, 1.0]), np.array([1.0, -1.0])
+    for i, f in enumerate(reversed(piece.F[c])):  # piece_value's nesting, on coefficient arrays
+        poly = npoly.polymul(npoly.polyadd(poly, [f]), one_minus if i % 2 else theta)
+    roots = npoly.polyroots(npoly.polyder(poly)) if poly.size > 2 else []
+    inside = sorted({float(r.real) for r in np.atleast_1d(roots) if 0 < r.real < 1})
+    return [piece.t_old + piece.h * r for r in inside]
 
 
 def _call(fun: Rhs, t: float, y: list[float]) -> Sequence[float]:

@@ -158,8 +158,8 @@ class HarmonicSlip:
     ) -> None:
         self.m, self.k, self.centre, self.V, self.s = mass, stiffness, centre, velocity, s
         self.omega = math.sqrt(stiffness / mass)
-        self.t0, x0, u0 = start
-        self.y0, self.v0 = x0 - centre, u0 + velocity
+        self.t0, x0, self.u0 = start
+        self.y0, self.v0 = x0 - centre, self.u0 + velocity
         self.end = self.t0
 
     def state(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
@@ -175,12 +175,14 @@ class HarmonicSlip:
 
     def first_stop(self, t_lim: float, direction: int) -> float | None:
         """The first time in ``(t0, t_lim]`` at which ``u`` is back at zero (the class docstring), or ``None``."""
-        radius = math.hypot(self.y0, self.v0 / self.omega)
-        c = self.V / (radius * self.omega) if radius > 0 else math.inf
+        # acos(c) as atan2(sqrt((R omega)^2 - V^2), V), with (R omega)^2 - V^2 = (y0 omega)^2 + u0 (u0 + 2 V) from
+        # the start's own u0: acos(V/(R omega)) loses half the digits where c is near 1 (a fast belt: c = 1 - 1e-17
+        # rounds to 1 at 1e8 m/s, and the stop moves by 5e-9 s, half a metre)
+        gap = (self.y0 * self.omega) ** 2 + self.u0 * (self.u0 + 2 * self.V)
         stop = None
-        if abs(c) <= 1:
+        if gap >= 0 and (self.y0 or self.v0):
             phi = math.atan2(self.y0, self.v0 / self.omega)
-            tau = ((direction * math.acos(c) - phi) % (2 * math.pi)) / self.omega
+            tau = ((direction * math.atan2(math.sqrt(gap), self.V) - phi) % (2 * math.pi)) / self.omega
             stop = self.t0 + tau if self.t0 + tau <= t_lim else None
         self.end = t_lim if stop is None else stop
         return stop

@@ -17,7 +17,10 @@ output of order 7.
 The static part ``s tau`` is held at the phase's sign, so the right-hand
 side is smooth in the phase up to the viscous part, which is continuous
 through ``v = 0``.  The stop (``v`` returns to zero) is found on each step's
-dense output by Brent's method, to a few ulps of the time.  Stick phases,
+dense output by Brent's method, to a few ulps of the time, also where ``v``
+touches zero inside a step and comes back before its end (a stop shorter than
+a step: the dense output's extrema, the roots of a polynomial of degree 6, are
+all examined; :meth:`IntegratedSlip._dip`).  Stick phases,
 breakaways (in closed form, with ``arcsin``) and the stick test are those
 of the exact solver.
 
@@ -59,7 +62,7 @@ from lumped.laws import Dashpot
 from lumped.model.forcing import SwitchedSine, as_sine
 from lumped.model.oscillator import MAGNITUDE_LIMIT, Oscillator
 from lumped.numerics import validate
-from lumped.numerics.dop853 import Dop853, Piece, PiecewiseDense, piece_value
+from lumped.numerics.dop853 import Dop853, Piece, PiecewiseDense, piece_critical_times, piece_spread, piece_value
 from lumped.numerics.roots import brentq
 from lumped.solvers.events import PhaseMarch, SlipFactory
 from lumped.solvers.exact import ExactSolution, check_scales
@@ -131,7 +134,7 @@ class IntegratedSlip:
     """One slip phase integrated by DOP853 (:mod:`lumped.numerics.dop853`); the interface of :class:`~lumped.solvers.closed_form.SlipMotion`.
 
     ``first_stop`` integrates (once) from ``t0`` and returns the first zero of
-    ``v`` before ``t_lim``, or ``None``; ``state`` then evaluates the dense
+    ``v`` before ``t_lim`` (inside a step too: :meth:`_dip`), or ``None``; ``state`` then evaluates the dense
     output on ``[t0, end]``.
     """
 
@@ -189,8 +192,8 @@ class IntegratedSlip:
                 )
             times.append(solver.t)
             pieces.append(solver.dense_output())
-            if direction * solver.y[1] <= 0:
-                stop = self._root(pieces[-1], times[-2], times[-1], direction)
+            stop = self._stop_in(pieces[-1], times[-2], times[-1], direction, direction * solver.y[1] <= 0)
+            if stop is not None:
                 times[-1] = stop
                 break
         else:
@@ -201,14 +204,63 @@ class IntegratedSlip:
         self._dense = PiecewiseDense(times, pieces) if pieces else None
         return stop
 
+    def _stop_in(self, piece: Piece, a: float, b: float, direction: int, ends_stopped: bool) -> float | None:
+        """The first zero of ``direction * v`` in ``(a, b]`` on one step's dense output, or ``None``.
+
+        ``ends_stopped`` says the step ends with ``direction * v <= 0``.  Otherwise the speed may still touch
+        zero inside the step and come back (a stop shorter than a step): :meth:`_dip` looks for it.
+        """
+        if ends_stopped:
+            dip = self._dip(piece, a, b, direction, last=b)
+            return self._root(piece, a, b if dip is None else dip, direction)
+        dip = self._dip(piece, a, b, direction, last=None)
+        return None if dip is None else self._root(piece, a, dip, direction)
+
+    def _dip(self, piece: Piece, a: float, b: float, direction: int, last: float | None) -> float | None:
+        """The first extremum of the dense output in ``(a, b)`` at which ``g = direction * v <= 0`` and after
+        which ``g`` is positive again (at a later extremum or at ``b``); ``None`` if there is none.
+
+        The speed's minimum is where its derivative, the acceleration, changes sign from - to +.  On one step
+        the dense output is a polynomial of degree 7 (:mod:`lumped.numerics.dop853`), so its extrema are the
+        real roots of a polynomial of degree 6, all found at once (:func:`piece_critical_times`): no extremum
+        of what the dense output represents is missed, however many a step holds and however short the dip.
+        A dip below what the dense output resolves (its error, of order ``rtol`` times the speed's scale) is
+        below the integration's tolerance anyway.  Cheap first: ``g`` stays above ``min(g(a), g(b)) -
+        piece_spread`` (:func:`piece_spread`'s bound), so a step whose bound is positive has no dip.  With
+        ``last = b`` (the step ends stopped) the dip is returned only if ``g`` comes back above 0 after it,
+        so that a single crossing keeps the bracket ``(a, b]``.  A step that starts at rest looks only
+        where the motion is under way (:meth:`_under_way`).
+        """
+        ends = direction * piece.y_old[1], direction * (piece.y_old[1] + piece.F[1][0])  # g(a), g(b): theta 0, 1
+        if last is None and ends[0] > 0 and min(ends) > piece_spread(piece, 1):
+            return None
+        g = lambda t: direction * piece_value(piece, t, 1)
+        start = self._under_way(g, a, b)
+        if start is None:
+            return None
+        points = [t for t in piece_critical_times(piece, 1) if t > start]
+        first = next((i for i, t in enumerate(points) if g(t) <= 0), None)
+        if first is None:
+            return None
+        if last is not None and all(g(t) <= 0 for t in points[first:]):
+            return None  # g stays <= 0 from the first dip to b: one crossing, bracketed by (a, b]
+        return points[first]
+
+    @staticmethod
+    def _under_way(g: Callable[[float], float], a: float, b: float) -> float | None:
+        """``a`` if ``g(a) > 0``; for a step that starts at rest, the first of :data:`_SAMPLES` points where ``g > 0``
+        (the motion under way), or ``None``."""
+        if g(a) > 0:
+            return a
+        return next((p for p in (a + (b - a) * i / _SAMPLES for i in range(1, _SAMPLES)) if g(p) > 0), None)
+
     def _root(self, piece: Piece, a: float, b: float, direction: int) -> float:
-        """The zero of ``direction * v`` in ``(a, b]`` on one step's dense output."""
+        """The zero of ``direction * v`` in ``(a, b]`` on one step's dense output, ``g(b) <= 0``."""
         g = lambda t: direction * piece_value(piece, t, 1)
         if g(b) == 0:
             return b
         if not g(a) > 0:  # the step started at rest: find where the motion is under way
-            ahead = (p for p in (a + (b - a) * i / _SAMPLES for i in range(1, _SAMPLES)) if g(p) > 0)
-            first = next(ahead, None)
+            first = self._under_way(g, a, b)
             if first is None:
                 return a
             a = first

@@ -24,7 +24,8 @@ resisting the slip: ``T = sgn(u) g(|u|)`` off zero rate, any value in
   integrated by DOP853 (:class:`lumped.solvers.event_driven.IntegratedSlip`,
   the integrator of the one-mass method, on the state ``(x, u)``); the clipped
   speed keeps the right-hand side continuous where the step passes the stop,
-  whose time is found on the step's dense output by Brent's method.  At the
+  whose time is found on the step's dense output by Brent's method (also a
+  touch of ``u = 0`` shorter than a step, between two ends of one sign).  At the
   stop the rule of :class:`lumped.laws.step_graph.SlipGraph` decides: the
   contact sticks if the holding force ``S`` lies within ``[-static,
   static]``, else it slips the other way (a *reversal*).

@@ -19,10 +19,13 @@ Without ``vary``: the equilibrium's row, then one row per cycle found at the
 file's parameters: from the file's initial state by a long run (event-driven,
 :func:`~lumped.solvers.event_driven_network.solve_contact`) until the
 crossings of the section settle (:data:`SETTLE_RTOL`), then Newton on the
-return map (:func:`~lumped.drivers.cycles.shooting.find_cycle`); and from the
+return map (:func:`~lumped.drivers.cycles.shooting.find_cycle`); from the
 branch born at the nearest Hopf point in the belt's speed within a factor
 :data:`HOPF_REACH` of the file's (its cycle nearest the file's speed, then
-Newton).  With ``vary = (name, start, stop)``: the branches of
+Newton); and from the belt's speed ``V > 0`` (a cycle stuck as it crosses the
+section crosses it at ``V`` exactly: its fixed point, whatever the length of
+its stick, which the long run's natural periods may not reach: 5e6 s on
+``examples/belt.toml`` at 2e-7 m/s).  With ``vary = (name, start, stop)``: the branches of
 :func:`~lumped.drivers.cycles.continuation.continue_branches` over the range.
 """
 
@@ -191,8 +194,10 @@ def _rows_at_file(network: Network, points: int, progress: Callable | None) -> t
     starts.append(("the initial state", v0))
     tick(2, 3)
     starts.append(("the Hopf branch", _hopf_branch_crossing(network, points)))
-    for where, v in starts:
-        if v is None:
+    belt = model(network).V
+    starts.append(("the belt's speed", belt if belt > 0 else None))  # a cycle stuck at the section crosses it at V
+    for i, (where, v) in enumerate(starts):
+        if v is None or any(v == w for _, w in starts[:i]):  # none, or an earlier start's (its cycle is a row)
             continue
         try:
             cycle = find_cycle(network, v)

@@ -98,6 +98,9 @@ __all__ = [
 RTOL = 1e-13
 #: A return must come within this many natural periods ``2 pi sqrt(m/K)`` (else the motion has left).
 RETURN_PERIODS = 1000
+#: Round-off of the positions that the one clock of a return may cause, relative to the motion's scale: a return
+#: longer than ``sqrt(2 CLOCK_TOL) / (omega eps)`` (6.4e9 s at ``omega`` = 1 rad/s) is refused (:func:`_fly`).
+CLOCK_TOL = 1e-12
 #: Events and integrator steps a return may take.
 MAX_EVENTS, MAX_STEPS = 10_000, 1_000_000
 #: Newton iterations before :func:`find_cycle` gives up; halvings of one step that leaves ``v > 0``.
@@ -229,26 +232,50 @@ def _march(sys: _System, rtol: float, t_max: float, v: float) -> _SectionMarch:
 
 
 def _fly(sys: _System, v: float, rtol: float = RTOL) -> _Flight:
-    """The return from ``(x*, v)`` to the section, with the map's derivative (module docstring)."""
+    """The return from ``(x*, v)`` to the section, with the map's derivative (module docstring).
+
+    The return must come within :data:`RETURN_PERIODS` natural periods of slip; the sticks on the way do not
+    count against it.  A stick is closed-form, of any length at no cost, and ends by itself: the held force
+    ``-K x + gamma`` moves at ``-K V`` while the mass rides the belt, so it leaves ``[-static, static]`` within
+    ``2 static / (K |V|)`` (5e6 s on a belt at 2e-7 m/s: a natural period's count would end the return there).
+
+    But a return's times are carried in one clock from 0, to ``eps t``: a phase starting at ``t0`` evaluates its
+    state at ``t - t0``, so its angle ``omega (t - t0)`` errs by ``omega eps t``.  What a cycle reports sits where
+    the position is stationary in that angle (the turning points, ``x' = 0``; the stops, where the slip speed is
+    0; the breakaways, on a stick whose time is linear), so it errs by ``R (omega eps t)^2 / 2``, ``R`` the slip's
+    radius.  Past ``t = sqrt(2 CLOCK_TOL) / (omega eps)`` that passes :data:`CLOCK_TOL` of the motion's scale, and
+    the return is refused in one line (a belt slower than about 1.6e-10 m/s for ``examples/belt.toml``).
+    """
     mdl = sys.mdl
     natural = 2 * math.pi * math.sqrt(mdl.m / mdl.K)
-    t_max = RETURN_PERIODS * natural
-    march = _march(sys, rtol, t_max, v)
+    longest_stick = 2 * mdl.contact.static / (mdl.K * abs(mdl.V))
+    clock = math.sqrt(2 * CLOCK_TOL) / (2 * math.pi / natural * float(np.finfo(float).eps))
+    slip_left = horizon = RETURN_PERIODS * natural
+    march = _march(sys, rtol, slip_left + MAX_EVENTS * longest_stick, v)
     t, x, u, nxt = 0.0, sys.x_star, v - mdl.V, None
     while True:
         nxt = march.mode(t, x, u) if nxt is None else nxt
         if nxt == STICK:
-            t_next, nxt = march.stick(t, t_max, x, OFF)
+            # it breaks away before t + longest_stick (2: room for round-off); Brent's bracket ends at the horizon
+            # where that lies beyond, so that the breakaway's bits do not depend on the stick's bound
+            t_next, nxt = march.stick(t, max(horizon, t + 2 * longest_stick), x, OFF)
             x_next, u_next = x + mdl.V * (t_next - t), 0.0
         else:  # a slip in pieces of a natural period, so that no more than one is run past the section
-            t_next, x_next, u_next, nxt = march.slip(t, min(t_max, t + natural), x, u, nxt, OFF)
+            t_next, x_next, u_next, nxt = march.slip(t, t + min(slip_left, natural), x, u, nxt, OFF)
+            slip_left -= t_next - t
         hit = _crossing(march.phases[-1], sys.x_star, mdl.V)
+        if (t_next if hit is None else hit[0]) > clock:
+            raise ValueError(
+                f"v: the return from the section at v = {v:.6g} m/s lasts beyond {clock:.3g} s (a stick on the belt at "
+                f"{mdl.V:.3g} m/s lasts up to {longest_stick:.3g} s), where the round-off of its one clock moves the "
+                f"positions by more than {CLOCK_TOL:.0e} of their scale: no cycle is vouched for"
+            )
         if hit is not None:
             return _landed(sys, march, v, *hit)
-        if t_next >= t_max:
+        if slip_left <= 0 or (march.phases[-1].kind == "stick" and nxt is None):
             raise ValueError(
                 f"v: the motion from the section at v = {v:.6g} m/s does not return to it within "
-                f"{RETURN_PERIODS} natural periods; start nearer a cycle"
+                f"{RETURN_PERIODS} natural periods of slip; start nearer a cycle"
             )
         t, x, u = t_next, x_next, u_next
 
@@ -375,7 +402,7 @@ def find_cycle(network: Network, v0: float, *, tol: float = 1e-12) -> Cycle:
     for _ in range(MAX_NEWTON):
         residual = flight.v_next - v
         if abs(residual) <= tol * max(abs(sys.mdl.V), v):
-            return _cycle(sys, v, flight)
+            return _cycle(sys, v, flight, tol)
         if flight.derivative == 1:
             raise ValueError(f"v0: the return map is neutral at v = {v:.6g} m/s (P' = 1): no isolated cycle there")
         v, flight = _newton_step(sys, v, -residual / (flight.derivative - 1))
@@ -395,11 +422,11 @@ def _newton_step(sys: _System, v: float, step: float) -> tuple[float, _Flight]:
     raise ValueError(f"v0: no Newton step from v = {v:.6g} m/s stays on the section (v > 0) and returns to it")
 
 
-def _cycle(sys: _System, v: float, flight: _Flight) -> Cycle:
-    """The :class:`Cycle` of a converged flight."""
+def _cycle(sys: _System, v: float, flight: _Flight, tol: float) -> Cycle:
+    """The :class:`Cycle` of a flight converged to ``tol`` (:func:`find_cycle`'s)."""
     phases = flight.march.phases
     stuck = [p for p in phases if p.kind == "stick"]
-    stick_phases = len(stuck) - (len(phases) > 1 and phases[0].kind == phases[-1].kind == "stick")
+    stick_phases, stick_time = _stick_runs(phases, 2 * tol * max(abs(sys.mdl.V), v))
     highs, lows = zip(*(_extremes(sys.mdl, p) for p in phases))
     multiplier = flight.derivative
     modulus = abs(multiplier)
@@ -409,13 +436,48 @@ def _cycle(sys: _System, v: float, flight: _Flight) -> Cycle:
         section=v,
         x_max=np.array([max(highs)]),
         x_min=np.array([min(lows)]),
-        stick_time=float(sum(p.end - p.start for p in stuck)),
-        stick_phases=int(stick_phases),
+        stick_time=stick_time,
+        stick_phases=stick_phases,
         min_slip_speed=slip_min,
         multipliers=np.array([multiplier], dtype=complex),
         max_multiplier=modulus,
         stable=bool(modulus < 1 - MULTIPLIER_MARGIN - flight.error),
     )
+
+
+def _stick_runs(phases: list[Phase], negligible: float) -> tuple[int, float]:
+    """The stick phases per period, counted around the cycle, and the time stuck (s).
+
+    The period's phases are a loop (the last joins the first at the section).  A slip phase whose slip speed
+    stays within ``negligible`` (m/s) is no motion of the cycle but Newton's error: a cycle stuck as it crosses
+    the section crosses it at the belt's speed ``V`` exactly and ``P = V`` near it (``P' = 0``), so Newton's
+    stop ``|P(v) - v| <= tol max(|V|, v)`` leaves ``v`` within that of ``V``, and the flight from it slips from
+    ``u = v - V`` back to ``u = 0`` (a stop, then the stick) without exceeding ``|v - V|`` by more than the
+    integrator's absolute tolerance (``1e-3 RTOL`` of the speed scale); :func:`_cycle` takes twice
+    Newton's bound.  Such a slip between two stuck phases joins them into one, and its time counts as stuck;
+    elsewhere (beside a slip that is a motion) it is left out of both.
+    """
+    kinds = ["S" if p.kind == "stick" else "n" if _largest_slip_speed(p) <= negligible else "s" for p in phases]
+    core = [k for k in kinds if k != "n"]
+    if "S" not in core:
+        return 0, 0.0
+    runs = max(1, sum(k == "S" and core[i - 1] != "S" for i, k in enumerate(core)))
+    n = len(kinds)
+
+    def stuck(i: int) -> bool:
+        if kinds[i] != "n":
+            return kinds[i] == "S"
+        ahead = next(kinds[(i + j) % n] for j in range(1, n) if kinds[(i + j) % n] != "n")
+        behind = next(kinds[(i - j) % n] for j in range(1, n) if kinds[(i - j) % n] != "n")
+        return ahead == behind == "S"
+
+    return runs, float(sum(p.end - p.start for i, p in enumerate(phases) if stuck(i)))
+
+
+def _largest_slip_speed(ph: Phase) -> float:
+    """The largest ``|u|`` (m/s) over a slip phase, on its dense output's samples (:func:`_grid`)."""
+    motion = ph.motion
+    return float(np.max(np.abs(motion.state(_grid(motion.steps, ph.end))[1])))
 
 
 def _extremes(mdl: Model, ph: Phase) -> tuple[float, float]:
@@ -427,7 +489,7 @@ def _extremes(mdl: Model, ph: Phase) -> tuple[float, float]:
     times = _grid(motion.steps, ph.end)
     x, u = motion.state(times)
     speed = u + mdl.V
-    found = list(x[[0, -1]])
+    found = [*x[[0, -1]], *x[speed == 0]]  # a sample on a turning point (a fast belt rounds u + V there to 0)
     for i in np.flatnonzero(np.sign(speed[:-1]) * np.sign(speed[1:]) < 0):
         t = brentq(lambda s: float(motion.state(s)[1]) + mdl.V, float(times[i]), float(times[i + 1]))
         found.append(float(motion.state(t)[0]))

@@ -17,7 +17,10 @@ advance the rows together).  The modules, in the order a sweep uses them:
   definitions (:func:`summarize`);
 * :mod:`~lumped.drivers.sweep.run`: the driver, :func:`sweep` (the Python
   API) and :func:`run_sweep` (the rows of a :class:`SweepSpec`);
-* :mod:`~lumped.drivers.sweep.progress`: :class:`Progress`, on stderr.
+* :mod:`~lumped.drivers.sweep.progress`: :class:`Progress`, on stderr;
+* :mod:`~lumped.drivers.sweep.system`: :func:`sweep_system`, the sweep of a
+  system file's parameters (``entry.key``), one row per set, the summaries for
+  each mass (``sweep --system``).
 
 The names below are the public API.  Each lives in one of those modules, which
 is the one to patch in a test: the limits are read from
@@ -40,6 +43,7 @@ from lumped.drivers.sweep.progress import Progress
 from lumped.drivers.sweep.run import SWEEP_METHODS, run_sweep, sweep
 from lumped.drivers.sweep.spec import SweepSpec
 from lumped.drivers.sweep.summaries import FORCED_COLUMNS, SUMMARY_COLUMNS, Summary, summarize, window_start
+from lumped.drivers.sweep.system import sweep_system
 
 __all__ = [
     "Axis",
@@ -68,4 +72,5 @@ __all__ = [
     "sweep",
     "run_sweep",
     "Progress",
+    "sweep_system",
 ]

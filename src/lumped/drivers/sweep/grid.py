@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import NamedTuple
 
 import numpy as np
@@ -146,10 +146,14 @@ class VaryText(NamedTuple):
     count: int
     log: bool
 
-    def axis(self) -> Axis:
-        """The :class:`Axis` of ``COUNT`` values, evenly or geometrically spaced, checked."""
+    def values(self) -> np.ndarray:
+        """The ``COUNT`` values, evenly (``np.linspace``) or geometrically (``np.geomspace``) spaced, unchecked."""
         space = np.geomspace if self.log else np.linspace
-        return axis(self.name, space(self.start, self.stop, self.count))
+        return space(self.start, self.stop, self.count)
+
+    def axis(self) -> Axis:
+        """The :class:`Axis` of the single mass's parameter of :meth:`values`, checked."""
+        return axis(self.name, self.values())
 
     @property
     def all_zero(self) -> bool:
@@ -157,11 +161,13 @@ class VaryText(NamedTuple):
         return self.start == 0 and self.stop == 0
 
 
-def vary_text(spec: str) -> VaryText:
+def vary_text(spec: str, key: Callable[[str], str] | None = None) -> VaryText:
     """Parse ``NAME=START:STOP:COUNT`` or ``NAME=log:START:STOP:COUNT`` without building the values.
 
     ``NAME`` is an option's name without the leading dashes, with dashes or
-    underscores (``force-omega`` or ``force_omega``).  ``COUNT`` points from
+    underscores (``force-omega`` or ``force_omega``), checked and cleaned by
+    ``key`` (:func:`parameter_key`; a system file's sweep passes its own, which
+    takes ``entry.key``).  ``COUNT`` points from
     ``START`` to ``STOP`` inclusive, evenly spaced (``np.linspace``) or, with
     ``log:``, evenly spaced in the logarithm (``np.geomspace``; both bounds
     must be > 0).  ``COUNT = 1`` needs ``START == STOP``.
@@ -169,7 +175,7 @@ def vary_text(spec: str) -> VaryText:
     name, eq, rest = spec.partition("=")
     if not eq or not name.strip():
         raise ValueError(f"vary: expected NAME=START:STOP:COUNT, got {spec!r}")
-    key = parameter_key(name)
+    name = (parameter_key if key is None else key)(name)
     parts = rest.split(":")
     log = parts[0].strip().lower() == "log"
     parts = parts[1:] if log else parts
@@ -186,7 +192,7 @@ def vary_text(spec: str) -> VaryText:
         raise ValueError(f"vary: log spacing needs START > 0 and STOP > 0 in {spec!r}")
     if n > limits.MAX_ROWS:
         raise ValueError(f"vary: COUNT {n} is above {limits.MAX_ROWS:.0e}, the most rows a sweep may have, in {spec!r}")
-    return VaryText(key, start, stop, n, log)
+    return VaryText(name, start, stop, n, log)
 
 
 def parse_vary(spec: str) -> Axis:

@@ -29,7 +29,7 @@ SWEEP_METHODS = methods.SWEEP_METHODS
 def _batched(spec: SweepSpec, p: Mapping[str, np.ndarray], progress: Callable[[int, int], None] | None) -> dict:
     """Backward-Euler rows through :func:`lumped.kernels.batched.batch_backward_euler`."""
     n_steps, dt = spec.n_steps, spec.dt
-    start = window_start(p, n_steps * dt, spec.periods)
+    start = _window(spec, p)
     grid_t = np.arange(n_steps + 1) * dt  # the grid's times, as the single run forms them
     first = np.where(np.isnan(start), n_steps + 1, np.searchsorted(grid_t, np.nan_to_num(start), side="left"))
     c = np.where(np.isinf(p["gamma"]), 0.0, 1.0 / p["gamma"])
@@ -53,8 +53,15 @@ def _batched(spec: SweepSpec, p: Mapping[str, np.ndarray], progress: Callable[[i
         "max_abs_x": s.max_abs_x,
         "stops": s.stops,
         "steady_amplitude": s.window_max_abs_x,
-        "stops_per_period": np.where(np.isnan(start), np.nan, s.window_stops / spec.periods),
+        "stops_per_period": np.where(np.isnan(start), np.nan, s.window_stops / (spec.periods or 1)),
     }
+
+
+def _window(spec: SweepSpec, p: Mapping[str, np.ndarray]) -> np.ndarray:
+    """Each row's window of the forced summaries (:func:`window_start`), none without ``periods``."""
+    if spec.periods is None:
+        return np.full(p["mass"].size, np.nan)
+    return window_start(p, spec.n_steps * spec.dt, spec.periods)
 
 
 def _one_by_one(spec: SweepSpec, p: Mapping[str, np.ndarray], progress: Callable[[int, int], None] | None) -> dict:
@@ -64,7 +71,7 @@ def _one_by_one(spec: SweepSpec, p: Mapping[str, np.ndarray], progress: Callable
     from lumped.model.problem import Problem
 
     n = p["mass"].size
-    start = window_start(p, spec.n_steps * spec.dt, spec.periods)
+    start = _window(spec, p)
     out = np.empty((n, len(Summary._fields)))
     for j in range(n):
         row = {name: float(v[j]) for name, v in p.items()}
@@ -73,7 +80,7 @@ def _one_by_one(spec: SweepSpec, p: Mapping[str, np.ndarray], progress: Callable
             row_oscillator(row), spec.t_end, x0=row["x0"], v0=row["v0"], force=None if force.is_zero else force
         )
         traj = solve(problem, spec.dt, method=spec.method, **spec.options)
-        out[j] = summarize(traj, float(start[j]), spec.periods)
+        out[j] = summarize(traj, float(start[j]), spec.periods or 1)
         if progress is not None and (j % 64 == 63 or j == n - 1):
             progress(j + 1, n)
     return {name: out[:, i] for i, name in enumerate(Summary._fields)}

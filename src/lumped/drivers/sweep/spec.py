@@ -28,7 +28,9 @@ class SweepSpec:
     Use :meth:`build` (it validates); :meth:`chunk` gives the rows of one of
     ``n`` contiguous chunks, for splitting a sweep into jobs.  ``output`` is
     the kind of file the rows go to (``".csv"``, ``".npz"``, or ``None`` for
-    the API), for the estimates of its size and writing time.
+    the API), for the estimates of its size and writing time.  ``periods``
+    ``None`` writes no forced summaries (a system file's sweep,
+    :mod:`lumped.drivers.sweep.system`).
     """
 
     axes: tuple[Axis, ...]
@@ -36,7 +38,7 @@ class SweepSpec:
     t_end: float
     dt: float
     method: str = "backward-euler"
-    periods: int = 10
+    periods: int | None = 10
     options: Mapping[str, object] = field(default_factory=dict)
     output: str | None = None
 
@@ -48,7 +50,7 @@ class SweepSpec:
         t_end: float = 2.0,
         dt: float = 1e-4,
         method: str = "backward-euler",
-        periods: int = 10,
+        periods: int | None = 10,
         options: Mapping[str, object] | None = None,
         chunk: tuple[int, int] | None = None,
         output: str | None = None,
@@ -76,7 +78,7 @@ class SweepSpec:
             t_end,
             dt,
             method,
-            validate.positive_int("periods", periods),
+            None if periods is None else validate.positive_int("periods", periods),
             dict(options or {}),
             output,
         )
@@ -101,7 +103,8 @@ class SweepSpec:
 
     def columns(self) -> tuple[str, ...]:
         """The output columns, in order."""
-        return tuple(a.name for a in self.axes) + SUMMARY_COLUMNS + (FORCED_COLUMNS if self.forced else ())
+        forced = self.forced and self.periods is not None
+        return tuple(a.name for a in self.axes) + SUMMARY_COLUMNS + (FORCED_COLUMNS if forced else ())
 
     def parameters(self, rows: slice | None = None) -> dict[str, np.ndarray]:
         """Every parameter per row (grid order: the first axis slowest)."""
@@ -197,6 +200,8 @@ class SweepSpec:
                 )
             except ValueError as err:
                 raise ValueError(self._row_error(str(err), row, int(j))) from None
+        if self.periods is None:
+            return
         start = window_start(p, t_last, self.periods)
         if np.any(start < 0):
             j = int(np.argmax(start < 0))

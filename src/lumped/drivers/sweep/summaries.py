@@ -29,6 +29,12 @@ grid ``t_n = n*dt``, ``n = 0..N``, and is summarised in these columns:
 The batched backward Euler forms the same summaries inside its kernel
 (:mod:`lumped.kernels.batched`); :func:`summarize` forms them from a
 single run's trajectory.
+
+A sweep of a system file (:mod:`lumped.drivers.sweep.system`) writes the
+first four for each mass, by the same definitions on that mass's ``x`` and
+``v`` (:func:`mass_summaries`): ``rest_time_<mass>``,
+``rest_position_<mass>``, ``max_abs_x_<mass>``, ``stops_<mass>``
+(:func:`mass_columns`).
 """
 
 from __future__ import annotations
@@ -84,7 +90,7 @@ def summarize(traj: Trajectory, window: float, periods: int) -> Summary:
     periods : int
         ``K``.
     """
-    stop = np.concatenate(([False], (traj.v[1:] == 0) & (traj.v[:-1] != 0)))
+    stop = stop_mask(traj.v)
     inside = traj.t >= window
     steady = float(np.max(np.abs(traj.x[inside]))) if inside.any() else math.nan
     per_period = np.count_nonzero(stop & inside) / periods if inside.any() else math.nan
@@ -96,3 +102,30 @@ def summarize(traj: Trajectory, window: float, periods: int) -> Summary:
         steady,
         per_period,
     )
+
+
+def stop_mask(v: np.ndarray) -> np.ndarray:
+    """The stops of a velocity history ``v`` (grid points ``n = 0..N``, first axis): ``v_n == 0`` and
+    ``v_{n-1} != 0`` (``n >= 1``); a start at rest is not one."""
+    v = np.asarray(v)
+    return np.concatenate((np.zeros((1,) + v.shape[1:], dtype=bool), (v[1:] == 0) & (v[:-1] != 0)))
+
+
+def mass_columns(masses: list[str] | tuple[str, ...]) -> tuple[str, ...]:
+    """The per-mass summary columns of a system's sweep: for each mass, :data:`SUMMARY_COLUMNS` ``_<mass>``."""
+    return tuple(f"{c}_{m}" for m in masses for c in SUMMARY_COLUMNS)
+
+
+def mass_summaries(traj: Trajectory) -> dict[str, float]:
+    """:data:`SUMMARY_COLUMNS` of every mass of a run saved at every grid point (``save_every == 1``), by
+    :func:`mass_columns` name; the rest from ``Trajectory.rest_times`` and ``rest_positions`` (``nan`` while
+    the mass moves at the end), as :func:`summarize` takes them for the one mass."""
+    names = traj.network.mass_names
+    stops = np.count_nonzero(stop_mask(traj.velocities), axis=0)
+    peak = np.max(np.abs(traj.positions), axis=0)
+    values = zip(traj.rest_times, traj.rest_positions, peak, stops)
+    out: dict[str, float] = {}
+    for name, (rest_time, rest_position, max_abs_x, count) in zip(names, values):
+        row = (float(rest_time), float(rest_position), float(max_abs_x), int(count))
+        out |= {f"{c}_{name}": v for c, v in zip(SUMMARY_COLUMNS, row)}
+    return out
