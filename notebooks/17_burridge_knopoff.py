@@ -35,7 +35,9 @@
 # those of the Clark University teaching page (read). The equation of motion and the law $\phi$ below, the
 # moment as the sum of the blocks' slips, and the exponent they report (small events: a density of moments
 # $\propto M^{-2}$, i.e. $b = 1$ in $R(\mu) \propto e^{-b\mu}$, $\mu = \ln M$; an excess of large, delocalised
-# events over that power law) are **recalled**, not read: treat them as such.
+# events over that power law) are **recalled**, not read: treat them as such. So is their boundary condition,
+# which could not be read: this study's chain has free ends (the end blocks have one coupling spring;
+# `bk.Parameters(ends="periodic")` closes it into a ring).
 #
 # Every statement below is backed by a printed number or an `assert`. Numbers that follow the chaotic
 # chain's round-off (counts and fits of a long run differ from one CPU to another) are printed in
