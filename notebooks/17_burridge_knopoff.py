@@ -21,23 +21,45 @@
 #   and joined to its neighbours by coupling springs; their dimensionless parameters $\ell$, $\alpha$, $\nu$ and
 #   friction law $\phi$, and how they become this package's network (a `Driver`, `Spring`s and `Friction`
 #   contacts), checked with SymPy;
-# * what the mapping cannot carry (the drop $\sigma$ of their law at the onset of slip, and their ban on
-#   backward slip), and what backward Euler's step must satisfy to be unique;
+# * what the mapping cannot carry (the drop $\sigma$ at the onset of slip and the ban on backward slip, both of
+#   their later, 1991 law), and what backward Euler's step must satisfy to be unique;
 # * one block against the event-driven solution, a slip event of the chain in space and time, and the
 #   catalogue of events (blocks slipped, moment, duration) that the pipeline writes;
 # * the distribution of event sizes on log-log axes, a power law fitted by maximum likelihood with its
 #   standard error, and what holds and what does not of Carlson and Langer's findings at the size run here.
 #
-# **Sources, and what was read.** Carlson and Langer's Phys. Rev. A paper: its abstract was read (the
-# model "retains the full Newtonian dynamics with inertial effects", velocity-weakening stick-slip friction is
-# "the only nonlinear feature", and the size distributions "are found numerically to be consistent with the
-# Gutenberg-Richter law"); its body could not be. The defaults $\ell = 10$, $\alpha = 2.5$, $\nu = 0.01$ are
-# those of the Clark University teaching page (read). The equation of motion and the law $\phi$ below, the
-# moment as the sum of the blocks' slips, and the exponent they report (small events: a density of moments
-# $\propto M^{-2}$, i.e. $b = 1$ in $R(\mu) \propto e^{-b\mu}$, $\mu = \ln M$; an excess of large, delocalised
-# events over that power law) are **recalled**, not read: treat them as such. So is their boundary condition,
-# which could not be read: this study's chain has free ends (the end blocks have one coupling spring;
-# `bk.Parameters(ends="periodic")` closes it into a ring).
+# **Sources, and what was read.** Four sources; what each gave is quoted as found.
+#
+# * Carlson and Langer's Phys. Rev. A paper, its first page (a copy on scribd): the model "consists of an
+#   elastically coupled chain of masses in contact with a moving rough surface" (so the friction sees a block's
+#   speed relative to that surface, $\nu + U_j'$ below), "retains the full Newtonian dynamics with inertial
+#   effects", "the only nonlinear feature is a velocity-weakening stick-slip friction force between the masses
+#   and the moving surface", and the events' "size distributions are found numerically to be consistent with
+#   the Gutenberg-Richter law. Some aspects of the size distributions can be understood by scaling arguments."
+#   Its body could not be read.
+# * The Clark University teaching page on the 1D model (physics.clarku.edu, "Results for 1D BK model"): "three
+#   dimensionless parameters $\ell$, $\alpha$, and $\nu$: $\ell$ determines the stiffness of the interactions
+#   from the loading plate and neighbor blocks, $\alpha$ characterizes the velocity-weakening dynamical
+#   frictional force, and $\nu$ is the loading velocity", defaults 10, 2.5 and 0.01 (this study's); "We first
+#   use the same frictional form as Carlson and Langer in (1989 PRA) which allows the block to move in both
+#   directions. Later we used a more realistic frictional form allowing a drop ($\sigma$) from the maximum
+#   static frictional force to the dynamical one and moving only in one direction at the zero-loading velocity
+#   limit as they did (1991 PRA)."
+# * A public teaching code in CL's units (github `larashores/burridgeknopoffsimulator`, read in code): each
+#   block's acceleration is $\ell^2$ times its coupling springs' stretch (the end blocks have one), minus $U_j$
+#   (the leaf spring), plus the friction `-sign(v) / (2*alpha*abs(v) + 1)` at `v = plate velocity + U_j'`: the
+#   equation (2) below with $\phi(y) = \mathrm{sign}(y)/(1+|y|)$, acting in both directions (the code smooths
+#   it through zero, within $|v| < 10^{-3}$, where this study has the stuck contact).
+# * Kawamura, Hatano, Kato, Biswas and Chakrabarti's review (Rev. Mod. Phys. 84 (2012) 839, arXiv 1112.0148):
+#   only its abstract and table of contents could be read (sections "The model", "The friction law", "The 1D BK
+#   model with short-range interaction"); their equations and the magnitude distributions they report could not.
+#
+# **Recalled, not read** (treat them as such): the form $\phi(y) = (1-\sigma)/(1 + y/(1-\sigma))$ of the 1991
+# law with its drop $\sigma$; whether the 1989 law had a drop; the moment as the sum of the blocks' slips; the
+# exponent Carlson and Langer report (small events: a density of moments $\propto M^{-2}$, i.e. $b = 1$ in
+# $R(\mu) \propto e^{-b\mu}$, $\mu = \ln M$; an excess of large, delocalised events over that power law);
+# their boundary condition (this study's chain has free ends, as the teaching code's has: the end blocks have
+# one coupling spring; `bk.Parameters(ends="periodic")` closes it into a ring); and their integrator.
 #
 # Every statement below is backed by a printed number or an `assert`. Numbers that follow the chaotic
 # chain's round-off (counts and fits of a long run differ from one CPU to another) are printed in
@@ -80,10 +102,11 @@ print(f"l = {p.ell:g}, alpha = {p.alpha:g}, nu = {p.nu:g}; {p.blocks} blocks, fr
 # $$U_j'' = \ell^2\,(U_{j+1} - 2U_j + U_{j-1}) - U_j - \phi\big(2\alpha(\nu + U_j')\big), \qquad
 #   \ell^2 = k_c/k_p, \tag{2}$$
 #
-# with $\phi(0) = 1$ (a stuck block holds any force up to $F_0$) and, sliding,
-# $\phi(y) = (1-\sigma)/(1 + y/(1-\sigma))$: a drop $\sigma$ at the onset of slip, then a fall of slope $-1$.
-# For $\sigma = 0$ it is $1/(1 + 2\alpha v)$ with $v = \nu + U'$ the block's speed on the floor, which is this
-# package's `Friction` with `static` $= F_0$, `kinetic` $= 0$, `decay = "rational"` ($1/(1+x)$) and
+# with $\phi(0) = 1$ (a stuck block holds any force up to $F_0$) and, sliding, $\phi(y) = 1/(1 + y)$ forward
+# (and $-1/(1 + |y|)$ backward): the teaching code's law (read), which the teaching page says is the 1989
+# paper's in acting both ways. The 1991 law (recalled) is $\phi(y) = (1-\sigma)/(1 + y/(1-\sigma))$: a drop
+# $\sigma$ at the onset of slip, then a fall of slope $-1$; for $\sigma = 0$ it is the one above. Forward,
+# $\phi = 1/(1 + 2\alpha v)$ with $v = \nu + U'$ the block's speed on the floor, which is this package's `Friction` with `static` $= F_0$, `kinetic` $= 0$, `decay = "rational"` ($1/(1+x)$) and
 # `stribeck_velocity` $v_s = D_0\omega_p/(2\alpha)$. SymPy checks that (1) divided by $F_0$ is (2):
 
 # %%
@@ -115,12 +138,13 @@ for v in (0.0, 0.1, 1.0):
           f"CL 1/(1 + 2 alpha v) = {1 / (1 + 2 * p.alpha * v):.6f}")
 
 # %% [markdown]
-# **What the mapping does not carry.** (i) The drop $\sigma$: `Friction`'s sliding force starts at `static`,
-# so this study runs $\sigma = 0$. With $\sigma = 0$ a block that breaks away loses no friction at once, only
+# **What the mapping does not carry** (of the 1991 law; the 1989 law, as read, it carries). (i) The drop
+# $\sigma$: `Friction`'s sliding force starts at `static`, so this study runs $\sigma = 0$. With $\sigma = 0$ a block that breaks away loses no friction at once, only
 # $2\alpha v$ as it speeds up, so a lone block held by stiff neighbours ($\ell^2 = 100$) can slip a little and
-# stick again: the catalogue below has many such tiny events. (ii) Carlson and Langer forbid backward slip;
-# `Friction` is symmetric, so a block could slide backwards against the same friction. The catalogue counts
-# the (block, step) cells with a negative velocity; below it is printed for each run.
+# stick again: the catalogue below has many such tiny events. (ii) The 1991 law forbids backward slip;
+# `Friction` is symmetric, as the 1989 law is (teaching page: it "allows the block to move in both
+# directions"), so a block can slide backwards against the same friction. The catalogue counts the (block,
+# step) cells with a negative velocity; below it is printed for each run.
 #
 # **The step.** Backward Euler's step with a falling friction curve is unique when $M/\Delta t + \Delta t\,K$
 # outweighs the curves' fall (`lumped.solvers.uniqueness`): here the fall is $F_0/v_s = 2\alpha k_p/\omega_p$
@@ -231,8 +255,8 @@ print(f"[chaos: {facts['events']} events, {facts['unfinished']} unfinished, {fac
 # %% [markdown]
 # The columns: `start_time` (in $1/\omega_p$, the step before the first slip), `plate` (the plate's travel then,
 # in $D_0$), `first_block`, `blocks`, `moment` (in $D_0$) and `duration` (in $1/\omega_p$). The events by the
-# number of blocks that slipped, and the share of slipping steps that went backwards (which Carlson and
-# Langer's law forbids):
+# number of blocks that slipped, and the share of slipping steps that went backwards (which the 1991 law
+# forbids and the 1989 law allows):
 
 # %%
 moment, blocks = table["moment"], table["blocks"]
@@ -297,9 +321,11 @@ if fit is not None:
 # * **Small events and a power law.** The events between the creep step and $1\,D_0$ spread over decades of
 #   moment; whether one exponent describes them is read from the three fits above: where they differ by more
 #   than their standard errors, the law is not a single power law over that range, and the exponent is not
-#   determined to better than that spread. Carlson and Langer (recalled) report $b \approx 1$, $a \approx 2$.
+#   determined to better than that spread. Carlson and Langer's abstract (read) says only that their sizes are
+#   "consistent with the Gutenberg-Richter law"; the exponent they report is recalled: $b \approx 1$, $a \approx 2$.
 # * **An excess of large, delocalised events.** The comparison above says whether the events above $1\,D_0$
 #   outnumber the power law's prediction, and how much of the chain they slip.
-# * **What differs from their model.** $\sigma = 0$ (the creep events are its mark), backward slip allowed (the
-#   share above), backward Euler's damping of the short waves (Step 1), free ends, and a finite run whose first
-#   events (the chain loaded alike from its nearly uniform start) are not discarded.
+# * **What differs from their model.** From the 1991 law: $\sigma = 0$ (the creep events are its mark) and
+#   backward slip allowed (the share above); the 1989 law, as read, has both. From either: backward Euler's
+#   damping of the short waves (Step 1), free ends (their boundary condition could not be read), and a finite
+#   run whose first events (the chain loaded alike from its nearly uniform start) are not discarded.

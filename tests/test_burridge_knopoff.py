@@ -16,12 +16,16 @@ from lumped.studies import burridge_knopoff as bk
 
 
 def test_the_floor_is_carlson_and_langers_law_with_no_drop():
-    """phi(y) = 1/(1 + y), y = 2 alpha v in CL's velocity unit D_0 omega_p, for sigma = 0: to a few ulps."""
+    """phi(y) = sign(y)/(1 + |y|), y = 2 alpha v in CL's velocity unit D_0 omega_p (the 1989 law, both ways, as
+    the teaching code read for notebook 17 has it; sigma = 0): to a few ulps."""
     p = bk.Parameters(blocks=2, alpha=2.5, mass=2.0, leaf=8.0, static=3.0)
     law = next(el for el in bk.chain(p, np.zeros(2)).elements if el.name == "floor0").law
     unit = p.length * p.omega  # D_0 omega_p = (3/8 m)(2 /s)
     for v in (1e-3, 0.1, 1.0, 7.0):
         assert law.slip(v * unit) / p.static == pytest.approx(1 / (1 + 2 * p.alpha * v), rel=4e-16)
+        for u in (v, -v):  # the law acts both ways: the friction on a block sliding backwards is forward
+            expected = math.copysign(1.0, u) / (1 + 2 * p.alpha * abs(u))
+            assert law.tension(u * unit) / p.static == pytest.approx(expected, rel=4e-16)
     assert law.slip_limit == p.static
     assert p.coupling == 100 * p.leaf and p.plate_speed == p.nu * unit
 

@@ -9,29 +9,36 @@ dimensionless variables (time in units of ``1/omega_p``, ``omega_p = sqrt(k_p/m)
 
 with ``U_j = X_j - nu t`` block ``j``'s displacement from its leaf spring's point on the plate, ``l^2 = k_c/k_p``
 (coupling over leaf stiffness), ``nu`` the plate speed and ``phi`` the friction over ``F_0``: ``phi(0) = 1`` at
-rest (a stuck block holds any force up to 1) and, sliding, ``phi(y) = (1 - sigma)/(1 + y/(1 - sigma))`` -- a drop
-``sigma`` at the onset of slip, then a fall of slope -1 in ``y = 2 alpha v``.  The equations are as we recall
-them (the PRA's abstract was read; its body could not be, see notebook 17); the defaults
-``l = 10, alpha = 2.5, nu = 0.01`` are those of the Clark University teaching page (read).
+rest (a stuck block holds any force up to 1) and, sliding, ``phi(y) = sign(y)/(1 + |y|)`` in ``y = 2 alpha v``.
+What was read, and what is recalled (notebook 17 quotes them): the PRA's first page (the chain "in contact with
+a moving rough surface", so that the friction sees ``nu + U_j'``; size distributions "consistent with the
+Gutenberg-Richter law"); the Clark University teaching page (``l``, ``alpha``, ``nu``, the defaults
+``l = 10, alpha = 2.5, nu = 0.01``, and that the 1989 PRA's friction "allows the block to move in both
+directions", a drop ``sigma`` from the static to the dynamic friction and motion in one direction only coming
+with their 1991 PRA); and a public teaching code (github ``larashores/burridgeknopoffsimulator``, read in code),
+which sums exactly the three terms above with ``phi(y) = sign(y)/(1 + |y|)``.  Recalled, not read: the 1991
+law's form ``phi(y) = (1 - sigma)/(1 + y/(1 - sigma))``, the moment's definition, CL's exponent and boundary
+condition.
 
 In this repository's units (:class:`Parameters`): ``m``, ``k_p`` and ``F_0`` are given (1 kg, 1 N/m, 1 N by
 default, so that the units are CL's), the coupling springs are ``k_c = l^2 k_p``, the plate (a
 :class:`~lumped.model.network.Driver`) moves at ``V = nu D_0 omega_p`` and each block's floor contact is a
 :class:`~lumped.laws.Friction` with ``static = F_0``, ``kinetic = 0``, ``decay = "rational"`` (``1/(1 + x)``)
-and ``stribeck_velocity = F_0 omega_p/(2 alpha k_p)``.  That is CL's law exactly for ``sigma = 0`` (the
-velocity unit ``D_0 omega_p`` turns ``2 alpha v`` into ``v/v_s``); for ``sigma > 0`` the drop has no place in
-``Friction`` (its sliding force starts at ``static``), so this study runs ``sigma = 0`` and says so.  Two more
-differences, both stated in notebook 17: CL forbid backward slip (their friction is infinite for ``v < 0``) where
-``Friction`` is symmetric (the catalogue counts the steps with a block moving backwards, :attr:`Catalogue.back_steps`);
-and backward Euler (first order, dissipative at ``omega dt`` of order one) stands for their integrator.
+and ``stribeck_velocity = F_0 omega_p/(2 alpha k_p)``.  That is exactly the law the teaching code uses (the
+velocity unit ``D_0 omega_p`` turns ``2 alpha v`` into ``v/v_s``), symmetric as the teaching page says the 1989
+law is (whether that law had a drop could not be read); the 1991 law's
+drop ``sigma > 0`` has no place in ``Friction`` (its sliding force starts at ``static``) and its ban on backward
+slip none either, so this study runs ``sigma = 0`` and counts the steps with a block moving backwards
+(:attr:`Catalogue.back_steps`).  And backward Euler (first order, dissipative at ``omega dt`` of order one)
+stands for their integrator, as notebook 17 says.
 
 The catalogue (:func:`catalogue`): a block *slips* in step ``n`` when its velocity ``v_n`` is not zero (backward
 Euler's stuck contacts give exactly zero); an *event* is a connected cluster of slipping (block, step) cells,
 neighbours being the same block in consecutive steps and adjacent blocks (across the ends for a periodic chain)
 in the same step -- a burst that starts where some block breaks away and ends where every block of it has stuck
 again, and two bursts far apart in the chain at the same time are two events.  For each event: ``blocks`` (the
-number of distinct blocks that slipped), ``moment`` (CL's: the sum over the event's blocks of their slips, in
-units of ``D_0``; here the sum of ``x_n - x_{n-1}`` over its cells), ``duration`` (its number of steps times
+number of distinct blocks that slipped), ``moment`` (CL's as recalled: the sum over the event's blocks of their
+slips, in units of ``D_0``; here the sum of ``x_n - x_{n-1}`` over its cells), ``duration`` (its number of steps times
 ``dt``, in units of ``1/omega_p``) and where and when it started.
 """
 
@@ -190,7 +197,7 @@ class Catalogue:
     unfinished : int
         Events still slipping at the end of the data (left out of the arrays).
     back_steps : int
-        (block, step) cells with a negative velocity (backward slip, which Carlson and Langer forbid).
+        (block, step) cells with a negative velocity (backward slip: the 1989 law allows it, the 1991 law forbids it).
     slip_steps : int
         (block, step) cells with a velocity other than zero.
     """
