@@ -57,10 +57,14 @@ needs more than ``ln(1e5)/0.01`` = 1150 periods and none is run: the rows
 left out are the long runs' most expensive ones, so the ratio printed is a
 lower bound for the whole branch).  Each run's extremes are compared with the
 continuation's.  A continuation point of the bubble costs more than one
-period: Newton's returns at a fixed speed (two or three) and the central
-difference of ``dP/dV`` (two), each return at the shooting's rtol 1e-13 with
-the map's derivative; so the measured ratio there is below the bound in
-periods.
+period: Newton's returns at a fixed speed (two, three near the Hopf points,
+where the amplitude grows as a square root and the predictor is poorer) and
+the one-sided difference of ``dP/dV`` from the cycle's own speed (one), each
+return at the shooting's rtol 1e-13 with the map's derivative; so the
+measured ratio there is below the bound in periods.  Two returns a point is
+the least Newton takes (the predicted speed, then the corrected one, which
+must be integrated for the cycle's data); only ``dP/dV`` from the variational
+equations along the same return would take away the third.
 
 Times are CPU seconds of this process (``time.process_time``): the machine
 may be shared.  The first line gives the load average.

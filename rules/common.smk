@@ -33,7 +33,7 @@ CONFIG_TEXT = yaml.safe_dump(dict(config), sort_keys=True)
 #: then the tutorial's extensions (extNN_<slug>, notebooks 06 to 08) and the
 #: accuracy study (accNN_<slug>, notebook 09) and the studies (stNN_<slug>, notebook 10;
 #: spNN_<slug>, notebook 12; rcNN_<slug>, notebook 13; fitNN_<slug>, notebook 14;
-#: frNN_<slug>, notebook 15; cyNN_<slug>, notebook 16).
+#: frNN_<slug>, notebook 15; cyNN_<slug>, notebook 16; bkNN_<slug>, notebook 17).
 NOTEBOOK_FIGURES = {
     "01_governing_equations": [],
     "02_sgn_zero_failure": [],
@@ -75,6 +75,7 @@ NOTEBOOK_FIGURES = {
     "14_sensitivities_and_fit": ["fit01_rest_kinks", "fit02_free_decay_fit"],
     "15_friction_on_a_belt": ["fr01_belt_phase_portrait", "fr02_smoothing_creep", "fr03_stribeck_stability"],
     "16_self_excited_cycles": ["cy01_bifurcation_leine", "cy02_bifurcation_stribeck"],
+    "17_burridge_knopoff": ["bk01_slip_event", "bk02_event_sizes"],
 }
 
 #: notebook stem -> the data files it reads (rules/studies.smk, rules/accuracy.smk).
@@ -84,6 +85,7 @@ NOTEBOOK_DATA = {
     "11_den_hartog": ["results/studies/den_hartog.csv"],
     "12_stops_per_cycle": ["results/studies/stops.csv", "results/studies/stops_low.csv"],
     "13_response_curves": ["results/studies/den_hartog.csv", "examples/two_mass_response.toml"],
+    "17_burridge_knopoff": ["results/studies/burridge_knopoff.csv", "results/studies/burridge_knopoff.json"],
 }
 
 #: The report's category of each notebook's figures.  No colon in a name: Snakemake writes
@@ -104,6 +106,7 @@ CATEGORY = {
     "14_sensitivities_and_fit": "Tutorial - sensitivities through stick and slip, and a fit (fit01-fit02)",
     "15_friction_on_a_belt": "Tutorial - friction on a belt, static above kinetic and Stribeck (fr01-fr03)",
     "16_self_excited_cycles": "Tutorial - self-excited cycles, from steady sliding to stick-slip (cy01-cy02)",
+    "17_burridge_knopoff": "Study - the Burridge-Knopoff chain, Carlson and Langer's earthquake model (bk01-bk02)",
 }
 
 #: Every figure file the pipeline makes.

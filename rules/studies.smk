@@ -166,3 +166,27 @@ rule study_stops_low:
         "logs/studies/stops_low.log",
     shell:
         "python {input.script} merge stops_low {output} {input.chunks} > {log} 2>&1"
+
+
+rule study_burridge_knopoff:
+    """Carlson and Langer's chain (lumped.studies.burridge_knopoff): its catalogue of slip events.
+
+    Unlike the studies above, it follows --config: bk_blocks blocks while the plate travels bk_travel
+    (in D_0) at the step bk_dt.  The defaults are the short run CI builds; the full run is one override,
+    snakemake --cores 2 results/studies/burridge_knopoff.csv --config bk_blocks=1000 bk_travel=100.
+    The values are params (not the configuration file), so that other overrides do not rerun it.
+    """
+    input:
+        script="scripts/burridge_knopoff.py",
+        package=PACKAGE_SOURCES,
+    output:
+        catalogue="results/studies/burridge_knopoff.csv",
+        facts="results/studies/burridge_knopoff.json",
+    params:
+        blocks=int(config["bk_blocks"]),
+        travel=repr(float(config["bk_travel"])),
+        dt=repr(float(config["bk_dt"])),
+    log:
+        "logs/studies/burridge_knopoff.log",
+    shell:
+        "python {input.script} {params.blocks} {params.travel} {params.dt} {output.catalogue} > {log} 2>&1"

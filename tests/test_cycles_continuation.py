@@ -16,7 +16,7 @@ import pytest
 from scipy.integrate import solve_ivp
 from scipy.optimize import brentq
 
-from lumped.drivers.cycles import continuation
+from lumped.drivers.cycles import continuation, shooting
 from lumped.drivers.cycles.continuation import BranchPoint, continue_branches
 from lumped.drivers.cycles.equilibria import HOPF_RTOL, hopf_points
 from lumped.drivers.cycles.shooting import Cycle
@@ -83,17 +83,13 @@ class ClosedFormShooting:
             False,
         )
 
-    def cycle_derivative_in(self, net: Network, v: float, parameter: str) -> float:
-        assert parameter == "belt.velocity"
-        return 1.0 if v >= model(net).V else 0.0
-
 
 def test_the_static_kinetic_branch_in_belt_speed_is_the_closed_form_cycle_at_every_point(monkeypatch):
     """With the closed form for the shooting (a double), every point of the branch from 0.1 to 0.5 m/s is the
     stick-slip cycle at its own speed (not one of the harmonic cycles below it, which solve ``F = 0`` as well:
     the module's Notes), the first at 0.1 and the last at 0.5 exactly, at most 0.4/(points - 1) apart."""
     double = ClosedFormShooting()
-    for name in ("return_map", "find_cycle", "cycle_derivative_in"):
+    for name in ("return_map", "find_cycle"):
         monkeypatch.setattr(continuation, name, getattr(double, name))
     # sliding is a centre at every speed (no damping, a flat curve): no pair crosses the axis, no Hopf point
     monkeypatch.setattr(continuation, "hopf_points", lambda *args: [])
@@ -193,6 +189,30 @@ def test_a_branch_that_comes_back_to_a_hopf_point_ends_there_and_is_followed_onc
     assert all(r.kind == "regular" for r in inner) and np.all(np.diff([r.value for r in inner]) > 0)
     assert all(low < r.value < high for r in inner)
     assert all(r.cycle.stable and r.cycle.stick_phases == 0 and r.cycle.max_multiplier < 1 for r in inner)
+
+
+def test_f_p_off_a_stick_is_one_return_and_meets_richardsons_central_difference(monkeypatch):
+    """``F_p`` (``dP/dV``) at a cycle of the bubble that slips throughout, at 0.07 m/s on the bubble's range
+    (0.0667 to 0.0748 m/s): a one-sided difference from the cycle's own speed, one return (a central difference
+    takes two), within the error :func:`continuation._forward_step` derives, ``sqrt(2 (2 rho + CYCLE_TOL)) S / L``
+    (``S = V``, ``L`` the range: 5.5e-5 m/s per m/s), of Richardson's extrapolation of central differences at
+    ``h = 1e-5`` and ``h/2`` (error ``O(h^4)`` and the returns' noise over ``h``: some 1e-9, far below)."""
+    low, high = 0.0667, 0.0748
+    fam = continuation._Family(bubble_belt(), "belt.velocity", low, high)
+    net = bubble_belt(0.07)
+    cycle = continuation.find_cycle(net, 0.03)
+    v, slope = cycle.section, float(cycle.multipliers[0].real)
+    assert cycle.stick_phases == 0 and 0 < slope < 1
+    fly, returns = shooting._fly, []
+    monkeypatch.setattr(shooting, "_fly", lambda *a, **k: returns.append(1) or fly(*a, **k))
+    d_p = fam.derivative(net, v, 0.07, v, slope)
+    assert len(returns) == 1
+    monkeypatch.setattr(shooting, "_fly", fly)
+    at = lambda V: shooting.return_map(bubble_belt(V), v)[0]
+    central = lambda h: (at(0.07 + h) - at(0.07 - h)) / (2 * h)
+    reference = (4 * central(5e-6) - central(1e-5)) / 3
+    bound = math.sqrt(2 * (2 * 100 * shooting.RTOL + continuation.CYCLE_TOL)) * 0.07 / (high - low)
+    assert abs(d_p - reference) <= bound
 
 
 @pytest.fixture(scope="module")

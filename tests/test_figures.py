@@ -288,6 +288,8 @@ FIGURES = {
     ),
     "cy01": lambda: plotting.bifurcation_diagram(*DIAGRAM[:3]),
     "cy02": lambda: plotting.bifurcation_diagram(*DIAGRAM),
+    "bk01": lambda: plotting.slip_spacetime(REST_X0, np.outer(np.abs(np.sin(REST_X0)), np.ones(5))),
+    "bk02": lambda: plotting.event_sizes(np.exp(REST_X0), (2.0, 1.0, 2.0)),
 }
 
 

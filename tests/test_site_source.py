@@ -59,6 +59,7 @@ def test_a_caption_splits_at_its_first_sentence(path):
         "fit": f"Tutorial figure fit{number}",
         "fr": f"Tutorial figure fr{number}",
         "cy": f"Tutorial figure cy{number}",
+        "bk": f"Study figure bk{number}",
     }[kind]
     assert caption.title.startswith(expected)
     flat = " ".join(caption.text.split())

@@ -17,6 +17,7 @@ except ModuleNotFoundError as err:
 
 from lumped.plotting._base import STYLE, legend_above, new_axes, save_figure, sci_tex, style, styled
 from lumped.plotting.accuracy import accuracy_convergence, work_precision
+from lumped.plotting.burridge_knopoff import event_sizes, slip_spacetime
 from lumped.plotting.convergence import convergence
 from lumped.plotting.cycles import bifurcation_diagram
 from lumped.plotting.figures import (
@@ -59,6 +60,7 @@ __all__ = [
     "den_hartog_amplitudes",
     "den_hartog_history",
     "difference",
+    "event_sizes",
     "exact_fine",
     "exact_on_grid",
     "fit_record",
@@ -76,6 +78,7 @@ __all__ = [
     "rest_positions",
     "save_figure",
     "sci_tex",
+    "slip_spacetime",
     "smoothing_creep",
     "step_label",
     "stick_map",

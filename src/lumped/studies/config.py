@@ -196,6 +196,8 @@ def _violates(value: Any, rule: dict[str, Any], defs: dict[str, Any]) -> bool:
     number = isinstance(value, (int, float)) and not isinstance(value, bool)
     if rule.get("type") == "number" and not number:
         return True
+    if rule.get("type") == "integer" and not (number and (isinstance(value, int) or float(value).is_integer())):
+        return True  # JSON schema's integer: a number with no fractional part (1000 or 1000.0, not inf)
     if not number:
         return False
     return (

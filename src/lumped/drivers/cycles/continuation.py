@@ -16,11 +16,12 @@ F_p]``, :func:`~lumped.numerics.arclength.unit_tangent`) the predictor steps
 ``ds`` along the branch (:func:`~lumped.numerics.arclength.predict`), and
 the corrector is Newton on ``F = 0`` and ``t . (u - u_pred) = 0``, so that a
 fold (where ``p`` turns back) is passed like any other point.  ``F_v = P' -
-1`` is the return map's exact derivative and ``F_p``
-:func:`~lumped.drivers.cycles.shooting.cycle_derivative_in`.  A step moves
+1`` is the return map's exact derivative and ``F_p`` a one-sided difference
+in ``p`` from the return already made (:func:`_forward_step`: one return
+more per point).  A step moves
 ``p`` by ``(stop - start)/(points - 1)`` at most and ``v`` by
 :data:`SPEED_STEP` of ``v_s`` at most; it is halved where the corrector fails
-and grows by half again after a success.  ``F_p`` is a central difference: within
+and grows by half again after a success.  ``F_p`` is a difference: within
 its step of a kink of the branch (where the stick phases change) it spans both
 sides, so where Newton on the hyperplane fails the corrector tries at the
 predicted value of ``p`` (which needs no ``F_p``).
@@ -90,7 +91,7 @@ from typing import NamedTuple
 import numpy as np
 
 from lumped.drivers.cycles.equilibria import Equilibrium, check_autonomous, hopf_points, steady_sliding
-from lumped.drivers.cycles.shooting import Cycle, cycle_derivative_in, find_cycle, return_map
+from lumped.drivers.cycles.shooting import RTOL, Cycle, find_cycle, return_map
 from lumped.drivers.response.continuation import check_points
 from lumped.model.network import Network
 from lumped.model.system_parameters import system_parameters, with_values
@@ -104,6 +105,8 @@ __all__ = ["HOPF_AMPLITUDE", "BranchPoint", "continue_branches"]
 #: 1e-12, so that the noise of the return map's integration (and of ``F_p``'s) never stalls it; the row's
 #: cycle is then converged to the shooting's own tolerance by :func:`find_cycle` from the corrected speed.
 CORRECTOR_TOL = 1e-10
+#: :func:`find_cycle`'s tolerance on ``|P(v) - v|`` relative to ``max(|V|, v)`` (its default, passed explicitly).
+CYCLE_TOL = 1e-12
 #: Corrector iterations before a step is halved.
 MAX_CORRECTOR = 8
 #: The first cycle off a Hopf point: its section speed as a fraction of the belt's speed there.  Its
@@ -146,6 +149,28 @@ class _Point(NamedTuple):
     value: float  # p
 
 
+def _forward_step(value: float, span: float) -> float:
+    """The step ``h`` of the one-sided difference ``dP/dp ~ (P(v; p + h) - P(v; p)) / h`` at ``p = value`` on a
+    range ``span`` long (the parameter's unit).
+
+    Notes
+    -----
+    With ``S = max(|V|, v)`` the scale of ``P``, each return errs by ``rho S``, ``rho = 100 RTOL`` (DOP853's
+    local errors, not their sum: :func:`~lumped.drivers.cycles.shooting.cycle_derivative_in`), and ``P(v; p)``
+    is either a return of its own or the cycle's ``v`` itself, within :data:`CYCLE_TOL` ``S`` of ``P(v)``
+    (:func:`find_cycle`'s stop): the numerator's noise is at most ``(2 rho + CYCLE_TOL) S``.  The truncation is
+    ``h |P_pp| / 2``, ``|P_pp| ~ S / L^2`` with ``L = min(|p|, span)``: ``P`` varying on the scale of ``p``
+    itself or of the range the branch is followed over, whichever is shorter (the bubble of
+    ``benchmarks/bench_cycles.py``, 0.008 m/s wide at 0.07 m/s, has ``|P_pp| = 70 s/m``, ``S / span^2``).  The
+    sum is least at ``h = sqrt(2 (2 rho + CYCLE_TOL)) L`` (6.5e-6 ``L``), where the error is that times ``S /
+    L``: ``F_p`` to some 1e-5 of its scale.  That moves only the tangent (the predictor) and the rate of Newton
+    on the hyperplane (linear, at that relative error), never where a point converges (``F = 0`` to
+    :data:`CORRECTOR_TOL`), nor the sign of ``dp/ds`` that tells a fold (``F_v``, exact).
+    """
+    scale = min(abs(value), span) if value != 0 else span
+    return math.sqrt(2 * (2 * 100 * RTOL + CYCLE_TOL)) * scale
+
+
 class _Family:
     """The members of the family, the scales and the residual ``F`` with its Jacobian."""
 
@@ -166,7 +191,7 @@ class _Family:
         """The point at section speed ``v`` of the member at ``value``, with the cycle through it (and ``F_p``
         unless ``tangent`` is false: then 0, for a point whose tangent is not wanted)."""
         net = self.member(value)
-        cycle = find_cycle(net, v)
+        cycle = find_cycle(net, v, tol=CYCLE_TOL)
         d_p = (
             self.derivative(net, cycle.section, value, cycle.section, float(cycle.multipliers[0].real))
             if tangent
@@ -180,7 +205,7 @@ class _Family:
         """The point of the branch at ``guess``'s value of the parameter, else on the hyperplane through ``guess``
         normal to ``normal`` (``None`` if neither converges).
 
-        The first needs no ``F_p``, which is a central difference (:func:`cycle_derivative_in`): within its step
+        The first needs no ``F_p``, which is a difference (:func:`_forward_step`): within its step
         of a kink of the branch (a change of the stick phases) it spans both sides and is no derivative, and
         Newton on the hyperplane may then land on the other piece, close by; at a fixed parameter Newton is exact
         and converges to the piece nearest the guess.  The second passes a fold, where the first finds nothing
@@ -249,8 +274,8 @@ class _Family:
         try:
             v, value = self._snapped(u)
             net = self.member(value)
-            slope = return_map(net, v)[1]
-            row = [slope - 1.0, cycle_derivative_in(net, v, self.name) * self.p_s / self.v_s]  # no shortcut here
+            v_next, slope, _ = return_map(net, v)
+            row = [slope - 1.0, self._difference(v, value, v_next) * self.p_s / self.v_s]  # no shortcut here
         except ValueError:
             return along
         if not np.all(np.isfinite(row)) or not np.any(row):
@@ -258,13 +283,20 @@ class _Family:
         return unit_tangent(np.array([row]), along)
 
     def derivative(self, net: Network, v: float, value: float, v_next: float, slope: float) -> float:
-        """``dP/dp`` at ``v`` (m/s per unit of the parameter): where the motion from ``v`` sticks before it returns
-        and returns stuck (``P = V``, ``P' = 0``), ``P = V(p)`` near it and ``dP/dp = dV/dp`` exactly, the belt's
-        speed being the parameter itself or not depending on it (an affine function of it: its difference over
-        a unit step); else :func:`cycle_derivative_in`'s central difference."""
+        """``dP/dp`` at ``v`` (m/s per unit of the parameter), ``v_next`` being ``P(v)`` at ``value`` (or ``v``
+        itself at a cycle that :func:`find_cycle` converged, within its tolerance: :func:`_forward_step`): where
+        the motion from ``v`` sticks before it returns and returns stuck (``P = V``, ``P' = 0``), ``P = V(p)``
+        near it and ``dP/dp = dV/dp`` exactly, the belt's speed being the parameter itself or not depending on it
+        (an affine function of it: its difference over a unit step); else the one-sided difference
+        ``(P(v; p + h) - v_next) / h`` with :func:`_forward_step`'s ``h``: one return more, ``v_next`` being known."""
         if slope == 0 and v_next == self.belt(value):
             return self.belt(value + 1.0) - self.belt(value)
-        return cycle_derivative_in(net, v, self.name)
+        return self._difference(v, value, v_next)
+
+    def _difference(self, v: float, value: float, v_next: float) -> float:
+        """``(P(v; p + h) - v_next) / h`` at ``p = value``, ``h`` :func:`_forward_step`'s."""
+        h = _forward_step(value, self.p_s)
+        return (return_map(self.member(value + h), v)[0] - v_next) / h
 
     def _snapped(self, u: np.ndarray) -> tuple[float, float]:
         """``(v, p)`` at ``u``, with ``v`` the belt's speed where it is within the tolerance of it (Notes)."""
@@ -310,7 +342,7 @@ def _arm_end(fam: _Family, a: _Point, b: _Point, t: np.ndarray) -> _Point:
 
     The point at ``s`` is the piece's crossing of the hyperplane ``t . (u - u_a) = s``, from the line through the
     last two points found on the piece (the first: ``t``), corrected at that guess's value of the parameter
-    (exact ``F_v``, no ``F_p``: the central difference spans the kink near it) or else on the hyperplane; it is
+    (exact ``F_v``, no ``F_p``: the difference spans the kink near it) or else on the hyperplane; it is
     on the piece if it converges with ``a``'s stick phases within ``s`` of that line.  Each piece is followed
     from its own side because the two may meet at an angle, or in a fold: a bisection along the secant from one
     to the other would cross the angle's inside, where the hyperplanes meet the two pieces far from the kink."""
@@ -447,7 +479,7 @@ def _follow(
             continue
         rows += [*found, _row(q, "regular")]
         # across a kink the branch may turn back: the tangent is oriented from where q's piece begins; it is the
-        # secant from there where F_p (a central difference: no derivative within its step of a kink) turns it
+        # secant from there where F_p (a difference: no derivative within its step of a kink) turns it
         begins = p if piece is None or np.array_equal(piece.u, q.u) else piece
         secant = (q.u - begins.u) / np.linalg.norm(q.u - begins.u)
         jacobian = _tangent(q, secant)
