@@ -56,15 +56,17 @@ setup(
                 "_kernel",
                 ["src/lumped/kernels/_binding_checks.h", "src/lumped/kernels/_sine.h", "src/lumped/kernels/_stick.h"],
             ),
-            ("_friction_kernel", ["src/lumped/kernels/_binding_checks.h"]),
+            ("_friction_kernel", ["src/lumped/kernels/_binding_checks.h", "src/lumped/kernels/_slip_curve.h"]),
             (
                 "_network_kernel",
                 [
                     "src/lumped/kernels/_binding_checks.h",
+                    "src/lumped/kernels/_network_curve.h",
                     "src/lumped/kernels/_network_elements.h",
                     "src/lumped/kernels/_network_forest.h",
                     "src/lumped/kernels/_network_loop.h",
                     "src/lumped/kernels/_network_sparse.h",
+                    "src/lumped/kernels/_slip_curve.h",
                     "src/lumped/kernels/_stick.h",
                 ],
             ),

@@ -17,7 +17,8 @@ are piecewise linear and its links form a forest or close one loop, else, for on
 mass with a friction contact (a block on a belt), in the compiled friction loop
 (:mod:`lumped.solvers.friction_compiled`), else in the compiled sparse step
 (:mod:`lumped.solvers.network_sparse`: any network of piecewise-linear elements and
-friction contacts without a fall, loops through the ground included), else in Python.
+friction contacts of a ``kernel_form``, Stribeck falls included, loops through the ground
+included), else in Python.
 """
 
 from __future__ import annotations

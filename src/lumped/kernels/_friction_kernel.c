@@ -38,15 +38,11 @@
 #include <stdint.h>
 
 #include "_binding_checks.h"
+#include "_slip_curve.h" /* law_t, slip_curve, slip_speed: the Stribeck slip curve and its root */
 
 enum { SPRING = 0, DASHPOT = 1, CONTACT = 2 }; /* the roles of friction_compiled.plan */
 enum { STICK = 0 };                             /* the contact's mode: -1, 0 (stuck), +1 */
 #define MAX_RULE 8 /* the rule settles in at most 3 solves (stick, slip, stick); more is a failure */
-
-typedef struct {
-    int code;
-    double stat, kin, vs, visc;
-} law_t;
 
 typedef struct {
     Py_ssize_t n_el, contact;
@@ -58,54 +54,6 @@ typedef struct {
     double speed[3];       /* the contact's last slip speeds on a Stribeck branch, newest first */
     int known;             /* how many of them follow one another (0 after a stick) */
 } sys_t;
-
-/* ---- the slip curve of a Stribeck law (lumped.laws.stribeck) ---------------- */
-
-/* g(s) and g'(s) at s >= 0, with the decay of `code` (1 exp(-x), 2 exp(-x^2), 3 1/(1+x), x = s/v_s). */
-static double slip_curve(const law_t *l, double s, double *slope) {
-    const double x = s / l->vs, drop = l->stat - l->kin;
-    double d, dd;
-    if (l->code == 1) {
-        d = exp(-x), dd = -d;
-    } else if (l->code == 2) {
-        d = exp(-x * x), dd = -2.0 * x * d;
-    } else {
-        d = 1.0 / (1.0 + x), dd = -d * d;
-    }
-    *slope = l->visc + drop * dd / l->vs;
-    return l->kin + l->visc * s + drop * d;
-}
-
-/* The s > 0 with h(s) = g(s) + E s - y = 0, for y > static = g(0+) and E above the curve's steepest
- * fall (so that h increases): Newton's method from `guess` (the last step's slip speed on this
- * branch, or the tangent at 0 if it is not in the bracket), any iterate that leaves the bracket
- * (lo, hi) replaced by the bisection; g >= 0 puts the root in (0, y/E].  It stops after a Newton
- * step ds whose successor would move s by at most half an ulp, M2 ds^2 / (2 h') <= eps s / 2 (M2 >= |g''|:
- * the decay's |d''| is at most 1 (exponential) or 2, over v_s^2), which saves the evaluation that
- * would only confirm it; or after a step of at most 2 ulps, or on a bracket that narrow. */
-static double slip_speed(const law_t *l, double y, double E, double guess) {
-    double lo = 0.0, hi = y / E, slope;
-    const double m2 = (l->stat - l->kin) / (l->vs * l->vs) * (l->code == 1 ? 1.0 : 2.0);
-    double s = guess;
-    if (!(s > lo && s < hi)) {
-        slip_curve(l, 0.0, &slope);
-        s = (y - l->stat) / (E + slope);
-    }
-    if (!(s > lo && s < hi)) s = 0.5 * (lo + hi);
-    for (int it = 0; it < 200; it++) {
-        const double h = slip_curve(l, s, &slope) + E * s - y;
-        if (h == 0.0) return s;
-        if (h < 0.0) lo = s;
-        else hi = s;
-        const double ds = h / (slope + E);
-        double next = s - ds;
-        if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-        else if (m2 * ds * ds <= DBL_EPSILON * next * (slope + E)) return next;
-        if (fabs(next - s) <= 2.0 * DBL_EPSILON * next || hi - lo <= 2.0 * DBL_EPSILON * hi) return next;
-        s = next;
-    }
-    return s;
-}
 
 /* ---- one step ------------------------------------------------------------- */
 

@@ -15,14 +15,31 @@
 #include <math.h>
 #include <stdint.h>
 
-#include "_stick.h" /* sticks1: the stick test of every kernel */
+#include "_slip_curve.h" /* law_t, slip_curve, slip_speed: a Stribeck contact's branch */
+#include "_stick.h"      /* sticks1: the stick test of every kernel */
 
 #define MAX_PIECES 5
-enum { SPRING = 0, STRING = 1, BINGHAM = 2, MAXWELL = 3, DASHPOT = 4, LOCKING = 5, FRICTION = 6 };
+enum { SPRING = 0, STRING = 1, BINGHAM = 2, MAXWELL = 3, DASHPOT = 4, LOCKING = 5, FRICTION = 6, STRIBECK = 7 };
+/* The largest kind code: STRIBECK + 2 (a Stribeck contact's codes are STRIBECK - 1 + its decay code). */
+#define LAST_KIND (STRIBECK + 2)
 /* FRICTION: a friction contact with a linear slip curve g(s) = a + b s (laws.step_graph.SlipGraph), its
  * parameters (static, a, b); only the sparse step (_network_sparse.h) is handed one.  Its modes are the
  * indices of its three pieces, SLIP_BACK 0, STICK 1, SLIP_FORWARD 2, picked by slip_rule. */
 enum { SLIP_BACK = 0, STICK_PIECE = 1, SLIP_FORWARD = 2 };
+/* STRIBECK .. STRIBECK + 2: a friction contact of lumped.laws.StribeckLaw with a fall (decay code 1, 2, 3 of
+ * its kernel_form(), the kind STRIBECK - 1 + code), parameters (static, kinetic, v_s, viscous): its slip
+ * branches are curves (laws.step_graph.CurveSlipGraph), which the sparse step linearises in each
+ * iteration (_network_curve.h); its table of pieces holds the stick piece and, in a slip mode, the line
+ * of that iteration.  Only the sparse step is handed one. */
+
+/* True for a friction contact (its modes are the three of slip_rule). */
+static int contact_kind(int64_t kind) { return kind >= FRICTION; }
+
+/* A Stribeck contact's law from its kind and parameters. */
+static law_t stribeck_law(int64_t kind, const double *p) {
+    law_t l = {(int)(kind - STRIBECK + 1), p[0], p[1], p[2], p[3]};
+    return l;
+}
 
 typedef struct {
     int rigid;
@@ -77,6 +94,13 @@ static int step_graph(int64_t kind, const double *p, double s, double dt, piece 
         g[1] = rigid_piece(0.0, -p[0], p[0]);
         g[2] = free_piece(p[1], p[2], 0.0, INFINITY);
         return 3;
+    case STRIBECK:
+    case STRIBECK + 1:
+    case STRIBECK + 2: /* the stick piece; the slip pieces are each iteration's lines (_network_curve.h) */
+        g[0] = free_piece(-p[1], p[3], -INFINITY, INFINITY);
+        g[1] = rigid_piece(0.0, -p[0], p[0]);
+        g[2] = free_piece(p[1], p[3], -INFINITY, INFINITY);
+        return 3;
     case LOCKING: { /* tau, c, v_lock */
         const double lock = p[2], edge = p[0] + p[1] * p[2];
         g[0] = rigid_piece(-lock, -INFINITY, -edge);
@@ -100,6 +124,9 @@ static double next_state(int64_t kind, const double *p, double s, double dt, dou
     case STRING:
         return rigid ? p[1] : s + dt * w;
     case FRICTION: /* SlipElement.next_state: the direction the step ends in */
+    case STRIBECK:
+    case STRIBECK + 1:
+    case STRIBECK + 2:
         return rigid || w == 0.0 ? 0.0 : copysign(1.0, w);
     default:
         return 0.0;
@@ -130,7 +157,7 @@ static int slip_rule(int old, double w, double f, double stat) {
 
 /* StepGraph.initial_mode: the middle piece, or a contact's piece from its state (its direction). */
 static int initial_mode(int64_t kind, double state, int count) {
-    if (kind == FRICTION && count == 3) return state > 0 ? SLIP_FORWARD : state < 0 ? SLIP_BACK : STICK_PIECE;
+    if (contact_kind(kind) && count == 3) return state > 0 ? SLIP_FORWARD : state < 0 ? SLIP_BACK : STICK_PIECE;
     return count / 2;
 }
 

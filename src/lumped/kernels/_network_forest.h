@@ -69,6 +69,7 @@ typedef struct {
     double *gstate; /* the state each element's step graph was built from (the kernel's graphs()) */
     uint8_t *lazy;  /* the sparse step's one-piece graphs kept only in its arrays (sync_graphs), or NULL */
     double *stat;   /* a friction contact's static threshold (slip_rule), by element; the sparse step's */
+    struct curve_s *cv; /* the Stribeck contacts (_network_curve.h), or NULL: none */
 } net_t;
 
 /* q's work arrays for n_mass masses and n_el elements: 0, or -1 if memory ran
@@ -102,12 +103,15 @@ static const piece *chosen(const net_t *q, Py_ssize_t e, const int *mode) {
     return q->graph + e * MAX_PIECES + mode[e];
 }
 
-#include "_network_loop.h" /* the chord: chord_loads, chord_velocities, chord_forces, loop_intervals */
+#include "_network_loop.h"  /* the chord: chord_loads, chord_velocities, chord_forces, loop_intervals */
+static void sparse_reread(net_t *q, Py_ssize_t e); /* _network_sparse.h */
+#include "_network_curve.h" /* the Stribeck contacts: curve_pieces, curve_next, curve_same, curve_commit */
 
 /* The mode after an iteration (StepGraph.next_mode): a friction contact's rule, in its true rate
  * w + delta (step_graph.Shifted), or the piece holding z = f + sigma w. */
-static int next_mode(const net_t *q, Py_ssize_t e, double sigma) {
-    if (q->kind[e] == FRICTION && q->count[e] == 3) {
+static int next_mode(net_t *q, Py_ssize_t e, double sigma) {
+    if (q->cv && q->cv->ix[e] >= 0) return curve_next(q, e, sigma);
+    if (contact_kind(q->kind[e]) && q->count[e] == 3) {
         const double d = q->delta ? q->delta[e] : 0.0;
         return slip_rule(q->mode[e], d != 0.0 ? q->w[e] + d : q->w[e], q->f[e], q->stat[e]);
     }
@@ -118,7 +122,7 @@ static int next_mode(const net_t *q, Py_ssize_t e, double sigma) {
 /* StepGraph.mode (the dual sweeps' choice): a shifted contact asks its own graph with z + sigma delta. */
 static int resolvent_mode(const net_t *q, Py_ssize_t e, double z, double sigma) {
     const double d = q->delta ? q->delta[e] : 0.0;
-    if (q->kind[e] == FRICTION && q->count[e] == 3 && d != 0.0) {
+    if (contact_kind(q->kind[e]) && q->count[e] == 3 && d != 0.0) {
         piece g[3];
         for (int k = 0; k < 3; k++) g[k] = shift_piece(q->graph[e * MAX_PIECES + k], -d);
         return mode_of(g, 3, z + sigma * d, sigma);
@@ -249,7 +253,9 @@ static int on_pieces(const net_t *q, const int *mode) {
 static int iterate(net_t *q, double scale, int *iterations) {
     int seen = 0, cycling = 0, round = 0;
     uint64_t first = 0;
+    const int curves = q->cv && q->cv->n; /* a mode with a point: no cycle test (step._iterate's piecewise) */
     for (int it = 1; it <= q->bound; it++) {
+        if (curves) curve_pieces(q, scale);
         if (!linear(q, q->mode)) {
             q->fallback = 1;
             return 0;
@@ -257,11 +263,16 @@ static int iterate(net_t *q, double scale, int *iterations) {
         int settled = 1;
         for (Py_ssize_t e = 0; e < q->n_el; e++) {
             q->next[e] = next_mode(q, e, q->sigma[e] * scale);
-            settled &= q->next[e] == q->mode[e];
+            settled &= curves && q->cv->ix[e] >= 0 ? curve_same(q, e, q->sigma[e] * scale) : q->next[e] == q->mode[e];
         }
         if (settled) {
             *iterations = it;
             return 1;
+        }
+        if (curves) {
+            for (Py_ssize_t k = 0; k < q->cv->n; k++) curve_commit(q, q->cv->el[k]);
+            memcpy(q->mode, q->next, q->n_el * sizeof(int));
+            continue;
         }
         const uint64_t h = hash_modes(q->next, q->n_el);
         for (int j = 0; j < seen && !cycling; j++) cycling = q->seen[j] == h;
@@ -294,8 +305,12 @@ static void dual_sweeps(net_t *q, int sweeps) {
         v[i] = i < q->n_mass ? q->rhs[i] * inv[i] : 0.0;
     }
     for (Py_ssize_t e = 0; e < q->n_el; e++) f[e] = 0.0, q->guess[e] = q->count[e] / 2;
+    const curve_t *c = q->cv;
+    for (Py_ssize_t k = 0; c && k < c->n; k++) /* not piecewise: left at its initial mode */
+        q->guess[c->el[k]] = curve_initial(q, k, c->state[c->el[k]]);
     for (int s = 0; s < sweeps; s++) {
         for (Py_ssize_t e = 0; e < q->n_el; e++) {
+            if (c && c->ix[e] >= 0) continue;
             const int64_t i = q->first[e], j = q->second[e];
             const double sigma = 1.0 / (inv[i] + inv[j]);
             const double z = f[e] + sigma * (v[j] - v[i]);
@@ -315,8 +330,10 @@ static void dual_sweeps(net_t *q, int sweeps) {
 static int solve(net_t *q, int *iterations) {
     memcpy(q->guess, q->mode, q->n_el * sizeof(int));
     q->fallback = 0;
+    if (q->cv && q->cv->n) curve_keep(q->cv, 0);
     for (int s = 0; s < N_SCALES; s++) {
         memcpy(q->mode, q->guess, q->n_el * sizeof(int));
+        if (s && q->cv && q->cv->n) curve_keep(q->cv, 1);
         if (iterate(q, SCALES[s], iterations)) return 1;
         if (q->fallback) return 0;
     }

@@ -30,6 +30,7 @@
 typedef struct {
     double *x, *v, *state;
     int64_t *modes, *rest, *counters;
+    double *points; /* the Stribeck contacts' points (_network_curve.h), POINT_WIDTH per element; NULL: none */
 } march_t;
 
 typedef struct {
@@ -74,6 +75,7 @@ static int step(net_t *q, const march_t *m, const double *load, const driven_t *
     for (Py_ssize_t k = 0; k < dv->n; k++) /* backward_euler_network._shifts: 0 + the sum, in its order */
         q->delta[dv->el[k]] += dv->sign[k] * shift[dv->driver[k]];
     graphs(q, m->state, dv);
+    if (q->cv) q->cv->state = m->state;
     for (Py_ssize_t i = 0; i < q->n_mass; i++) q->rhs[i] = q->inertia[i] * m->v[i] + 0.0;
     for (Py_ssize_t k = 0; k < q->n_load; k++) q->rhs[q->load_mass[k]] = q->inertia[q->load_mass[k]] * m->v[q->load_mass[k]] + load[k];
     if (!solve(q, iterations)) return q->fallback ? 3 : 1;
@@ -103,11 +105,17 @@ static int march(net_t *q, march_t *m, const record_t *o, const double *table, c
         q->gstate[e] = m->state[e];
         q->mode[e] = m->modes[e] < 0 ? initial_mode(q->kind[e], m->state[e], q->count[e]) : (int)m->modes[e];
     }
+    if (q->cv) {
+        curve_load(q->cv, m->points);
+        for (Py_ssize_t k = 0; k < q->cv->n; k++)
+            if (m->modes[q->cv->el[k]] < 0) curve_initial(q, k, m->state[q->cv->el[k]]);
+    }
     for (Py_ssize_t n = n_first; n <= n_last; n++) {
         int iterations = 0;
         const int bad = step(q, m, table + (n - n_first) * q->n_load, dv, dv->n ? shifts + (n - n_first) * dv->n_drivers : NULL, &iterations);
         if (bad) {
             cnt[1] = n, cnt[2] = bad;
+            if (q->cv) curve_store(q->cv, m->points);
             return bad;
         }
         if (iterations > cnt[3]) cnt[3] = iterations;
@@ -115,6 +123,7 @@ static int march(net_t *q, march_t *m, const record_t *o, const double *table, c
             if (m->v[i] != 0.0) m->rest[i] = n + 1;
         if (n % save_every == 0 || n == n_steps) save(q, m, o, (double)n * q->dt, cnt[0]++);
     }
+    if (q->cv) curve_store(q->cv, m->points);
     return 0;
 }
 
@@ -328,7 +337,7 @@ static PyObject *network_block(PyObject *self, PyObject *args) {
         q.count[e] = step_graph(q.kind[e], q.par + 4 * e, state[e], dt, q.graph + e * MAX_PIECES);
     if (check_modes(march_names[3], mb[3]->buf, q.count, ne) < 0) goto fail_alloc;
     q.dt = dt;
-    march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters};
+    march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters, NULL};
     record_t o = {rb[0]->buf, rb[1]->buf, rb[2]->buf, rb[3]->buf, rb[4]->buf, rb[5]->buf,
                   kept ? rb[6]->buf : NULL, kept ? rb[7]->buf : NULL};
     const driven_t none = {0, 0, NULL, NULL, NULL};
@@ -381,6 +390,21 @@ static int check_sparse(const net_t *q, const sparse_t *s, Py_ssize_t n_inc) {
     return bad ? -1 : 0;
 }
 
+/* -1 with ValueError unless each Stribeck contact's parameters are a StribeckLaw's with a fall. */
+static int check_laws(const net_t *q) {
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        const double *p = q->par + 4 * e;
+        if (q->kind[e] >= STRIBECK &&
+            (check_real("topology[1] (par) static", p[0], 0.0, 1, 0) < 0 ||
+             check_real("topology[1] (par) kinetic", p[1], 0.0, 0, 0) < 0 ||
+             check_real("topology[1] (par) static - kinetic", p[0] - p[1], 0.0, 1, 0) < 0 ||
+             check_real("topology[1] (par) stribeck_velocity", p[2], 0.0, 1, 0) < 0 ||
+             check_real("topology[1] (par) viscous", p[3], 0.0, 0, 0) < 0))
+            return -1;
+    }
+    return 0;
+}
+
 /* Take the sparse topology tuple's 13 arrays into h, checked; set q's counts and arrays, s's, and dv
  * (its driver count: n_drivers). */
 static int take_sparse(held_t *h, PyObject *obj, net_t *q, sparse_t *s, driven_t *dv, Py_ssize_t n_drivers) {
@@ -396,7 +420,7 @@ static int take_sparse(held_t *h, PyObject *obj, net_t *q, sparse_t *s, driven_t
     for (int i = 1; i < 13; i++)
         if (i != 7 && i != 10 && !(b[i] = take(h, a[i], SPARSE[i], i == 1 || i == 8 || i == 12 ? 'd' : 'q', count[i], 0)))
             return -1;
-    if (check_indices(SPARSE[0], b[0], 0, FRICTION + 1) < 0 || check_indices(SPARSE[2], b[2], 0, n_pt) < 0 ||
+    if (check_indices(SPARSE[0], b[0], 0, LAST_KIND + 1) < 0 || check_indices(SPARSE[2], b[2], 0, n_pt) < 0 ||
         check_indices(SPARSE[3], b[3], 0, n_pt) < 0 || check_indices(SPARSE[4], b[4], 0, n_mass) < 0 ||
         check_indices(SPARSE[5], b[5], 0, items(b[6]) + 1) < 0 || check_indices(SPARSE[6], b[6], 0, n_el) < 0 ||
         check_indices(SPARSE[9], b[9], 0, n_mass) < 0 || check_indices(SPARSE[10], b[10], 0, n_el) < 0 ||
@@ -407,7 +431,34 @@ static int take_sparse(held_t *h, PyObject *obj, net_t *q, sparse_t *s, driven_t
     q->n_mass = n_mass, q->n_el = n_el, q->n_pt = n_pt, q->n_load = items(b[9]);
     s->at_pos = b[4]->buf, s->inc_start = b[5]->buf, s->inc_el = b[6]->buf;
     dv->n = n_dv, dv->el = b[10]->buf, dv->driver = b[11]->buf, dv->sign = b[12]->buf, dv->n_drivers = n_drivers;
-    return check_sparse(q, s, items(b[6]));
+    return check_sparse(q, s, items(b[6])) < 0 || check_laws(q) < 0 ? -1 : 0;
+}
+
+/* The Stribeck contacts' arrays (_network_curve.h), if q has any: 0, or -1 if memory ran out. */
+static int allocate_curves(net_t *q) {
+    Py_ssize_t n = 0;
+    for (Py_ssize_t e = 0; e < q->n_el; e++) n += q->kind[e] >= STRIBECK;
+    if (n == 0) return 0;
+    curve_t *c = q->cv = calloc(1, sizeof(curve_t));
+    if (!c) return -1;
+    c->n = n;
+    c->el = malloc((n + q->n_el) * sizeof(int64_t));
+    c->law = malloc(n * sizeof(law_t));
+    c->pt = malloc(2 * n * sizeof(slip_point));
+    c->nw = malloc(2 * n * sizeof(double));
+    if (!c->el || !c->law || !c->pt || !c->nw) return -1;
+    c->ix = c->el + n, c->warm = c->pt + n, c->nf = c->nw + n;
+    for (Py_ssize_t e = 0, k = 0; e < q->n_el; e++) {
+        c->ix[e] = q->kind[e] >= STRIBECK ? k : -1;
+        if (q->kind[e] >= STRIBECK) c->el[k] = e, c->law[k] = stribeck_law(q->kind[e], q->par + 4 * e), k++;
+    }
+    return 0;
+}
+
+static void free_curves(net_t *q) {
+    if (!q->cv) return;
+    free(q->cv->el), free(q->cv->law), free(q->cv->pt), free(q->cv->nw), free(q->cv);
+    q->cv = NULL;
 }
 
 /* q's and s's work arrays, and the rate shifts (zero): 0, or -1 with MemoryError. */
@@ -433,6 +484,7 @@ static int allocate_sparse(net_t *q, sparse_t *s) {
 static void deallocate_sparse(net_t *q, sparse_t *s) {
     deallocate(q);
     sparse_free(s);
+    free_curves(q);
     free(q->delta), free(q->stat), free(q->lazy);
 }
 
@@ -499,12 +551,14 @@ fail:
 /* sparse_block(topology, marching, record, table, means, dt, n_first, n_last, n_steps, save_every)
  * network_block for the sparse step: topology = (kind, par, first, second, at_pos, inc_start, inc_el,
  * inertia, sigma, load_mass, driven_el, driven_driver, driven_sign), marching and record as there (no
- * intervals: a step whose forces are not unique is a rigid loop, left to Python with counters[2] = 3),
+ * intervals: a step whose forces are not unique is a rigid loop, left to Python with counters[2] = 3)
+ * and marching[6] (points) the Stribeck contacts' points (_network_curve.h: POINT_WIDTH per element),
  * means (steps, drivers) each driver's mean velocity over each step of the block: a driven element's
  * rate shift is the sum of sign * mean over its entries. */
 static PyObject *sparse_block(PyObject *self, PyObject *args) {
     static const char *const march_names[] = {"marching[0] (x)",     "marching[1] (v)",    "marching[2] (state)",
-                                              "marching[3] (modes)", "marching[4] (rest)", "marching[5] (counters)"};
+                                              "marching[3] (modes)", "marching[4] (rest)", "marching[5] (counters)",
+                                              "marching[6] (points)"};
     static const char *const record_names[] = {"record[0] (t)",     "record[1] (x)",     "record[2] (v)",
                                                "record[3] (force)", "record[4] (state)", "record[5] (rigid)"};
     PyObject *topo_obj, *march_obj, *rec_obj, *table_obj, *shift_obj;
@@ -517,7 +571,7 @@ static PyObject *sparse_block(PyObject *self, PyObject *args) {
     net_t q;
     sparse_t sp;
     driven_t dv;
-    Py_buffer *mb[6], *rb[6];
+    Py_buffer *mb[7], *rb[6];
     const Py_buffer *table, *shifts;
     if (n_drivers < 0) {
         PyErr_Format(PyExc_ValueError, "n_drivers must be >= 0, got %zd", n_drivers);
@@ -527,8 +581,8 @@ static PyObject *sparse_block(PyObject *self, PyObject *args) {
         take_sparse(&h, topo_obj, &q, &sp, &dv, n_drivers) < 0)
         goto fail;
     const Py_ssize_t nm = q.n_mass, ne = q.n_el, steps = n_last - n_first + 1;
-    const Py_ssize_t march_sizes[] = {nm, nm, ne, ne, nm, 4};
-    if (take_tuple(&h, march_obj, "marching", 6, march_names, "dddqqq", march_sizes, 1, mb) < 0 ||
+    const Py_ssize_t march_sizes[] = {nm, nm, ne, ne, nm, 4, ne * POINT_WIDTH};
+    if (take_tuple(&h, march_obj, "marching", 7, march_names, "dddqqqd", march_sizes, 1, mb) < 0 ||
         !(table = take(&h, table_obj, "table", 'd', steps * q.n_load, 0)) ||
         !(shifts = take(&h, shift_obj, "means", 'd', steps * n_drivers, 0)) ||
         !(rb[0] = take(&h, PyTuple_Check(rec_obj) && PyTuple_GET_SIZE(rec_obj) == 6 ? PyTuple_GET_ITEM(rec_obj, 0) : rec_obj,
@@ -540,12 +594,16 @@ static PyObject *sparse_block(PyObject *self, PyObject *args) {
     int64_t *counters = mb[5]->buf;
     if (check_rows(record_names[0], counters[0], rows, n_first, n_last, n_steps, save_every) < 0) goto fail;
     if (allocate_sparse(&q, &sp) < 0) goto fail_alloc;
+    if (allocate_curves(&q) < 0) {
+        PyErr_NoMemory();
+        goto fail_alloc;
+    }
     const double *state = mb[2]->buf;
     for (Py_ssize_t e = 0; e < ne; e++)
         q.count[e] = step_graph(q.kind[e], q.par + 4 * e, state[e], dt, q.graph + e * MAX_PIECES);
     if (check_modes(march_names[3], mb[3]->buf, q.count, ne) < 0) goto fail_alloc;
     q.dt = dt;
-    march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters};
+    march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters, mb[6]->buf};
     record_t o = {rb[0]->buf, rb[1]->buf, rb[2]->buf, rb[3]->buf, rb[4]->buf, rb[5]->buf, NULL, NULL};
     Py_BEGIN_ALLOW_THREADS
     march(&q, &m, &o, table->buf, &dv, shifts->buf, n_first, n_last, n_steps, save_every);

@@ -74,6 +74,9 @@ static inline void sparse_piece(sparse_t *s, Py_ssize_t e, const piece *pc, int 
     s->cmode[e] = mode;
 }
 
+/* Element e's piece to be read again from the table at the next solve (a Stribeck contact's new line). */
+static void sparse_reread(net_t *q, Py_ssize_t e) { q->sp->cmode[e] = -1; }
+
 /* Element e's step graph from its state, shifted by its rate shift (backward_euler_network._graphs):
  * into the table of pieces, and the chosen piece into the sparse step's arrays; a one-piece graph (a
  * spring: rebuilt whenever its force changes) only into those arrays, the table filled when a rare

@@ -132,8 +132,11 @@ class Friction(SlipElement, Element):
         law = StribeckLaw(self.static, self.kinetic, self.stribeck_velocity, self.decay, self.viscous)
         for name in ("static", "kinetic", "stribeck_velocity", "decay", "viscous"):
             object.__setattr__(self, name, getattr(law, name))
+        # the law, built and checked once (the step, the plans and the checks ask for it many times per
+        # element: for 100,000 contacts, rebuilding it on each ask took most of a network's set-up)
+        object.__setattr__(self, "_law", law)
 
     @property
     def law(self) -> StribeckLaw:  # type: ignore[override]
         """The friction law of this contact."""
-        return StribeckLaw(self.static, self.kinetic, self.stribeck_velocity, self.decay, self.viscous)
+        return self._law  # type: ignore[attr-defined]

@@ -38,9 +38,11 @@ parsed, one with more entries (``count`` tables counted N times) before any entr
 from __future__ import annotations
 
 import dataclasses
+import functools
 import math
 import os
 import tomllib
+from collections.abc import Collection
 from pathlib import Path
 
 from lumped.laws.element import Element
@@ -98,7 +100,7 @@ def table_files(path: str | Path) -> list[tuple[str, Path]]:
         if path.stat().st_size > MAX_FILE_BYTES:
             return []
         data = tomllib.loads(path.read_text(encoding="utf-8"))
-        tables = _expanded(data)
+        tables = _expanded(data, ("force", "driver"))  # not the masses and elements: they name no files
     except (OSError, UnicodeError, tomllib.TOMLDecodeError, RecursionError, ValueError):
         return []
     ground = data.get("ground", {})
@@ -166,9 +168,10 @@ def _parse(text: str, source: str, folder: Path) -> Network:
     return net
 
 
-def _expanded(data: dict) -> dict[str, list[tuple[Origin, dict]]]:
-    """The file's tables by kind, each ``count`` table expanded (:mod:`lumped.model.repeated`), their
-    numbers checked against the network's limits before any is expanded."""
+def _expanded(data: dict, kinds: Collection[str] = _TABLES) -> dict[str, list[tuple[Origin, dict]]]:
+    """The file's tables of ``kinds`` (all by default), each ``count`` table expanded
+    (:mod:`lumped.model.repeated`), every kind's numbers checked against the network's limits before any
+    is expanded."""
     tables = {}
     for key in sorted(_TABLES):
         value = data.get(key, [])
@@ -182,7 +185,8 @@ def _expanded(data: dict) -> dict[str, list[tuple[Origin, dict]]]:
             except ValueError as err:
                 raise ValueError(f"[[{key}]] {number}: {err}") from None
         check_count(_COUNTED[key], total)
-        tables[key] = expand(value, key)
+        if key in kinds:
+            tables[key] = expand(value, key)
     return tables
 
 
@@ -215,16 +219,22 @@ def _mass(raw: dict) -> Mass:
 _LEFT_OUT = object()
 
 
+@functools.cache
+def _spec(cls: type) -> dict:
+    """An element kind's parameters, ``None`` if required, :data:`_LEFT_OUT` if optional (once per kind)."""
+    spec = {"name": None, "kind": None, "between": None}
+    for f in dataclasses.fields(cls):
+        if f.name not in spec:
+            spec[f.name] = _LEFT_OUT if f.name in cls.optional else None
+    return spec
+
+
 def _element(raw: dict) -> Element:
     kind = raw.get("kind")
     if kind not in KINDS:
         raise ValueError(f"unknown kind {kind!r:.40}; expected one of {', '.join(KINDS)}")
     cls = KINDS[kind]
-    spec = {"name": None, "kind": None, "between": None}
-    for f in dataclasses.fields(cls):
-        if f.name not in spec:
-            spec[f.name] = _LEFT_OUT if f.name in cls.optional else None
-    values = {k: v for k, v in _fields(raw, spec).items() if v is not _LEFT_OUT}  # left out: the field's default
+    values = {k: v for k, v in _fields(raw, _spec(cls)).items() if v is not _LEFT_OUT}  # left out: the field's default
     del values["kind"]
     if isinstance(values["between"], list):
         values["between"] = tuple(values["between"])

@@ -294,15 +294,26 @@ class Network:
             index[d.name] = len(self.masses)
         return index
 
+    def _memo(self, key: str, build: Callable[[], object]) -> object:
+        """``build()``, computed once per network (its fields are immutable tuples of frozen items): the
+        indices below are asked for several times per run, each a loop over every element."""
+        memo = self.__dict__.setdefault("_computed", {})
+        if key not in memo:
+            memo[key] = build()
+        return memo[key]
+
     def driven(self) -> list[Driven]:
         """The elements joined to a driven point, in element order (:class:`Driven`)."""
+        return list(self._memo("driven", self._driven))  # type: ignore[call-overload]
+
+    def _driven(self) -> tuple[Driven, ...]:
         where = {d.name: k for k, d in enumerate(self.drivers)}
         out = []
         for e, el in enumerate(self.elements):
             for point, sign in zip(el.between, (-1.0, 1.0)):
                 if point in where:
                     out.append(Driven(e, where[point], sign))
-        return out
+        return tuple(out)
 
     def refuse_drivers(self, what: str) -> None:
         """A ``ValueError`` saying that ``what`` cannot run a system with driven points, if it has any."""
@@ -339,6 +350,10 @@ class Network:
 
     def incidence(self) -> tuple[np.ndarray, np.ndarray]:
         """Arrays ``first``, ``second`` of point indices (the ground is ``len(masses)``)."""
+        first, second = self._memo("incidence", self._incidence)  # type: ignore[misc]
+        return first.copy(), second.copy()
+
+    def _incidence(self) -> tuple[np.ndarray, np.ndarray]:
         index = self.point_index()
         pairs = np.array([(index[el.between[0]], index[el.between[1]]) for el in self.elements], dtype=np.intp)
         pairs = pairs.reshape(len(self.elements), 2)

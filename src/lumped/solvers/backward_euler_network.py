@@ -17,7 +17,7 @@ the run time, the path); it does not check them again.
 
 from __future__ import annotations
 
-import math
+import functools
 from typing import NamedTuple
 
 import numpy as np
@@ -41,14 +41,13 @@ def _sigma(net: Network, inertia: np.ndarray, dt: float) -> np.ndarray:
     """Each element's mode-test scale: the series stiffness its two points see."""
     first, second = net.incidence()
     seen = np.append(inertia, np.inf)
-    for e, el in enumerate(net.elements):
-        k = el.step_stiffness
-        seen[first[e]] += dt * k
-        seen[second[e]] += dt * k
-    pairs = zip(seen[first], seen[second])
-    return np.array(
-        [b if math.isinf(a) else a if math.isinf(b) else a * b / (a + b) for a, b in pairs]
-    )  # the ground is infinitely stiff
+    k = dt * np.array([el.step_stiffness for el in net.elements], dtype=float)
+    # each element adds to its first point, then its second, in element order (np.add.at keeps that order)
+    np.add.at(seen, np.stack([first, second], axis=1).ravel(), np.repeat(k, 2))
+    a, b = seen[first], seen[second]
+    with np.errstate(invalid="ignore"):
+        series = a * b / (a + b)
+    return np.where(np.isinf(a), b, np.where(np.isinf(b), a, series))  # the ground is infinitely stiff
 
 
 def _graphs(
@@ -91,15 +90,16 @@ def _shifts(net: Network, times: np.ndarray, dt: float) -> np.ndarray | None:
     return out
 
 
-def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str):
+def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str, topology: object = None):
     """Initial positions, velocities, element states and consistent forces
-    (the problem solved by ``path``'s step)."""
+    (the problem solved by ``path``'s step; ``topology``: the sparse step's plan, if it is the path)."""
     x, v = net.initial_positions()
     e0, w0 = x[second] - x[first], v[second] - v[first]
     speed, acceleration = np.zeros(len(net.elements)), np.zeros(len(net.elements))
+    starts = [(float(d.velocity_at(0.0)), d.initial_acceleration) for d in net.drivers]  # once per driver
     for d in net.driven():  # a driven point starts at 0 with its velocity at t = 0
-        speed[d.element] = d.sign * float(net.drivers[d.driver].velocity_at(0.0))
-        acceleration[d.element] = d.sign * net.drivers[d.driver].initial_acceleration
+        speed[d.element] = d.sign * starts[d.driver][0]
+        acceleration[d.element] = d.sign * starts[d.driver][1]
     w0 = w0 + speed
     state = []
     for e, el in enumerate(net.elements):
@@ -114,7 +114,7 @@ def _initial(net: Network, first: np.ndarray, second: np.ndarray, path: str):
     if path == "compiled" and not kernel.has_chord(kernel.plan(net)):  # a loop's intervals: the Python step
         sol = kernel.solve_graphs(kernel.plan(net), inertia, sigma, graphs, f0)
     elif path == sparse.PATH:  # None if its rigid elements close a loop
-        sol = sparse.solve_graphs(sparse.plan(net), inertia, sigma, graphs, f0, acceleration)
+        sol = sparse.solve_graphs(topology, inertia, sigma, graphs, f0, acceleration)  # type: ignore[arg-type]
     if sol is None:
         sol = solve_step(first, second, inertia, f0, graphs, sigma, ranges=True)
     return x[:-1], v[:-1], state, sol
@@ -173,12 +173,15 @@ def march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, pat
     (``rows`` rows in all) with the step of ``path`` (``"compiled"``, ``"python"``,
     :data:`lumped.solvers.friction_compiled.PATH` or :data:`lumped.solvers.network_sparse.PATH`)."""
     first, second = net.incidence()
-    x, v, state, sol = _initial(net, first, second, path)
+    topology = sparse.plan(net) if path == sparse.PATH else None  # once a run: a loop over the elements
+    x, v, state, sol = _initial(net, first, second, path, topology)
     inertia = np.array([m.mass / dt for m in net.masses])
     rec = _Record(rows, len(net.masses), len(net.elements))
     rec.save(0.0, x, v, sol.f, state, False, sol.low, sol.high)
     start = _Start(x, v, state, inertia, _sigma(net, inertia, dt), np.where(v == 0, 0, 1).astype(np.int64))
-    run = {"compiled": _run_compiled, friction.PATH: _run_friction, sparse.PATH: _run_sparse}.get(path, _run_python)
+    run = {"compiled": _run_compiled, friction.PATH: _run_friction}.get(path, _run_python)
+    if path == sparse.PATH:
+        run = functools.partial(_run_sparse, topology=topology)
     v, most = run(net, dt, n_steps, save_every, rec, start)
     if rec.python_steps:  # the sparse step left some steps (rigid loops) to the Python step
         path = f"{path}+python ({rec.python_steps} of {n_steps} steps)"
@@ -312,15 +315,16 @@ def _run_compiled(
 
 
 def _run_sparse(
-    net: Network, dt: float, n_steps: int, save_every: int, rec: _Record, start: _Start
+    net: Network, dt: float, n_steps: int, save_every: int, rec: _Record, start: _Start, topology: sparse.SparsePlan
 ) -> tuple[np.ndarray, int]:
     """The compiled sparse step (:mod:`lumped.solvers.network_sparse`), block by block; a step it leaves to
     Python (a rigid loop) runs :func:`_python_step`, and C resumes after it.  Same contract."""
-    topology, loaded = sparse.plan(net), np.array(net.loaded_masses(), dtype=np.int64)
+    loaded = np.array(net.loaded_masses(), dtype=np.int64)
     counters = np.array([rec.row, 0, 0, 0], dtype=np.int64)
     modes = np.full(len(net.elements), -1, dtype=np.int64)
     x, v, state = start.x.copy(), start.v.copy(), np.array(start.state, dtype=float)
-    marching = (x, v, state, modes, start.rest, counters)
+    points = sparse.points(net)
+    marching = (x, v, state, modes, start.rest, counters, points)
     record = (rec.t, rec.x, rec.v, rec.force, rec.state, rec.rigid.view(np.uint8))
     block = max(1, min(_BLOCK, _TABLE_VALUES // max(1, loaded.size + len(net.drivers))))
     most = 0
@@ -351,12 +355,13 @@ def _run_sparse(
             counters[2] = 0
             delta = _shifts(net, times[n - begin : n - begin + 1], dt)
             full = net.load_table(times[n - begin : n - begin + 1])[0]
-            now = (x.copy(), v.copy(), state.tolist(), modes.tolist())
+            now = (x.copy(), v.copy(), state.tolist(), sparse.python_modes(topology, modes, points))
             sol, new_x, new_state = _python_step(
                 net, dt, (n, n_steps, save_every), rec, start, now, full, None if delta is None else delta[0]
             )
             counters[0] = rec.row
-            x[:], v[:], state[:], modes[:] = new_x, sol.v, new_state, sol.modes
+            x[:], v[:], state[:] = new_x, sol.v, new_state
+            sparse.store_modes(sol.modes, modes, points)
             start.rest[v != 0] = n + 1
             most, n = max(most, sol.iterations), n + 1
             rec.python_steps += 1

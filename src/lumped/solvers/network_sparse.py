@@ -14,9 +14,13 @@ elements' forces follow leaf to root of the rigid forest.
 
 What it runs (:func:`ineligible`): elements with a ``kernel_form`` (point 9 of
 :class:`~lumped.laws.element.Element`) and friction contacts whose law has a
-linear slip curve with a kernel form (:class:`~lumped.laws.StribeckLaw`
-without a fall: static above kinetic, a viscous part; code 0 of
-``SlipLaw.kernel_form``), drivers at any velocity history (the rate shift of
+kernel form (``SlipLaw.kernel_form``, :class:`~lumped.laws.StribeckLaw`):
+a linear slip curve (code 0: static above kinetic, a viscous part) or a
+Stribeck fall (codes 1 to 3: exponential, gaussian, rational decay), whose
+slip branches are linearised in each iteration as the Python step's
+:class:`~lumped.laws.step_graph.CurveSlipGraph` is (``_network_curve.h``;
+its modes carry a point, the marching array ``points``: :func:`python_modes`,
+:func:`store_modes` hand them to and from a step left to Python), drivers at any velocity history (the rate shift of
 ``backward_euler_network._shifts``, tabulated per block), at most one
 rigid-capable element between any two points.  A step whose rigid elements
 close a loop (two stuck masses joined by a stuck contact: forces not unique)
@@ -34,18 +38,34 @@ from typing import NamedTuple
 
 import numpy as np
 
+from lumped.laws.step_graph import _CYCLE, SLIP_BACK, SLIP_FORWARD, STICK
 from lumped.model.network import Network, listed
 from lumped.solvers import network_compiled as forest
 from lumped.solvers.network_step import StepError, StepSolution, default_bound, unsettled
 
-__all__ = ["PATH", "SparsePlan", "ineligible", "march_block", "ordering", "plan", "solve_graphs"]
+__all__ = [
+    "PATH",
+    "POINT_WIDTH",
+    "SparsePlan",
+    "ineligible",
+    "march_block",
+    "ordering",
+    "plan",
+    "points",
+    "python_modes",
+    "solve_graphs",
+    "store_modes",
+]
 
 #: The trajectory's ``solver`` when this step ran it.
 PATH = "compiled-banded"
 #: The kind code of a friction contact with a linear slip curve (``FRICTION``, ``_network_elements.h``).
 _FRICTION = 6
-#: The codes the C step knows (``_network_elements.h``: SPRING .. LOCKING, FRICTION).
-_CODES = range(7)
+#: A Stribeck contact's kind code is ``_FRICTION`` plus its decay code 1 to 3 (``STRIBECK - 1 + code``).
+_STRIBECK = range(_FRICTION + 1, _FRICTION + 4)
+#: The values per element of the marching array ``points`` (``_network_curve.h``'s ``POINT_WIDTH``:
+#: ``w, f``, the count of earlier points, their ``w`` s and ``f`` s; the binding checks its size).
+POINT_WIDTH = 3 + 2 * _CYCLE
 
 
 class SparsePlan(NamedTuple):
@@ -75,8 +95,11 @@ def _form(el: object) -> tuple[int, tuple[float, ...], bool] | None:
     if form is not None:
         return form.code, tuple(form.parameters), bool(form.rigid_pieces)
     law = el.slip_law()  # type: ignore[attr-defined]
-    if law is None or law.kernel_form() is None or law.kernel_form()[0] != 0:
+    if law is None or law.kernel_form() is None:
         return None
+    code, parameters = law.kernel_form()
+    if code != 0:
+        return _FRICTION + code, tuple(float(p) for p in parameters), True
     pieces = law.pieces()
     if pieces is None or len(pieces) != 1:
         return None
@@ -198,8 +221,9 @@ def march_block(
 ) -> None:
     """Advance steps ``n_first..n_last`` in C (``steps = (n_first, n_last, n_steps, save_every)``).
 
-    As :func:`lumped.solvers.network_compiled.march_block`, with ``record = (t, x, v, force, state,
-    rigid)`` and ``means`` (steps, drivers) each driver's mean velocity over each step (a driven element's
+    As :func:`lumped.solvers.network_compiled.march_block`, with ``marching = (x, v, state, modes, rest,
+    counters, points)`` (``points``: :func:`points`, the Stribeck contacts' warm start), ``record = (t, x,
+    v, force, state, rigid)`` and ``means`` (steps, drivers) each driver's mean velocity over each step (a driven element's
     rate shift is the sum of ``sign * mean`` over its entries, as ``backward_euler_network._shifts``);
     ``counters[2] = 3`` stops the block at step ``counters[1]``, whose rigid elements close a loop (the
     caller runs that step in Python and calls again from the next).
@@ -214,6 +238,39 @@ def march_block(
         *steps,
         means.shape[1],
     )
+
+
+def points(net: Network) -> np.ndarray:
+    """The marching array of the Stribeck contacts' points, ``(elements, POINT_WIDTH)``, zero (none set)."""
+    return np.zeros((len(net.elements), POINT_WIDTH))
+
+
+def python_modes(topology: SparsePlan, modes: np.ndarray, points: np.ndarray) -> list | None:
+    """The C step's modes as the Python step's warm start (``None`` before the first step): a Stribeck
+    contact's slip mode is :class:`~lumped.laws.step_graph.CurveSlipGraph`'s point ``(direction, w, f,
+    sigma, before)`` (``sigma`` is not read from an old mode: 0)."""
+    if (modes < 0).any():
+        return None
+    out: list = modes.tolist()
+    for e in np.flatnonzero(np.isin(topology.kind, _STRIBECK) & (modes != STICK)).tolist():
+        row, count = points[e], int(points[e, 2])
+        before = tuple(zip(row[3 : 3 + count].tolist(), row[3 + _CYCLE : 3 + _CYCLE + count].tolist()))
+        out[e] = (1.0 if modes[e] == SLIP_FORWARD else -1.0, float(row[0]), float(row[1]), 0.0, before)
+    return out
+
+
+def store_modes(python: list, modes: np.ndarray, points: np.ndarray) -> None:
+    """The Python step's settled modes into the C step's ``modes`` and ``points`` (in place)."""
+    for e, mode in enumerate(python):
+        if not isinstance(mode, tuple):
+            modes[e] = mode
+            continue
+        direction, w, f, _, before = mode
+        modes[e] = SLIP_FORWARD if direction > 0 else SLIP_BACK
+        points[e] = 0.0
+        points[e, :3] = w, f, len(before)
+        for j, (bw, bf) in enumerate(before):
+            points[e, 3 + j], points[e, 3 + _CYCLE + j] = bw, bf
 
 
 def solve_graphs(
@@ -233,10 +290,10 @@ def solve_graphs(
         If the iteration does not settle.
     """
     n_el = len(graphs)
-    pieces = np.zeros((n_el, 5, 5))
-    for e, graph in enumerate(graphs):
-        pieces[e, : len(graph)] = [tuple(p) for p in graph]
-    counts = np.array([len(g) for g in graphs], dtype=np.int64)
+    counts = np.fromiter(map(len, graphs), dtype=np.int64, count=n_el)
+    pieces = np.zeros((n_el, 5, 5))  # every graph's pieces in one array op (a loop over 1e5 elements took 1 s)
+    rows = np.repeat(np.arange(n_el), counts), np.arange(counts.sum()) - np.repeat(np.cumsum(counts) - counts, counts)
+    pieces[rows] = np.array([tuple(p) for graph in graphs for p in graph], dtype=float).reshape(-1, 5)
     v, w, f = np.empty(inertia.size), np.empty(n_el), np.empty(n_el)
     modes, rigid = np.full(n_el, -1, dtype=np.int64), np.zeros(n_el, dtype=bool)
     topo = _topology(topology, inertia, sigma, np.empty(0, dtype=np.int64))

@@ -49,12 +49,15 @@ def _matrices(net: Network) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             weight, target = el.steepest_fall, lam
         if not weight:
             continue
-        b = np.zeros(n)
-        if second[e] < n:
-            b[second[e]] += 1.0
-        if first[e] < n:
-            b[first[e]] -= 1.0
-        target += weight * np.outer(b, b)
+        # weight * outer(b, b), b the element's incidence row (+1 at second, -1 at first, masses only),
+        # added entry by entry: O(1) an element, not O(n^2) (the entries and their order of sums as before)
+        i, j = int(first[e]), int(second[e])
+        for p in (j, i):
+            if p < n:
+                target[p, p] += weight
+        if i < n and j < n:
+            target[i, j] -= weight
+            target[j, i] -= weight
     return mass, k, lam
 
 
