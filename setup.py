@@ -66,6 +66,7 @@ setup(
                     "src/lumped/kernels/_network_forest.h",
                     "src/lumped/kernels/_network_loop.h",
                     "src/lumped/kernels/_network_sparse.h",
+                    "src/lumped/kernels/_network_active_set.h",
                     "src/lumped/kernels/_slip_curve.h",
                     "src/lumped/kernels/_stick.h",
                 ],

@@ -13,9 +13,11 @@
  * not come back: network_step._iterate's `piecewise`), and the dual sweeps leave such a contact at its
  * initial mode.  The warm start of a step is the last step's settled mode, its point and history.
  *
- * Included by _network_forest.h after net_t. */
+ * Included by _network_active_set.h, after _network_sparse.h (net_t, sparse_reread). */
 #ifndef LUMPED_NETWORK_CURVE_H
 #define LUMPED_NETWORK_CURVE_H
+
+#include "_network_sparse.h" /* net_t, sparse_reread */
 
 #define CYCLE 8                    /* step_graph._CYCLE: the points a mode remembers */
 #define POINT_WIDTH (3 + 2 * CYCLE) /* a point in the marching array: w, f, count, the w's, the f's */

@@ -24,8 +24,9 @@
 
 #include "_binding_checks.h"
 #include "_network_elements.h" /* piece, step_graph, next_state: the elements by kind code */
-#include "_network_forest.h"   /* net_t, allocate, solve: the one-step problem */
-#include "_network_sparse.h"   /* sparse_linear: the linear solve of any network */
+#include "_network_forest.h"     /* net_t, allocate: the network; the forest's linear solve */
+#include "_network_sparse.h"     /* sparse_linear: the linear solve of any network */
+#include "_network_active_set.h" /* solve: the one-step problem, the active set around either solve */
 
 typedef struct {
     double *x, *v, *state;

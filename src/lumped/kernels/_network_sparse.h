@@ -2,7 +2,7 @@
  * ground, friction between masses): the merged system of
  * lumped.solvers.merged_system in a fixed ordering of the masses, factorised
  * as a variable band (skyline, envelope) LDL^T.  The active-set iteration
- * around it is _network_forest.h's (iterate, solve): one home for both steps.
+ * around it is _network_active_set.h's (iterate, solve): one home for both steps.
  *
  * With the modes fixed (read lumped.solvers.network_step first):
  *  1. clusters: the points joined by rigid pieces, found breadth first from
@@ -28,9 +28,11 @@
  *     of the rigid forest (network_step._rigid_forces).
  * Each pass is O(masses + elements + envelope): O(N) for a chain.
  *
- * Included by _network_kernel.c after _network_forest.h. */
+ * Includes _network_forest.h (net_t); included by _network_active_set.h and _network_kernel.c. */
 #ifndef LUMPED_NETWORK_SPARSE_H
 #define LUMPED_NETWORK_SPARSE_H
+
+#include "_network_forest.h" /* net_t, chosen */
 
 typedef struct sparse_s {
     const int64_t *at_pos;               /* n_mass: the mass at each place of the ordering */

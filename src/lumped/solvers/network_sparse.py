@@ -4,7 +4,7 @@ Loops through the ground (a chain of blocks each on a friction contact to
 the floor), friction between masses, elements joined to driven points: the
 one-step problem of :mod:`lumped.solvers.network_step` with its active-set
 iteration (warm start, mode test or a contact's rule, scales, cycle
-handling, bound: ``_network_forest.h``'s, one C home for both compiled
+handling, bound: ``_network_active_set.h``'s, one C home for both compiled
 steps) and, with the modes fixed, the merged system (rigid clusters merged,
 ``merged_system.assemble``) factorised as an envelope LDL^T in an ordering
 of the masses fixed once per network (:func:`ordering`): file order when the
