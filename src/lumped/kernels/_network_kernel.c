@@ -235,6 +235,32 @@ static int check_modes(const char *name, const int64_t *modes, const int *pieces
     return 0;
 }
 
+/* The one-step problem of network_solve and sparse_solve (the tests' entry points): the step graphs
+ * from their rows (rigid, b, a, lo, hi; MAX_PIECES per element), the warm start (-1: the middle piece) and
+ * the right-hand side into q, one solve, then v, w, f, the modes and the rigid flags into the solution's
+ * buffers.  The iterations it took if settled, else 0. */
+static int solve_one(net_t *q, const double *pc, const int64_t *warm, const double *r, Py_buffer *const *sb) {
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        for (int k = 0; k < q->count[e]; k++) {
+            const double *row = pc + (e * MAX_PIECES + k) * 5;
+            q->graph[e * MAX_PIECES + k] = row[0] != 0.0 ? rigid_piece(row[1], row[3], row[4]) : free_piece(row[1], row[2], row[3], row[4]);
+        }
+        q->mode[e] = warm[e] < 0 ? q->count[e] / 2 : (int)warm[e];
+    }
+    for (Py_ssize_t i = 0; i < q->n_mass; i++) q->rhs[i] = r[i];
+    int iterations = 0;
+    const int ok = solve(q, &iterations);
+    double *v = sb[0]->buf, *w = sb[1]->buf, *f = sb[2]->buf;
+    int64_t *modes = sb[3]->buf;
+    uint8_t *rigid = sb[4]->buf;
+    for (Py_ssize_t i = 0; i < q->n_mass; i++) v[i] = q->vall[i];
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        w[e] = q->w[e], f[e] = q->f[e], modes[e] = q->mode[e];
+        rigid[e] = (uint8_t)chosen(q, e, q->mode)->rigid;
+    }
+    return ok ? iterations : 0;
+}
+
 /* network_solve(topology, pieces, counts, rhs, solution) -> iterations (0: did not settle).
  * One step problem with the given graphs: pieces (elements, 5, 5) rows (rigid, a, b, lo, hi),
  * counts (elements,) in 1..5; solution = (v, w, f, modes, rigid) written in place; the warm start is
@@ -264,27 +290,10 @@ static PyObject *network_solve(PyObject *self, PyObject *args) {
     const int64_t *cnt = counts->buf, *warm = sb[3]->buf;
     for (Py_ssize_t e = 0; e < n_el; e++) q.count[e] = (int)cnt[e];
     if (check_modes(names[3], warm, q.count, n_el) < 0) goto fail_alloc;
-    for (Py_ssize_t e = 0; e < n_el; e++) {
-        for (int k = 0; k < q.count[e]; k++) {
-            const double *row = pc + (e * MAX_PIECES + k) * 5;
-            q.graph[e * MAX_PIECES + k] = row[0] != 0.0 ? rigid_piece(row[1], row[3], row[4]) : free_piece(row[1], row[2], row[3], row[4]);
-        }
-        q.mode[e] = warm[e] < 0 ? q.count[e] / 2 : (int)warm[e];
-    }
-    for (Py_ssize_t i = 0; i < q.n_mass; i++) q.rhs[i] = r[i];
-    int iterations = 0;
-    const int ok = solve(&q, &iterations);
-    double *v = sb[0]->buf, *w = sb[1]->buf, *f = sb[2]->buf;
-    int64_t *modes = sb[3]->buf;
-    uint8_t *rigid = sb[4]->buf;
-    for (Py_ssize_t i = 0; i < q.n_mass; i++) v[i] = q.vall[i];
-    for (Py_ssize_t e = 0; e < n_el; e++) {
-        w[e] = q.w[e], f[e] = q.f[e], modes[e] = q.mode[e];
-        rigid[e] = (uint8_t)chosen(&q, e, q.mode)->rigid;
-    }
+    const int ok = solve_one(&q, pc, warm, r, sb);
     deallocate(&q);
     release_held(&h);
-    return PyLong_FromLong(ok ? iterations : 0);
+    return PyLong_FromLong(ok);
 fail_alloc:
     deallocate(&q);
 fail:
@@ -520,28 +529,11 @@ static PyObject *sparse_solve(PyObject *self, PyObject *args) {
     const int64_t *cnt = counts->buf, *warm = sb[3]->buf;
     for (Py_ssize_t e = 0; e < n_el; e++) q.count[e] = (int)cnt[e], q.delta[e] = d[e];
     if (check_modes(names[3], warm, q.count, n_el) < 0) goto fail_alloc;
-    for (Py_ssize_t e = 0; e < n_el; e++) {
-        for (int k = 0; k < q.count[e]; k++) {
-            const double *row = pc + (e * MAX_PIECES + k) * 5;
-            q.graph[e * MAX_PIECES + k] = row[0] != 0.0 ? rigid_piece(row[1], row[3], row[4]) : free_piece(row[1], row[2], row[3], row[4]);
-        }
-        q.mode[e] = warm[e] < 0 ? q.count[e] / 2 : (int)warm[e];
-    }
-    for (Py_ssize_t i = 0; i < q.n_mass; i++) q.rhs[i] = r[i];
-    int iterations = 0;
-    const int ok = solve(&q, &iterations);
-    double *v = sb[0]->buf, *w = sb[1]->buf, *f = sb[2]->buf;
-    int64_t *modes = sb[3]->buf;
-    uint8_t *rigid = sb[4]->buf;
-    for (Py_ssize_t i = 0; i < q.n_mass; i++) v[i] = q.vall[i];
-    for (Py_ssize_t e = 0; e < n_el; e++) {
-        w[e] = q.w[e], f[e] = q.f[e], modes[e] = q.mode[e];
-        rigid[e] = (uint8_t)chosen(&q, e, q.mode)->rigid;
-    }
+    const int ok = solve_one(&q, pc, warm, r, sb);
     const int fallback = q.fallback;
     deallocate_sparse(&q, &sp);
     release_held(&h);
-    return PyLong_FromLong(ok ? iterations : fallback ? -1 : 0);
+    return PyLong_FromLong(ok ? ok : fallback ? -1 : 0);
 fail_alloc:
     deallocate_sparse(&q, &sp);
 fail:
