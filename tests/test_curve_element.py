@@ -287,7 +287,10 @@ def test_the_s_curve_example_prints_its_jumps(tmp_path, capsys) -> None:
     first, then = first_beyond(5.0, 1e-3), first_beyond(3.0, 1e-3)
     steps = [first, first + then, first + 2 * then]
     shown = ", ".join(f"t = {k * 1e-3:.6g} s {a} -> {b}" for k, (a, b) in zip(steps, [(1, 3), (3, 1), (1, 3)]))
-    assert f"; 'c' jumped 4 times between branches ({shown}, ...); Python step; wrote" in err and len(err.splitlines()) == 1
+    assert (
+        f"; 'c' jumped 4 times between branches ({shown}, ...); Python step; wrote" in err
+        and len(err.splitlines()) == 1
+    )
     assert shown == "t = 1.611 s 1 -> 3, t = 2.711 s 3 -> 1, t = 3.811 s 1 -> 3"  # as the example and the guide say
 
 

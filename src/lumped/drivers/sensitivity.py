@@ -31,7 +31,7 @@ import numpy as np
 from lumped.model.forcing import SwitchedSine, as_sine, one_force
 from lumped.model.network import Network
 from lumped.model.problem import one_mass_form
-from lumped.model.system_parameters import SystemParameter, system_parameters, with_values
+from lumped.model.system_parameters import ONE_MASS_NAMES, SystemParameter, system_parameters, with_values
 from lumped.solvers.exact import ExactSolution, solve_exact
 from lumped.solvers.network_modes import final_rest
 from lumped.solvers.network_phase import linear_parts, parts, refusal
@@ -46,26 +46,10 @@ from lumped.solvers.sensitivities import Sensitivities, sensitivities
 
 __all__ = ["NetworkOneSided", "NetworkPlan", "one_sided_sensitivities", "plan", "prepare", "system_sensitivities"]
 
-#: ``(table, key)`` of a system's parameter -> the one-mass API's name (an element's keys: its springs'
-#: and its dashpot's, checked by :func:`_api_name`).
-_API = {
-    ("mass", "mass"): "mass",
-    ("mass", "x0"): "x0",
-    ("mass", "v0"): "v0",
-    ("element", "stiffness"): "stiffness",
-    ("element", "threshold"): "threshold",
-    ("element", "gamma"): "gamma",
-    ("force", "amplitude"): "force_amplitude",
-    ("force", "value"): "force_amplitude",
-    ("force", "omega"): "force_omega",
-    ("force", "phase"): "force_phase",
-    ("force", "until"): "force_until",
-}
-
 
 def _api_name(network: Network, p: SystemParameter, what: str) -> str:
     """The one-mass API's name of ``p``, or a ``ValueError`` for a parameter the exact one-mass solver lacks."""
-    name = _API.get((p.table, p.key))
+    name = ONE_MASS_NAMES.get((p.table, p.key))
     if p.table == "element":
         el = network.elements[p.index]
         spring = el.linear_stiffness is not None

@@ -28,7 +28,7 @@ from typing import NamedTuple
 from lumped.model.forcing import parameters
 from lumped.model.network import Driver, Load, Network, listed
 
-__all__ = ["DRIVER_KEYS", "MASS_KEYS", "SystemParameter", "system_parameters", "with_values"]
+__all__ = ["DRIVER_KEYS", "MASS_KEYS", "ONE_MASS_NAMES", "SystemParameter", "system_parameters", "with_values"]
 
 #: A mass's numeric keys.
 MASS_KEYS = ("mass", "x0", "v0")
@@ -36,6 +36,24 @@ MASS_KEYS = ("mass", "x0", "v0")
 DRIVER_KEYS = ("velocity",)
 #: The loads' table in a system file, which is the first part of their names.
 LOAD = "force"
+
+
+#: ``(table, key)`` of a parameter of a file of the paper's form (one mass, a spring and a Bingham dashpot, a
+#: sine or constant load) -> the one-mass API's name for it (``lumped.Oscillator``'s and the one-mass sweep's);
+#: a constant load is the sine ``value sin(0 t + pi/2)`` it equals, so its ``value`` is the amplitude.
+ONE_MASS_NAMES = {
+    ("mass", "mass"): "mass",
+    ("mass", "x0"): "x0",
+    ("mass", "v0"): "v0",
+    ("element", "stiffness"): "stiffness",
+    ("element", "threshold"): "threshold",
+    ("element", "gamma"): "gamma",
+    ("force", "amplitude"): "force_amplitude",
+    ("force", "value"): "force_amplitude",
+    ("force", "omega"): "force_omega",
+    ("force", "phase"): "force_phase",
+    ("force", "until"): "force_until",
+}
 
 
 class SystemParameter(NamedTuple):

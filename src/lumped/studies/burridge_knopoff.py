@@ -59,6 +59,7 @@ from lumped.model.network import Driver, Mass, Network
 from lumped.model.problem import Problem
 from lumped.numerics import validate
 from lumped.numerics.roots import brentq
+from lumped.numerics.union_find import UnionFind
 from lumped.studies import read_csv
 
 __all__ = [
@@ -220,17 +221,12 @@ def _labels(slipping: np.ndarray, periodic: bool) -> tuple[np.ndarray, int]:
     labels, count = ndimage.label(slipping)
     if not (periodic and slipping.shape[1] >= 3 and count):
         return labels, count
-    roots = np.arange(count + 1)
-
-    def find(a: int) -> int:
-        while roots[a] != a:
-            a = roots[a]
-        return a
-
+    sets = UnionFind(count + 1)
     for a, b in zip(labels[:, 0], labels[:, -1]):
-        if a and b and find(a) != find(b):
-            roots[max(find(a), find(b))] = min(find(a), find(b))
-    final = np.array([find(a) for a in range(count + 1)])
+        ra, rb = sets.find(int(a)), sets.find(int(b))
+        if a and b and ra != rb:
+            sets.attach(max(ra, rb), min(ra, rb))
+    final = np.array([sets.find(a) for a in range(count + 1)])
     _, relabel = np.unique(final, return_inverse=True)
     labels = relabel[labels]
     return labels, int(relabel.max())

@@ -49,7 +49,7 @@ from lumped.drivers import methods
 from lumped.drivers.sweep import grid, limits
 from lumped.drivers.sweep.summaries import SUMMARY_COLUMNS, mass_columns, mass_summaries
 from lumped.model.network import Network
-from lumped.model.system_parameters import SystemParameter, system_parameters, with_values
+from lumped.model.system_parameters import ONE_MASS_NAMES, SystemParameter, system_parameters, with_values
 from lumped.numerics import validate
 
 __all__ = [
@@ -66,21 +66,6 @@ __all__ = [
 
 #: Runs estimated above this many seconds go to worker processes (fork and start cost some 0.1 s).
 PROCESS_SECONDS = 2.0
-#: The single mass's parameter (:data:`~lumped.drivers.sweep.grid.PARAMETERS`) of each ``(table, key)`` of a
-#: file of the paper's form; a constant load runs as the sine ``value sin(0 t + pi/2)`` it equals.
-_ONE_MASS = {
-    ("mass", "mass"): "mass",
-    ("mass", "x0"): "x0",
-    ("mass", "v0"): "v0",
-    ("element", "stiffness"): "stiffness",
-    ("element", "threshold"): "threshold",
-    ("element", "gamma"): "gamma",
-    ("force", "amplitude"): "force_amplitude",
-    ("force", "omega"): "force_omega",
-    ("force", "phase"): "force_phase",
-    ("force", "value"): "force_amplitude",
-    ("force", "until"): "force_until",
-}
 
 
 class SystemAxis(NamedTuple):
@@ -430,7 +415,7 @@ def _batch(spec: SystemSweep, rows: slice | None, output: str | None):
 
     Backward Euler with ``solver`` ``"auto"`` on a file of the paper's form with a Bingham dashpot and
     no load or one that is a sine on from ``t = 0`` (a constant too), every varied parameter one of the
-    single mass's (:data:`_ONE_MASS`).
+    single mass's (:data:`~lumped.model.system_parameters.ONE_MASS_NAMES`).
     """
     from lumped.drivers.network import paper_form
     from lumped.drivers.sweep.spec import SweepSpec
@@ -445,7 +430,7 @@ def _batch(spec: SystemSweep, rows: slice | None, output: str | None):
         return None
     if not (force is None or isinstance(force, SwitchedSine)):
         return None
-    if any((a.parameter.table, a.parameter.key) not in _ONE_MASS for a in spec.axes):
+    if any((a.parameter.table, a.parameter.key) not in ONE_MASS_NAMES for a in spec.axes):
         return None
     osc, mass = form.oscillator, spec.network.masses[0]
     sine = force or SwitchedSine(0.0)
@@ -461,7 +446,7 @@ def _batch(spec: SystemSweep, rows: slice | None, output: str | None):
         "force_phase": sine.phase,
         "force_until": sine.until,
     }
-    axes = [grid.Axis(_ONE_MASS[a.parameter.table, a.parameter.key], a.values) for a in spec.axes]
+    axes = [grid.Axis(ONE_MASS_NAMES[a.parameter.table, a.parameter.key], a.values) for a in spec.axes]
     spring, dashpot = form.springs[0].name, form.dashpot.name
     names = {"mass": f"{mass.name}.mass", "x0": f"{mass.name}.x0", "v0": f"{mass.name}.v0"}
     names |= {"stiffness": f"{spring}.stiffness", "threshold": f"{dashpot}.threshold", "gamma": f"{dashpot}.gamma"}
