@@ -117,9 +117,10 @@ def count(tau_):
 
 def bisect(lo, hi):
     """Neighbouring doubles lo < hi with one half-cycle more at lo than at hi."""
+    at_lo = count(lo)  # lo moves only to points of its count: one run per halving
     while math.nextafter(lo, hi) < hi:
         mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if count(mid) == count(lo) else (lo, mid)
+        lo, hi = (mid, hi) if count(mid) == at_lo else (lo, mid)
     return lo, hi
 
 

@@ -94,7 +94,7 @@ class SlipCurve(SlipLaw):
         return g
 
     def slip(self, speed: np.ndarray | float) -> np.ndarray | float:
-        if np.ndim(speed) == 0:
+        if isinstance(speed, float) or np.ndim(speed) == 0:  # the first test alone for the integrators' floats
             return self._value(float(speed))
         return np.array([self._value(float(s)) for s in np.ravel(speed)]).reshape(np.shape(speed))
 

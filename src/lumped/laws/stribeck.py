@@ -81,6 +81,11 @@ class StribeckLaw(SlipLaw):
         return self.stribeck_velocity is not None and self.static > self.kinetic
 
     def slip(self, speed: np.ndarray | float) -> np.ndarray | float:
+        if isinstance(speed, float):  # the event-driven integrators' scalar calls: the same operations, no arrays
+            base = self.kinetic + self.viscous * speed
+            if self._falls:
+                base = base + (self.static - self.kinetic) * DECAYS[self.decay][0](speed / self.stribeck_velocity)
+            return float(base)
         base = self.kinetic + self.viscous * np.asarray(speed, dtype=float)
         if self._falls:
             base = base + (self.static - self.kinetic) * DECAYS[self.decay][0](
