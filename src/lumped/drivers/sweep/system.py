@@ -420,15 +420,16 @@ def _batch(spec: SystemSweep, rows: slice | None, output: str | None):
     from lumped.drivers.network import paper_form
     from lumped.drivers.sweep.spec import SweepSpec
     from lumped.laws import BinghamDashpot
-    from lumped.model.forcing import SwitchedSine, one_force, sine_form
+    from lumped.model.forcing import SwitchedSine, as_sine, one_force
 
     if spec.method != "backward-euler" or spec.options.get("solver", "auto") != "auto":
         return None
     form = paper_form(spec.network)
-    force = sine_form(one_force([load.force for load in spec.network.loads]))
+    load = one_force([load.force for load in spec.network.loads])
+    force = as_sine(load)  # the load as one sine (Forcing, point 4), or None
     if form is None or type(form.oscillator.dashpot) is not BinghamDashpot:
         return None
-    if not (force is None or isinstance(force, SwitchedSine)):
+    if load is not None and force is None:
         return None
     if any((a.parameter.table, a.parameter.key) not in ONE_MASS_NAMES for a in spec.axes):
         return None
