@@ -173,7 +173,7 @@ rule study_burridge_knopoff:
 
     Unlike the studies above, it follows --config: bk_blocks blocks while the plate travels bk_travel
     (in D_0) at the step bk_dt.  The defaults are the short run CI builds; the full run is one override,
-    snakemake --cores 2 results/studies/burridge_knopoff.csv --config bk_blocks=1000 bk_travel=100.
+    snakemake --cores 2 results/studies/burridge_knopoff.csv --config bk_blocks=1000 bk_travel=20.
     The values are params (not the configuration file), so that other overrides do not rerun it.
     """
     input:
