@@ -84,6 +84,13 @@ static void sparse_reread(net_t *q, Py_ssize_t e) { q->sp->cmode[e] = -1; }
  * spring: rebuilt whenever its force changes) only into those arrays, the table filled when a rare
  * path reads it (sync_graphs). */
 static void graph_of(net_t *q, Py_ssize_t e, double state) {
+    if (q->lazy && q->count[e] == 1 && q->kind[e] == SPRING) { /* the same numbers as below, without the table */
+        const double b = q->dt * q->par[4 * e], d = q->delta ? q->delta[e] : 0.0;
+        q->gstate[e] = state;
+        q->sp->rig[e] = 0, q->sp->pa[e] = d != 0.0 ? state + b * d : state, q->sp->pb[e] = b;
+        q->sp->cmode[e] = q->mode[e], q->lazy[e] = 1;
+        return;
+    }
     piece local[MAX_PIECES];
     const int lazy = q->lazy && q->count[e] == 1;
     piece *g = lazy ? local : q->graph + e * MAX_PIECES;
