@@ -606,6 +606,7 @@ static PyObject *sparse_block(PyObject *self, PyObject *args) {
         q.count[e] = step_graph(q.kind[e], q.par + 4 * e, state[e], dt, q.graph + e * MAX_PIECES);
     if (check_modes(march_names[3], mb[3]->buf, q.count, ne) < 0) goto fail_alloc;
     q.dt = dt;
+    sparse_springs(&q);
     march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters, mb[6]->buf};
     record_t o = {rb[0]->buf, rb[1]->buf, rb[2]->buf, rb[3]->buf, rb[4]->buf, rb[5]->buf, NULL, NULL};
     Py_BEGIN_ALLOW_THREADS

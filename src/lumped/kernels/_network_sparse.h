@@ -44,6 +44,10 @@ typedef struct sparse_s {
     int *cmode;                          /* per element: the mode rig, pa, pb were read for (-1: read again) */
     double *val, *diag, *load, *u, *gap; /* the envelope's values (cap), and per unknown / point */
     Py_ssize_t cap;
+    /* steps 1 to 3 kept from the last solve while no piece changes what they read (a rigid flag, a
+     * rigid piece's a, whether a free piece's b is 0): dirty says they must be done again */
+    int dirty;
+    Py_ssize_t m; /* the unknowns (envelope's count) */
 } sparse_t;
 
 static void sparse_free(sparse_t *s) {
@@ -63,6 +67,7 @@ static int sparse_allocate(sparse_t *s, const net_t *q) {
     s->val = malloc(s->cap * sizeof(double));
     if (!s->root || !s->diag || !s->used || !s->val || !s->pa || !s->cmode) return -1;
     for (Py_ssize_t e = 0; e < q->n_el; e++) s->cmode[e] = -1;
+    s->dirty = 1;
     s->rig = s->used + (q->n_el + 1), s->pb = s->pa + (q->n_el + 1);
     s->col = s->root + (n_pt + 1), s->first = s->col + (n_pt + 1), s->start = s->first + (n_pt + 1);
     s->stack = s->start + (n_pt + 1), s->deg = s->stack + (n_pt + 1);
@@ -72,8 +77,17 @@ static int sparse_allocate(sparse_t *s, const net_t *q) {
 
 /* Element e's chosen piece pc (in mode) as the solve reads it: rigid flag, a, b. */
 static inline void sparse_piece(sparse_t *s, Py_ssize_t e, const piece *pc, int mode) {
-    s->rig[e] = (uint8_t)pc->rigid, s->pa[e] = pc->a, s->pb[e] = pc->b;
+    const uint8_t rig = (uint8_t)pc->rigid; /* a's bits compared: an offset 0 and -0 may sum differently */
+    if (rig != s->rig[e] || (rig ? memcmp(&pc->a, s->pa + e, sizeof(double)) != 0 : (pc->b == 0.0) != (s->pb[e] == 0.0)))
+        s->dirty = 1;
+    s->rig[e] = rig, s->pa[e] = pc->a, s->pb[e] = pc->b;
     s->cmode[e] = mode;
+}
+
+/* Each spring's slope dt k into pb (graph_of's spring reads it there): after q->dt is set. */
+static void sparse_springs(net_t *q) {
+    for (Py_ssize_t e = 0; e < q->n_el; e++)
+        if (q->kind[e] == SPRING) q->sp->pb[e] = q->dt * q->par[4 * e];
 }
 
 /* Element e's piece to be read again from the table at the next solve (a Stribeck contact's new line). */
@@ -84,10 +98,12 @@ static void sparse_reread(net_t *q, Py_ssize_t e) { q->sp->cmode[e] = -1; }
  * spring: rebuilt whenever its force changes) only into those arrays, the table filled when a rare
  * path reads it (sync_graphs). */
 static void graph_of(net_t *q, Py_ssize_t e, double state) {
-    if (q->lazy && q->count[e] == 1 && q->kind[e] == SPRING) { /* the same numbers as below, without the table */
-        const double b = q->dt * q->par[4 * e], d = q->delta ? q->delta[e] : 0.0;
+    if (q->lazy && q->count[e] == 1 && q->kind[e] == SPRING) {
+        /* the same numbers as below without the table; a spring's slope dt k is in pb from the start
+         * (sparse_springs) and every piece of its graph has it */
+        const double b = q->sp->pb[e], d = q->delta ? q->delta[e] : 0.0;
         q->gstate[e] = state;
-        q->sp->rig[e] = 0, q->sp->pa[e] = d != 0.0 ? state + b * d : state, q->sp->pb[e] = b;
+        q->sp->rig[e] = 0, q->sp->pa[e] = d != 0.0 ? state + b * d : state;
         q->sp->cmode[e] = q->mode[e], q->lazy[e] = 1;
         return;
     }
@@ -113,15 +129,21 @@ static void sync_graphs(net_t *q) {
         }
 }
 
-/* Step 1: each point's cluster root (s->root) and offset (q->off); the number of rigid elements,
- * or -1 if one closes a rigid loop. */
-static Py_ssize_t clusters(net_t *q, sparse_t *s, const int *mode) {
-    const Py_ssize_t ground = q->n_mass;
-    Py_ssize_t rigid = 0, merged = 0;
+/* Each element's piece in mode read into s (those whose mode changed); the number of rigid elements. */
+static Py_ssize_t refresh(net_t *q, sparse_t *s, const int *mode) {
+    Py_ssize_t rigid = 0;
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
         if (s->cmode[e] != mode[e]) sparse_piece(s, e, chosen(q, e, mode), mode[e]); /* a new mode */
         rigid += s->rig[e];
     }
+    return rigid;
+}
+
+/* Step 1: each point's cluster root (s->root) and offset (q->off), given the number of rigid elements;
+ * that number, or -1 if one closes a rigid loop. */
+static Py_ssize_t clusters(net_t *q, sparse_t *s, Py_ssize_t rigid) {
+    const Py_ssize_t ground = q->n_mass;
+    Py_ssize_t merged = 0;
     for (Py_ssize_t p = 0; p < q->n_pt; p++) s->root[p] = -1;
     for (Py_ssize_t k = -1; k < q->n_mass; k++) {
         const int64_t begin = k < 0 ? ground : s->at_pos[k];
@@ -279,10 +301,12 @@ static void peel(net_t *q, sparse_t *s, const int *mode) {
 static int sparse_linear(net_t *q, const int *mode) {
     sparse_t *s = q->sp;
     const Py_ssize_t ground = q->n_mass;
-    const Py_ssize_t rigid = clusters(q, s, mode);
-    if (rigid < 0) return 0;
-    const Py_ssize_t m = envelope(q, s, mode);
-    if (m < 0) return 0;
+    const Py_ssize_t rigid = refresh(q, s, mode);
+    if (s->dirty) {
+        if (clusters(q, s, rigid) < 0 || (s->m = envelope(q, s, mode)) < 0) return 0;
+        s->dirty = 0;
+    }
+    const Py_ssize_t m = s->m;
     assemble_solve(q, s, mode, m);
     for (Py_ssize_t p = 0; p < q->n_pt; p++) q->vall[p] = s->col[p] < 0 ? q->off[p] : s->u[s->col[p]] + q->off[p];
     q->vall[ground] = 0.0;
