@@ -48,6 +48,8 @@ typedef struct sparse_s {
      * rigid piece's a, whether a free piece's b is 0): dirty says they must be done again */
     int dirty;
     Py_ssize_t m; /* the unknowns (envelope's count) */
+    /* the factors of step 4 kept while, besides, no free piece's slope b changes (its bits) */
+    int refactor;
 } sparse_t;
 
 static void sparse_free(sparse_t *s) {
@@ -67,7 +69,7 @@ static int sparse_allocate(sparse_t *s, const net_t *q) {
     s->val = malloc(s->cap * sizeof(double));
     if (!s->root || !s->diag || !s->used || !s->val || !s->pa || !s->cmode) return -1;
     for (Py_ssize_t e = 0; e < q->n_el; e++) s->cmode[e] = -1;
-    s->dirty = 1;
+    s->dirty = 1, s->refactor = 1;
     s->rig = s->used + (q->n_el + 1), s->pb = s->pa + (q->n_el + 1);
     s->col = s->root + (n_pt + 1), s->first = s->col + (n_pt + 1), s->start = s->first + (n_pt + 1);
     s->stack = s->start + (n_pt + 1), s->deg = s->stack + (n_pt + 1);
@@ -80,6 +82,7 @@ static inline void sparse_piece(sparse_t *s, Py_ssize_t e, const piece *pc, int 
     const uint8_t rig = (uint8_t)pc->rigid; /* a's bits compared: an offset 0 and -0 may sum differently */
     if (rig != s->rig[e] || (rig ? memcmp(&pc->a, s->pa + e, sizeof(double)) != 0 : (pc->b == 0.0) != (s->pb[e] == 0.0)))
         s->dirty = 1;
+    if (!rig && memcmp(&pc->b, s->pb + e, sizeof(double)) != 0) s->refactor = 1;
     s->rig[e] = rig, s->pa[e] = pc->a, s->pb[e] = pc->b;
     s->cmode[e] = mode;
 }
@@ -205,32 +208,22 @@ static Py_ssize_t envelope(net_t *q, sparse_t *s, const int *mode) {
     return m;
 }
 
-/* Step 4: merged_system.assemble into the envelope, then LDL^T and the solve (into s->u). */
-static void assemble_solve(net_t *q, sparse_t *s, const int *mode, Py_ssize_t m) {
-    double *val = s->val, *diag = s->diag, *load = s->load, *u = s->u;
+/* Step 4a: the merged matrix (merged_system.assemble's inertias and slopes, in its order) into the
+ * envelope, and its LDL^T in place (val: L below the diagonal, diag: D). */
+static void factorise(net_t *q, sparse_t *s, Py_ssize_t m) {
+    double *val = s->val, *diag = s->diag;
     const int64_t *col = s->col, *first = s->first, *start = s->start;
-    for (Py_ssize_t k = 0; k < m; k++) diag[k] = 0.0, load[k] = 0.0;
+    for (Py_ssize_t k = 0; k < m; k++) diag[k] = 0.0;
     memset(val, 0, start[m] * sizeof(double));
-    for (Py_ssize_t i = 0; i < q->n_mass; i++) {
-        const int64_t c = col[i];
-        if (c < 0) continue;
-        load[c] += q->rhs[i] - q->inertia[i] * q->off[i];
-        diag[c] += q->inertia[i];
-    }
+    for (Py_ssize_t i = 0; i < q->n_mass; i++)
+        if (col[i] >= 0) diag[col[i]] += q->inertia[i];
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
-        const int64_t i = q->first[e], j = q->second[e], ci = col[i], cj = col[j];
-        if (s->rig[e] || ci == cj) continue;
-        const double a = s->pa[e], b = s->pb[e];
-        const double known = a + b * (q->off[j] - q->off[i]);
-        if (cj >= 0) {
-            load[cj] -= known;
-            if (b != 0.0) diag[cj] += b;
-        }
-        if (ci >= 0) {
-            load[ci] += known;
-            if (b != 0.0) diag[ci] += b;
-        }
-        if (b != 0.0 && ci >= 0 && cj >= 0) {
+        const int64_t ci = col[q->first[e]], cj = col[q->second[e]];
+        const double b = s->pb[e];
+        if (s->rig[e] || ci == cj || b == 0.0) continue;
+        if (cj >= 0) diag[cj] += b;
+        if (ci >= 0) diag[ci] += b;
+        if (ci >= 0 && cj >= 0) {
             const int64_t r = ci > cj ? ci : cj, c = ci > cj ? cj : ci;
             val[start[r] + (c - first[r])] -= b;
         }
@@ -252,6 +245,27 @@ static void assemble_solve(net_t *q, sparse_t *s, const int *mode, Py_ssize_t m)
             row[j] = l;
         }
         diag[i] = d;
+    }
+}
+
+/* Step 4b: merged_system.assemble's load (its terms in its order), then forward and back substitution
+ * through the factors of factorise (into s->u). */
+static void assemble_solve(net_t *q, sparse_t *s, Py_ssize_t m) {
+    double *load = s->load, *u = s->u;
+    const double *val = s->val, *diag = s->diag;
+    const int64_t *col = s->col, *first = s->first, *start = s->start;
+    for (Py_ssize_t k = 0; k < m; k++) load[k] = 0.0;
+    for (Py_ssize_t i = 0; i < q->n_mass; i++) {
+        const int64_t c = col[i];
+        if (c < 0) continue;
+        load[c] += q->rhs[i] - q->inertia[i] * q->off[i];
+    }
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        const int64_t i = q->first[e], j = q->second[e], ci = col[i], cj = col[j];
+        if (s->rig[e] || ci == cj) continue;
+        const double known = s->pa[e] + s->pb[e] * (q->off[j] - q->off[i]);
+        if (cj >= 0) load[cj] -= known;
+        if (ci >= 0) load[ci] += known;
     }
     for (Py_ssize_t i = 0; i < m; i++) {
         const int64_t fi = first[i];
@@ -304,10 +318,11 @@ static int sparse_linear(net_t *q, const int *mode) {
     const Py_ssize_t rigid = refresh(q, s, mode);
     if (s->dirty) {
         if (clusters(q, s, rigid) < 0 || (s->m = envelope(q, s, mode)) < 0) return 0;
-        s->dirty = 0;
+        s->dirty = 0, s->refactor = 1;
     }
     const Py_ssize_t m = s->m;
-    assemble_solve(q, s, mode, m);
+    if (s->refactor) factorise(q, s, m), s->refactor = 0;
+    assemble_solve(q, s, m);
     for (Py_ssize_t p = 0; p < q->n_pt; p++) q->vall[p] = s->col[p] < 0 ? q->off[p] : s->u[s->col[p]] + q->off[p];
     q->vall[ground] = 0.0;
     double *pushed = q->R; /* the free forces' sum at each point, and the rigid elements there: for peel */
