@@ -26,7 +26,11 @@
  *  5. velocities, each free element's rate and force, and each rigid
  *     element's force from the momentum balance of its masses, leaf to root
  *     of the rigid forest (network_step._rigid_forces).
- * Each pass is O(masses + elements + envelope): O(N) for a chain.
+ * Each pass is O(masses + elements + envelope): O(N) for a chain.  Steps 1 to 3 are kept from the
+ * last solve until a piece changes what they read (sparse_piece sets dirty: a rigid flag, a rigid
+ * piece's a, whether a free piece's b is 0), and the factors of step 4 until, besides, a free
+ * piece's b changes (refactor): most iterations of a marching chain change a few modes or none,
+ * and what is kept is what would be computed again, so the numbers are the same bit for bit.
  *
  * Includes _network_forest.h (net_t); included by _network_active_set.h and _network_kernel.c. */
 #ifndef LUMPED_NETWORK_SPARSE_H
