@@ -13,11 +13,14 @@ stick-slip.  ``dt = 1e-3`` s, 3 s of motion (3000 steps; ``--quick``: 1 s
 past the first slips at 1000 blocks, 1500 steps at 100,000), saved every
 500th step.
 
-Printed, each the best of several repeats (one at 100,000 blocks, whose set-up
-in Python takes about a minute) of (T(steps) - T(1 step)) / (steps - 1) / N (so that the set-up and the initial forces, solved once, drop out),
+Printed, each the best of several repeats (one at 100,000 blocks, whose run
+of 3000 steps takes some 20 s and set-up a few) of (T(steps) - T(1 step)) / (steps - 1) / N (so that the set-up and the initial forces, solved once, drop out),
 in wall time on this machine (and the CPU time, which other jobs on a shared
 machine disturb less): the cost per block and step at 1000 and at
-100,000 blocks (target: at most 0.1 us at both, linear in N), and in the
+100,000 blocks (target: at most 0.1 us at both, linear in N), the same at
+1000 blocks on a Stribeck floor (the friction falling exponentially from
+static to kinetic, Stribeck velocity 0.02 m/s: each iteration linearises the
+slipping contacts' curves, so a step takes more iterations), and in the
 same run the per-mass cost of today's forest chain (``bench_network.py``'s:
 springs and Bingham dashpots between neighbours, forced) at 1000 masses.
 """
@@ -38,15 +41,19 @@ sys.path.insert(0, os.path.dirname(__file__))
 from bench_network import chain as forest_chain
 
 DT = 1e-3
+#: The Stribeck floor's velocity (m/s): the friction falls from static to kinetic over a few cm/s.
+STRIBECK_VELOCITY = 0.02
 
 
-def floor_chain(n: int, seed: int = 1) -> Network:
-    """``n`` blocks on a static/kinetic floor, leaf springs to a moving plate, coupling springs."""
+def floor_chain(n: int, seed: int = 1, stribeck_velocity: float | None = None) -> Network:
+    """``n`` blocks on a static/kinetic floor (or, with ``stribeck_velocity``, a Stribeck floor falling
+    exponentially from static to kinetic), leaf springs to a moving plate, coupling springs."""
     static = np.random.default_rng(seed).uniform(0.9, 1.1, n)
     masses = [Mass(f"m{i}", 1.0) for i in range(n)]
     elements = []
     for i in range(n):
-        elements.append(Friction(f"c{i}", (f"m{i}", "ground"), static=float(static[i]), kinetic=0.6))
+        law = {"static": float(static[i]), "kinetic": 0.6, "stribeck_velocity": stribeck_velocity}
+        elements.append(Friction(f"c{i}", (f"m{i}", "ground"), **law))
         elements.append(Spring(f"leaf{i}", ("plate", f"m{i}"), 10.0))
         if i:
             elements.append(Spring(f"k{i}", (f"m{i - 1}", f"m{i}"), 50.0))
@@ -81,11 +88,17 @@ def main() -> None:
     repeats = 1 if args.quick else 3
     print(f"python {sys.version.split()[0]}, {os.cpu_count()} cores, network kernel: {kernel.KERNEL}")
     for n, steps in ((1000, 2000 if args.quick else 3000), (100_000, 1500 if args.quick else 3000)):
-        cost, path, moving = per_mass_step(floor_chain(n), steps, repeats if n < 10_000 else 1)  # set-up: a minute
+        cost, path, moving = per_mass_step(floor_chain(n), steps, repeats if n < 10_000 else 1)  # one: 20 s a run
         print(
             f"floor chain, {n:6d} blocks, {steps} steps ({path}; {moving:.0%} of saved block-steps moving): "
             f"{cost[0] * 1e6:.4f} us per block and step (target 0.1; CPU time {cost[1] * 1e6:.4f} us)"
         )
+    steps = 2000 if args.quick else 3000
+    cost, path, moving = per_mass_step(floor_chain(1000, stribeck_velocity=STRIBECK_VELOCITY), steps, repeats)
+    print(
+        f"Stribeck floor chain, 1000 blocks, {steps} steps ({path}; {moving:.0%} of saved block-steps moving): "
+        f"{cost[0] * 1e6:.4f} us per block and step (CPU time {cost[1] * 1e6:.4f} us)"
+    )
     cost, path, _ = per_mass_step(forest_chain(1000), 3000, repeats)
     print(
         f"forest chain (bench_network.py), 1000 masses, 3000 steps ({path}): {cost[0] * 1e6:.4f} us per mass "

@@ -69,6 +69,7 @@ typedef struct {
     int fallback;
     double *gstate; /* the state each element's step graph was built from (the kernel's graphs()) */
     uint8_t *lazy;  /* the sparse step's one-piece graphs kept only in its arrays (sync_graphs), or NULL */
+    uint8_t *driven; /* the sparse step's elements joined to driven points (graph built once a step), or NULL */
     double *stat;   /* a friction contact's static threshold (slip_rule), by element; the sparse step's */
     struct curve_s *cv; /* the Stribeck contacts (_network_curve.h), or NULL: none */
 } net_t;

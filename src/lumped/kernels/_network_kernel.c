@@ -63,8 +63,8 @@ typedef struct {
 /* Every step graph of the step: those whose state changed (stateful: a spring's force) and those of
  * the elements joined to driven points; the others are the ones built before, unchanged. */
 static void graphs(net_t *q, const double *state, const driven_t *dv) {
-    for (Py_ssize_t e = 0; e < q->n_el; e++)
-        if (state[e] != q->gstate[e] && stateful(q->kind[e])) graph_of(q, e, state[e]);
+    for (Py_ssize_t e = 0; e < q->n_el; e++) /* a driven element's graph: once, below */
+        if (state[e] != q->gstate[e] && stateful(q->kind[e]) && !(q->driven && q->driven[e])) graph_of(q, e, state[e]);
     for (Py_ssize_t k = 0; k < dv->n; k++) graph_of(q, dv->el[k], state[dv->el[k]]);
 }
 
@@ -484,10 +484,11 @@ static int allocate_sparse(net_t *q, sparse_t *s) {
         return -1;
     }
     for (Py_ssize_t e = 0; e < q->n_el; e++) q->stat[e] = q->par[4 * e]; /* contiguous, for slip_rule */
-    if (!(q->lazy = calloc(q->n_el + 1, 1))) {
+    if (!(q->lazy = calloc(2 * (q->n_el + 1), 1))) {
         PyErr_NoMemory();
         return -1;
     }
+    q->driven = q->lazy + (q->n_el + 1);
     return 0;
 }
 
@@ -591,11 +592,13 @@ static PyObject *sparse_block(PyObject *self, PyObject *args) {
         PyErr_NoMemory();
         goto fail_alloc;
     }
+    for (Py_ssize_t k = 0; k < dv.n; k++) q.driven[dv.el[k]] = 1;
     const double *state = mb[2]->buf;
     for (Py_ssize_t e = 0; e < ne; e++)
         q.count[e] = step_graph(q.kind[e], q.par + 4 * e, state[e], dt, q.graph + e * MAX_PIECES);
     if (check_modes(march_names[3], mb[3]->buf, q.count, ne) < 0) goto fail_alloc;
     q.dt = dt;
+    sparse_springs(&q);
     march_t m = {mb[0]->buf, mb[1]->buf, mb[2]->buf, mb[3]->buf, mb[4]->buf, counters, mb[6]->buf};
     record_t o = {rb[0]->buf, rb[1]->buf, rb[2]->buf, rb[3]->buf, rb[4]->buf, rb[5]->buf, NULL, NULL};
     Py_BEGIN_ALLOW_THREADS

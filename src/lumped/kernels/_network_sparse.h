@@ -26,7 +26,11 @@
  *  5. velocities, each free element's rate and force, and each rigid
  *     element's force from the momentum balance of its masses, leaf to root
  *     of the rigid forest (network_step._rigid_forces).
- * Each pass is O(masses + elements + envelope): O(N) for a chain.
+ * Each pass is O(masses + elements + envelope): O(N) for a chain.  Steps 1 to 3 are kept from the
+ * last solve until a piece changes what they read (sparse_piece sets dirty: a rigid flag, a rigid
+ * piece's a, whether a free piece's b is 0), and the factors of step 4 until, besides, a free
+ * piece's b changes (refactor): most iterations of a marching chain change a few modes or none,
+ * and what is kept is what would be computed again, so the numbers are the same bit for bit.
  *
  * Includes _network_forest.h (net_t); included by _network_active_set.h and _network_kernel.c. */
 #ifndef LUMPED_NETWORK_SPARSE_H
@@ -44,6 +48,12 @@ typedef struct sparse_s {
     int *cmode;                          /* per element: the mode rig, pa, pb were read for (-1: read again) */
     double *val, *diag, *load, *u, *gap; /* the envelope's values (cap), and per unknown / point */
     Py_ssize_t cap;
+    /* steps 1 to 3 kept from the last solve while no piece changes what they read (a rigid flag, a
+     * rigid piece's a, whether a free piece's b is 0): dirty says they must be done again */
+    int dirty;
+    Py_ssize_t m; /* the unknowns (envelope's count) */
+    /* the factors of step 4 kept while, besides, no free piece's slope b changes (its bits) */
+    int refactor;
 } sparse_t;
 
 static void sparse_free(sparse_t *s) {
@@ -63,6 +73,7 @@ static int sparse_allocate(sparse_t *s, const net_t *q) {
     s->val = malloc(s->cap * sizeof(double));
     if (!s->root || !s->diag || !s->used || !s->val || !s->pa || !s->cmode) return -1;
     for (Py_ssize_t e = 0; e < q->n_el; e++) s->cmode[e] = -1;
+    s->dirty = 1, s->refactor = 1;
     s->rig = s->used + (q->n_el + 1), s->pb = s->pa + (q->n_el + 1);
     s->col = s->root + (n_pt + 1), s->first = s->col + (n_pt + 1), s->start = s->first + (n_pt + 1);
     s->stack = s->start + (n_pt + 1), s->deg = s->stack + (n_pt + 1);
@@ -72,8 +83,18 @@ static int sparse_allocate(sparse_t *s, const net_t *q) {
 
 /* Element e's chosen piece pc (in mode) as the solve reads it: rigid flag, a, b. */
 static inline void sparse_piece(sparse_t *s, Py_ssize_t e, const piece *pc, int mode) {
-    s->rig[e] = (uint8_t)pc->rigid, s->pa[e] = pc->a, s->pb[e] = pc->b;
+    const uint8_t rig = (uint8_t)pc->rigid; /* a's bits compared: an offset 0 and -0 may sum differently */
+    if (rig != s->rig[e] || (rig ? memcmp(&pc->a, s->pa + e, sizeof(double)) != 0 : (pc->b == 0.0) != (s->pb[e] == 0.0)))
+        s->dirty = 1;
+    if (!rig && memcmp(&pc->b, s->pb + e, sizeof(double)) != 0) s->refactor = 1;
+    s->rig[e] = rig, s->pa[e] = pc->a, s->pb[e] = pc->b;
     s->cmode[e] = mode;
+}
+
+/* Each spring's slope dt k into pb (graph_of's spring reads it there): after q->dt is set. */
+static void sparse_springs(net_t *q) {
+    for (Py_ssize_t e = 0; e < q->n_el; e++)
+        if (q->kind[e] == SPRING) q->sp->pb[e] = q->dt * q->par[4 * e];
 }
 
 /* Element e's piece to be read again from the table at the next solve (a Stribeck contact's new line). */
@@ -84,6 +105,15 @@ static void sparse_reread(net_t *q, Py_ssize_t e) { q->sp->cmode[e] = -1; }
  * spring: rebuilt whenever its force changes) only into those arrays, the table filled when a rare
  * path reads it (sync_graphs). */
 static void graph_of(net_t *q, Py_ssize_t e, double state) {
+    if (q->lazy && q->count[e] == 1 && q->kind[e] == SPRING) {
+        /* the same numbers as below without the table; a spring's slope dt k is in pb from the start
+         * (sparse_springs) and every piece of its graph has it */
+        const double b = q->sp->pb[e], d = q->delta ? q->delta[e] : 0.0;
+        q->gstate[e] = state;
+        q->sp->rig[e] = 0, q->sp->pa[e] = d != 0.0 ? state + b * d : state;
+        q->sp->cmode[e] = q->mode[e], q->lazy[e] = 1;
+        return;
+    }
     piece local[MAX_PIECES];
     const int lazy = q->lazy && q->count[e] == 1;
     piece *g = lazy ? local : q->graph + e * MAX_PIECES;
@@ -106,15 +136,21 @@ static void sync_graphs(net_t *q) {
         }
 }
 
-/* Step 1: each point's cluster root (s->root) and offset (q->off); the number of rigid elements,
- * or -1 if one closes a rigid loop. */
-static Py_ssize_t clusters(net_t *q, sparse_t *s, const int *mode) {
-    const Py_ssize_t ground = q->n_mass;
-    Py_ssize_t rigid = 0, merged = 0;
+/* Each element's piece in mode read into s (those whose mode changed); the number of rigid elements. */
+static Py_ssize_t refresh(net_t *q, sparse_t *s, const int *mode) {
+    Py_ssize_t rigid = 0;
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
         if (s->cmode[e] != mode[e]) sparse_piece(s, e, chosen(q, e, mode), mode[e]); /* a new mode */
         rigid += s->rig[e];
     }
+    return rigid;
+}
+
+/* Step 1: each point's cluster root (s->root) and offset (q->off), given the number of rigid elements;
+ * that number, or -1 if one closes a rigid loop. */
+static Py_ssize_t clusters(net_t *q, sparse_t *s, Py_ssize_t rigid) {
+    const Py_ssize_t ground = q->n_mass;
+    Py_ssize_t merged = 0;
     for (Py_ssize_t p = 0; p < q->n_pt; p++) s->root[p] = -1;
     for (Py_ssize_t k = -1; k < q->n_mass; k++) {
         const int64_t begin = k < 0 ? ground : s->at_pos[k];
@@ -176,32 +212,22 @@ static Py_ssize_t envelope(net_t *q, sparse_t *s, const int *mode) {
     return m;
 }
 
-/* Step 4: merged_system.assemble into the envelope, then LDL^T and the solve (into s->u). */
-static void assemble_solve(net_t *q, sparse_t *s, const int *mode, Py_ssize_t m) {
-    double *val = s->val, *diag = s->diag, *load = s->load, *u = s->u;
+/* Step 4a: the merged matrix (merged_system.assemble's inertias and slopes, in its order) into the
+ * envelope, and its LDL^T in place (val: L below the diagonal, diag: D). */
+static void factorise(net_t *q, sparse_t *s, Py_ssize_t m) {
+    double *val = s->val, *diag = s->diag;
     const int64_t *col = s->col, *first = s->first, *start = s->start;
-    for (Py_ssize_t k = 0; k < m; k++) diag[k] = 0.0, load[k] = 0.0;
+    for (Py_ssize_t k = 0; k < m; k++) diag[k] = 0.0;
     memset(val, 0, start[m] * sizeof(double));
-    for (Py_ssize_t i = 0; i < q->n_mass; i++) {
-        const int64_t c = col[i];
-        if (c < 0) continue;
-        load[c] += q->rhs[i] - q->inertia[i] * q->off[i];
-        diag[c] += q->inertia[i];
-    }
+    for (Py_ssize_t i = 0; i < q->n_mass; i++)
+        if (col[i] >= 0) diag[col[i]] += q->inertia[i];
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
-        const int64_t i = q->first[e], j = q->second[e], ci = col[i], cj = col[j];
-        if (s->rig[e] || ci == cj) continue;
-        const double a = s->pa[e], b = s->pb[e];
-        const double known = a + b * (q->off[j] - q->off[i]);
-        if (cj >= 0) {
-            load[cj] -= known;
-            if (b != 0.0) diag[cj] += b;
-        }
-        if (ci >= 0) {
-            load[ci] += known;
-            if (b != 0.0) diag[ci] += b;
-        }
-        if (b != 0.0 && ci >= 0 && cj >= 0) {
+        const int64_t ci = col[q->first[e]], cj = col[q->second[e]];
+        const double b = s->pb[e];
+        if (s->rig[e] || ci == cj || b == 0.0) continue;
+        if (cj >= 0) diag[cj] += b;
+        if (ci >= 0) diag[ci] += b;
+        if (ci >= 0 && cj >= 0) {
             const int64_t r = ci > cj ? ci : cj, c = ci > cj ? cj : ci;
             val[start[r] + (c - first[r])] -= b;
         }
@@ -223,6 +249,27 @@ static void assemble_solve(net_t *q, sparse_t *s, const int *mode, Py_ssize_t m)
             row[j] = l;
         }
         diag[i] = d;
+    }
+}
+
+/* Step 4b: merged_system.assemble's load (its terms in its order), then forward and back substitution
+ * through the factors of factorise (into s->u). */
+static void assemble_solve(net_t *q, sparse_t *s, Py_ssize_t m) {
+    double *load = s->load, *u = s->u;
+    const double *val = s->val, *diag = s->diag;
+    const int64_t *col = s->col, *first = s->first, *start = s->start;
+    for (Py_ssize_t k = 0; k < m; k++) load[k] = 0.0;
+    for (Py_ssize_t i = 0; i < q->n_mass; i++) {
+        const int64_t c = col[i];
+        if (c < 0) continue;
+        load[c] += q->rhs[i] - q->inertia[i] * q->off[i];
+    }
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        const int64_t i = q->first[e], j = q->second[e], ci = col[i], cj = col[j];
+        if (s->rig[e] || ci == cj) continue;
+        const double known = s->pa[e] + s->pb[e] * (q->off[j] - q->off[i]);
+        if (cj >= 0) load[cj] -= known;
+        if (ci >= 0) load[ci] += known;
     }
     for (Py_ssize_t i = 0; i < m; i++) {
         const int64_t fi = first[i];
@@ -272,11 +319,14 @@ static void peel(net_t *q, sparse_t *s, const int *mode) {
 static int sparse_linear(net_t *q, const int *mode) {
     sparse_t *s = q->sp;
     const Py_ssize_t ground = q->n_mass;
-    const Py_ssize_t rigid = clusters(q, s, mode);
-    if (rigid < 0) return 0;
-    const Py_ssize_t m = envelope(q, s, mode);
-    if (m < 0) return 0;
-    assemble_solve(q, s, mode, m);
+    const Py_ssize_t rigid = refresh(q, s, mode);
+    if (s->dirty) {
+        if (clusters(q, s, rigid) < 0 || (s->m = envelope(q, s, mode)) < 0) return 0;
+        s->dirty = 0, s->refactor = 1;
+    }
+    const Py_ssize_t m = s->m;
+    if (s->refactor) factorise(q, s, m), s->refactor = 0;
+    assemble_solve(q, s, m);
     for (Py_ssize_t p = 0; p < q->n_pt; p++) q->vall[p] = s->col[p] < 0 ? q->off[p] : s->u[s->col[p]] + q->off[p];
     q->vall[ground] = 0.0;
     double *pushed = q->R; /* the free forces' sum at each point, and the rigid elements there: for peel */
