@@ -304,7 +304,7 @@ SOLVE_ONLY = {
     "solution-count": (dict(solution=lambda: (1,)), "solution"),
     "v-length": (dict(solution_v=lambda a: a[:-1]), "solution[0] (v)"),
     "w-length": (dict(solution_w=lambda a: a[:-1]), "solution[1] (w)"),
-    "f-int64": (dict(solution_f=lambda a: a.astype(np.int64)), "solution[2] (f)"),
+    "f-int64": (dict(solution_f=lambda a: np.zeros(a.shape, np.int64)), "solution[2] (f)"),
     "modes-piece": (dict(solution_modes=_set(0, 5)), "solution[3] (modes)"),  # no graph has 6 pieces
     "rigid-length": (dict(solution_rigid=lambda a: a[:-1]), "solution[4] (rigid)"),
 }
