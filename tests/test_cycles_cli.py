@@ -191,6 +191,10 @@ damping = 0.3
         (["--vary", "belt.velocity=-0.1:0.5"], r"--vary: belt.velocity = -0.1:0.5 reaches 0, where the belt stops"),
         (["--vary", "belt.speed=0.1:0.5"], r"--vary: unknown parameter 'belt.speed'; .*'belt.velocity'"),
         (["--vary", "0.5:0.1"], r"--vary: START:STOP must satisfy START < STOP"),
+        (
+            ["--vary", "belt.velocity=0.2:0.20000000000000004", "--points", "3"],
+            r"--vary: 0.2:0.20000000000000004 holds fewer than 3 distinct values",
+        ),  # one ulp wide: 50 rows of the same two speeds otherwise
         (["--vary", "fric.kinetic=0.5:2"], r"--vary: at fric.kinetic = 2: kinetic = 2.0 N must not exceed static"),
         (["--vary", "fric.kinetic=0.5:1"], r"--vary: at fric.kinetic = 1: no falling law"),
         (["--vary", "=0.1:0.5"], r"--vary expects NAME=START:STOP or START:STOP"),

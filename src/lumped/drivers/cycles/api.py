@@ -120,6 +120,10 @@ def request(network: Network, vary: tuple[str, float, float] | None = None, poin
         raise ValueError(f"vary: START and STOP must be real numbers, got {start!r:.20}:{stop!r:.20}") from None
     if not (math.isfinite(start) and math.isfinite(stop) and start < stop):
         raise ValueError(f"vary: START:STOP must be finite with START < STOP, got {start!r}:{stop!r}")
+    if np.unique(np.linspace(start, stop, points)).size < points:  # the equilibria's rows would repeat values
+        raise ValueError(
+            f"vary: {start!r}:{stop!r} holds fewer than {points} distinct values; widen it or give fewer points"
+        )
     param, ends = parameter_member(network, name, start, stop)
     if param.table == "mass" and param.key != "mass":
         raise ValueError(f"vary: {name} is the initial state, on which neither steady sliding nor a cycle depends")
