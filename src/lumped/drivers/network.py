@@ -30,26 +30,33 @@ from lumped.model.network import Network
 from lumped.model.problem import OneMass, one_mass_form
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
-from lumped.solvers import friction_compiled as friction
-from lumped.solvers import network_compiled as kernel
-from lumped.solvers import network_sparse as sparse
-from lumped.solvers.backward_euler_network import march
-from lumped.solvers.uniqueness import check_step
+
+# The step solvers (the active-set loop, the compiled kernels, the uniqueness check) are imported by the
+# functions that run them: the paper's system, which goes to Algorithm 1, loads none of them (start-up).
 
 __all__ = ["SOLVERS", "check_active_set", "paper_form", "run_network"]
 
 #: Step solvers by name (see :func:`run_network`): a view of the registry
 #: (:data:`lumped.drivers.methods.NETWORK_SOLVERS`, those of the method that runs any network).
 SOLVERS = NETWORK_SOLVERS
-#: Estimated cost (s) of a step, a constant and a part per element, by path.
-#: Measured on this project's 2-core machine, shared and busy
-#: (benchmarks/bench_network.py, chains): Python about 2e-5 + 1e-5 per
-#: element; compiled about 1e-6 + 4e-8 to 1e-7 per element; a margin of 2.
-#: The one-mass friction loop: about 3e-8 s a step (benchmarks/bench_belt.py), a margin of 10.
-#: The sparse step: about 0.04 to 0.12 us per block and step on the floor chain of
-#: benchmarks/bench_chain.py (three elements a block: 1.5e-8 to 4e-8 s per element, CPU
-#: time; the wall time on the busy machine up to twice that), a margin of 2 to 3.
-_COST = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7), friction.PATH: (3e-7, 0.0), sparse.PATH: (4e-6, 1e-7)}
+
+
+def _cost(path: str) -> tuple[float, float]:
+    """Estimated cost (s) of a step on ``path``: a constant and a part per element.
+
+    Measured on this project's 2-core machine, shared and busy
+    (benchmarks/bench_network.py, chains): Python about 2e-5 + 1e-5 per
+    element; compiled about 1e-6 + 4e-8 to 1e-7 per element; a margin of 2.
+    The one-mass friction loop: about 3e-8 s a step (benchmarks/bench_belt.py), a margin of 10.
+    The sparse step: about 0.04 to 0.12 us per block and step on the floor chain of
+    benchmarks/bench_chain.py (three elements a block: 1.5e-8 to 4e-8 s per element, CPU
+    time; the wall time on the busy machine up to twice that), a margin of 2 to 3.
+    """
+    from lumped.solvers import friction_compiled as friction
+    from lumped.solvers import network_sparse as sparse
+
+    costs = {"python": (4e-5, 2e-5), "compiled": (4e-6, 2e-7), friction.PATH: (3e-7, 0.0), sparse.PATH: (4e-6, 1e-7)}
+    return costs[path]
 
 
 def _paper_form(net: Network) -> OneMass | None:
@@ -120,8 +127,10 @@ def run_network(network: Network, t_end: float, dt: float, *, save_every: int = 
     pair = _paper_form(network) if solver == "auto" else None
     if pair is not None:
         return _via_algorithm1(network, pair, t_end, dt, save_every)
+    from lumped.solvers import backward_euler_network
+
     path, rows, _ = check_active_set(network, dt, n_steps, save_every, solver)
-    return march(network, dt, n_steps, save_every, rows, path)
+    return backward_euler_network.march(network, dt, n_steps, save_every, rows, path)
 
 
 def check_active_set(network: Network, dt: float, n_steps: int, save_every: int, solver: str) -> tuple[str, int, float]:
@@ -131,13 +140,15 @@ def check_active_set(network: Network, dt: float, n_steps: int, save_every: int,
     :func:`run_network` makes them before its time loop, and a sweep of a system file
     (:mod:`lumped.drivers.sweep.system`) for every row before the first runs.
     """
+    from lumped.solvers.uniqueness import check_step
+
     check_step(network, dt)
     path = _path(network, solver)
     for load in network.loads:
         check_span(load.force, n_steps * dt)  # a sine's range, to the grid's last time
     width = 1 + 2 * len(network.masses) + 3 * len(network.elements)
     rows = validate.output_size(n_steps, save_every, width)
-    fixed, per_element = _COST[path]
+    fixed, per_element = _cost(path)
     seconds = validate.run_time(n_steps, fixed + per_element * len(network.elements), f"the network step ({path})")
     return path, rows, seconds
 
@@ -151,6 +162,10 @@ def _path(net: Network, solver: str) -> str:
     """``"compiled"``, :data:`lumped.solvers.friction_compiled.PATH` (one mass with a friction contact
     that the network kernel cannot run), :data:`lumped.solvers.network_sparse.PATH` (any other network
     the sparse step runs) or ``"python"``: the active-set step's path for ``solver``."""
+    from lumped.solvers import friction_compiled as friction
+    from lumped.solvers import network_compiled as kernel
+    from lumped.solvers import network_sparse as sparse
+
     if solver == "python":
         return "python"
     reason = kernel.ineligible(net)
