@@ -62,11 +62,10 @@ def assert_same_trajectory(a: L.Trajectory, b: L.Trajectory) -> None:
 
 
 #: The test files (or classes) that take longest, longest first (seconds of one run under pytest-xdist on
-#: 2 cores, 2026-11-27): Coulomb friction's whole pipeline 126, the network fit's 100 trials 96 to 158,
-#: the website 51, the other article 40, the folds 75 in all; the notebooks 16 (22) and 13 (14).  They are handed out first
+#: 2 cores, 2026-11-27): the network fit's 100 trials 96 to 158, the website 51, the articles of other
+#: configurations 40 each, the folds 75 in all; the notebooks 16 (22) and 13 (14).  They are handed out first
 #: (``--no-loadscope-reorder`` keeps this order), so that none starts last and runs alone.
 LONGEST_FIRST = (
-    "tests/test_paper_variants.py::TestCoulombFriction",
     "tests/test_network_fit.py",
     "tests/test_site.py",
     "tests/test_paper_variants.py",

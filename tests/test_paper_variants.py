@@ -1,8 +1,7 @@
 """The article says what the numbers of its own build say, for builds other than the default.
 
-Each case builds the article (``snakemake paper/paper.pdf``; for Coulomb friction
-the whole pipeline) in a copy of the repository's tracked files with ``--config``
-overrides, reads the text of
+Each case builds the article (``snakemake paper/paper.pdf``) in a copy of the
+repository's tracked files with ``--config`` overrides, reads the text of
 the PDF (what the reader reads) with pypdf and checks the key statements
 against the ``numbers.json`` of that build:
 
@@ -20,8 +19,8 @@ free vibration (the exact solution rests at +0.0027 m, Algorithm 1 at
 the band) still holds there, so the verdict stays; the differences printed
 beside it must say that Algorithm 1 rests on the other side of zero.
 
-Two builds: Coulomb friction's whole pipeline (about 100 s), and the article at a coarser step with a
-stronger forcing (about 25 s).  Marked slow; ``.ci/run`` runs them.
+Two builds of about 25 s each: Coulomb friction, and a coarser step with a stronger forcing.  Marked
+slow; ``.ci/run`` runs them.
 """
 
 from __future__ import annotations
@@ -65,8 +64,8 @@ def _snakemake(repo: Path, *args: str) -> subprocess.CompletedProcess:
     return subprocess.run([SNAKEMAKE, *args], cwd=repo, capture_output=True, text=True, timeout=900, env=env)
 
 
-def _build(repo: Path, overrides: list[str], whole: bool) -> tuple[dict, list[str]]:
-    done = _snakemake(repo, "--cores", "2", *([] if whole else ["paper/paper.pdf"]), "--config", *overrides)
+def _build(repo: Path, overrides: list[str]) -> tuple[dict, list[str]]:
+    done = _snakemake(repo, "--cores", "2", "paper/paper.pdf", "--config", *overrides)
     assert done.returncode == 0, done.stdout + done.stderr
 
     def no_constant(name):
@@ -88,18 +87,17 @@ def _sections(text: str) -> dict[int, str]:
 
 class _Variant:
     """The checks of every variant's article; a subclass per variant gives its ``--config`` overrides and
-    whether it builds the whole pipeline or the article alone, and adds its own checks.  One build per
+    adds its own checks.  One build per
     class (a class-scoped fixture), and a class is one unit of pytest-xdist's ``--dist loadscope``: the
     builds run side by side."""
 
     overrides: tuple[str, ...] = ()
-    whole = False
 
     @pytest.fixture(scope="class")
     @classmethod
     def build(cls, tmp_path_factory: pytest.TempPathFactory) -> tuple[dict, list[str], Path]:
         repo = copy_tracked_files(tmp_path_factory.mktemp("repo"))
-        return (*_build(repo, list(cls.overrides), cls.whole), repo)
+        return (*_build(repo, list(cls.overrides)), repo)
 
     def test_verdicts_printed_are_the_computed_ones(self, build: tuple[dict, list[str], Path]) -> None:
         numbers, pages, _ = build
@@ -157,30 +155,26 @@ class _Variant:
 
 
 class TestCoulombFriction(_Variant):
-    """gamma = inf, the override furthest from the paper's system, built end to end (every notebook, figure
-    and study); ``inf`` is Python's spelling of infinity, and the build is then checked to plan nothing
-    under YAML's ``.inf``."""
+    """gamma = inf, the override furthest from the paper's system; ``inf`` is Python's spelling of infinity,
+    and the build is then checked to plan nothing under YAML's ``.inf``."""
 
     overrides = ("gamma=inf",)
-    whole = True
 
     def test_coulomb_friction_changes_figure_1(self, build: tuple[dict, list[str], Path]) -> None:
         """With gamma = inf the velocity is no function of the force: Figure 1's check fails."""
         numbers, _, _ = build
         assert numbers["verdicts"]["configured"]["figure_1"]["verdict"] == "fails"
 
-    def test_coulomb_friction_builds_end_to_end(self, build: tuple[dict, list[str], Path]) -> None:
-        """gamma = inf: the whole pipeline builds (every figure and notebook), numbers.json stays JSON (no
+    def test_coulomb_friction_builds_the_article(self, build: tuple[dict, list[str], Path]) -> None:
+        """gamma = inf: the article and the notebooks that draw its figures build, numbers.json stays JSON (no
         Infinity or NaN: parse_constant refuses them), and the same configuration spelled ``.inf`` plans nothing."""
         numbers, _, repo = build
         figures = sorted((repo / "figures").glob("fig[0-9][0-9]_*.p*"))
         assert len(figures) == 2 * 14, figures
-        notebooks = sorted(p.stem for p in (repo / "results" / "notebooks").glob("*.ipynb"))
-        assert notebooks == sorted(p.stem for p in (repo / "notebooks").glob("[0-9][0-9]_*.py"))
         # Coulomb friction removes energy slowly: the large free vibration is still moving at 4 s
         assert numbers["free_large"]["exact"]["rest_time"] == "still moving"
         assert numbers["free_large"]["error"]["rest_position"] is None
-        done = _snakemake(repo, "--dry-run", "--nolock", "--config", "gamma=.inf")
+        done = _snakemake(repo, "--dry-run", "--nolock", "paper/paper.pdf", "--config", "gamma=.inf")
         assert done.returncode == 0 and "Nothing to be done" in done.stdout + done.stderr, done.stdout + done.stderr
 
 
