@@ -20,7 +20,7 @@ from lumped.solvers.uniqueness import EXACT_MASSES, check_step, largest_step
 
 LINK = {"static": 2.0, "kinetic": 1.0, "stribeck_velocity": 0.1}
 FLOOR = {"static": 3.0, "kinetic": 1.0, "stribeck_velocity": 0.5}
-#: The bisection ends within 1e-12 relative of the test's edge; a factorisation of the banded A moves that edge
+#: The bisection ends within 1e-12 relative of the test's edge; the L D L^T of the tridiagonal A moves that edge
 #: by a few ulps of m/dt (its backward error over a band of three), far below: 1e-11 covers both.
 REL = 1e-11
 
