@@ -22,6 +22,7 @@ from conftest import EPS, ROOT
 import lumped as L
 from lumped.cli import main
 from lumped.model.files import table_files
+from lumped.model.repeated import expand
 from lumped.model.system_parameters import system_parameters, with_values
 
 CHAIN = ROOT / "examples" / "block_chain.toml"
@@ -149,7 +150,34 @@ REFUSED = {
     "grading-infinite": ("to = 4 }", "to = inf }", "[[element]] 1: stiffness: a grading { from = a, to = b } takes"),
     "grading-value-refused": ("to = 4 }", "to = -4 }", "[[element]] 1, i = 2 ('k1_2'): stiffness must be > 0"),
     "names-no-mass": ('"ground", "b{i}"', '"b{i}", "b{i+1}"', "element 'k3_4': between names 'b5', which is neither"),
+    # to - from overflows (its NaN at i = 1 was blamed on the value: "stiffness must be a real number, got nan")
+    "grading-overflow": (
+        "stiffness = { from = 1, to = 4 }",
+        "stiffness = { from = -1.7e308, to = 1.7e308 }",
+        "[[element]] 1: stiffness: a grading { from = -1.7e+308, to = 1.7e+308 } overflows: to - from is beyond",
+    ),
+    # an array of strings is the same for every table (point 3), no key of a dict ("unhashable type: 'list'")
+    "decay-array": (
+        'kind = "spring"\nbetween = ["ground", "b{i}"]\nstiffness = { from = 1, to = 4 }',
+        (
+            'kind = "friction"\nbetween = ["ground", "b{i}"]\nstatic = 1.0\nkinetic = 0.5\nstribeck_velocity = 0.1\n'
+            'decay = ["gaussian", "exponential", "gaussian", "rational"]'
+        ),
+        "[[element]] 1, i = 1 ('k0_1'): decay must be one of 'exponential', 'gaussian', 'rational'; got ['gaussian',",
+    ),
+    "kind-array": ('kind = "spring"', 'kind = ["spring"]', "[[element]] 1, i = 1 ('k0_1'): unknown kind ['spring']; "),
 }
+
+
+def test_a_grading_at_the_largest_double_is_exact_and_one_beyond_is_refused() -> None:
+    """The edge of the overflow: ``to - from = 1.7e308`` is a double, and the grading of 3 its exact
+    ``-0.85e308, 0, 0.85e308`` (the step 0.85e308 is exact, and so is each sum); ``1.8e308`` is not."""
+    [(_, one), (_, two), (_, three)] = expand([{"count": 3, "x0": {"from": -0.85e308, "to": 0.85e308}}], "mass")
+    assert [one["x0"], two["x0"], three["x0"]] == [-0.85e308, 0.0, 0.85e308]
+    with pytest.raises(
+        ValueError, match=r"^\[\[mass\]\] 1: x0: a grading \{ from = -9e\+307, to = 9e\+307 \} overflows"
+    ):
+        expand([{"count": 3, "x0": {"from": -0.9e308, "to": 0.9e308}}], "mass")
 
 
 @pytest.mark.parametrize("case", REFUSED, ids=list(REFUSED))

@@ -71,6 +71,7 @@ def test_chunks_concatenate_to_the_whole():
         ("x0", "NAME=START:STOP:COUNT"),
         ("mass=-1:1:3", "mass must be > 0"),
         ("x0=0:1:1", "COUNT = 1 needs START == STOP"),
+        ("x0=-1.7e308:1.7e308:3", "STOP - START overflows"),  # was blamed on the NaN linspace made
     ],
 )
 def test_bad_vary_one_line_status_2_no_file(tmp_path, capsys, spec, words):

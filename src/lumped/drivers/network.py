@@ -25,7 +25,7 @@ from __future__ import annotations
 
 from lumped.drivers.methods import NETWORK_SOLVERS
 from lumped.drivers.one_mass import network_trajectory
-from lumped.model.forcing import check_span, one_force, sine_form
+from lumped.model.forcing import check_spans, one_force, sine_form
 from lumped.model.network import Network
 from lumped.model.problem import OneMass, one_mass_form
 from lumped.model.trajectory import Trajectory
@@ -144,8 +144,7 @@ def check_active_set(network: Network, dt: float, n_steps: int, save_every: int,
 
     check_step(network, dt)
     path = _path(network, solver)
-    for load in network.loads:
-        check_span(load.force, n_steps * dt)  # a sine's range, to the grid's last time
+    check_spans(network.loads, network.drivers, n_steps * dt)  # a sine's range, to the grid's last time
     width = 1 + 2 * len(network.masses) + 3 * len(network.elements)
     rows = validate.output_size(n_steps, save_every, width)
     fixed, per_element = _cost(path)

@@ -28,7 +28,7 @@ from lumped.drivers import methods
 from lumped.drivers.methods import METHODS, Method
 from lumped.drivers.network import run_network
 from lumped.drivers.one_mass import network_trajectory
-from lumped.model.forcing import SwitchedSine, sine_form
+from lumped.model.forcing import SwitchedSine, check_spans, sine_form
 from lumped.model.network import Network
 from lumped.model.oscillator import Oscillator
 from lumped.model.problem import OneMass, Problem
@@ -115,9 +115,11 @@ def solve(
         form = problem.one_mass()
     except ValueError as err:
         if run.piecewise_networks is not None:  # its phases solved in turn, or a refusal naming the element
+            check_spans(problem.system.loads, problem.system.drivers, problem.t_end)  # before any phase
             return run.piecewise_networks(problem.system, problem.t_end, dt, save_every=save_every, **options)
         raise ValueError(f"method {method!r} needs a one-mass system; the network {err}") from None
     if run.by_network(problem.force, problem.system):  # a load its one-mass solver lacks
+        check_spans(problem.system.loads, problem.system.drivers, problem.t_end)
         return run.piecewise_networks(problem.system, problem.t_end, dt, save_every=save_every)  # type: ignore[misc]
     return _one_mass(run, method, problem, form, dt, save_every, options)
 

@@ -179,7 +179,8 @@ class SlipLaw(ABC):
     7. ``slip_speed(z, sigma)``: the speed ``s > 0`` with ``g(s) + sigma s = z``, for ``z >
        slip_limit`` and ``sigma > fall`` (where it is unique): the slip step of a contact whose
        resolvent variable is ``z``.  The default is the linear pieces' closed form, else Brent's
-       method on the bracket ``(0, z/sigma]`` (``g >= 0``).
+       method on the bracket ``(0, z/sigma]`` (``g >= 0``), widened to ``2 z/sigma`` where rounding leaves
+       ``g + sigma s - z`` below zero at its end.
     8. ``kernel_form()``: ``(code, parameters)`` for the compiled one-mass loop, or ``None`` (the
        default: the Python step runs it).
     9. ``slope(speed)``: the slope ``g'(s)`` at a speed ``s > 0`` as a :class:`Slope` (the value and a bound
@@ -239,7 +240,14 @@ class SlipLaw(ABC):
                     return max(s, p.lo)
             return s  # the last piece reaches inf
         g = self.slip
-        return brentq(lambda s: float(g(s)) + sigma * s - z, 0.0, z / sigma)
+
+        def h(s: float) -> float:
+            return float(g(s)) + sigma * s - z
+
+        # g >= 0 puts the root in (0, z/sigma]; where g(z/sigma) is below an ulp of z (it underflows to 0, say)
+        # sigma (z/sigma) may round below z, so h < 0 there: twice that end, h >= z/2 > 0 whatever the rounding.
+        hi = z / sigma
+        return brentq(h, 0.0, hi if h(hi) >= 0 else 2.0 * hi)
 
     def kernel_form(self) -> tuple[int, tuple[float, ...]] | None:
         """``(code, parameters)`` of the compiled one-mass loop, or ``None`` (point 8)."""

@@ -71,7 +71,7 @@ class StribeckLaw(SlipLaw):
             object.__setattr__(
                 self, "stribeck_velocity", validate.positive("stribeck_velocity", self.stribeck_velocity)
             )
-        if self.decay not in DECAYS:
+        if not isinstance(self.decay, str) or self.decay not in DECAYS:  # an array is no key: the same message
             raise ValueError(f"decay must be one of {', '.join(map(repr, DECAYS))}; got {self.decay!r:.40}")
         object.__setattr__(self, "viscous", validate.non_negative("viscous", self.viscous))
 

@@ -231,7 +231,7 @@ def _spec(cls: type) -> dict:
 
 def _element(raw: dict) -> Element:
     kind = raw.get("kind")
-    if kind not in KINDS:
+    if not isinstance(kind, str) or kind not in KINDS:  # an array (one per table of a count?) is no key of KINDS
         raise ValueError(f"unknown kind {kind!r:.40}; expected one of {', '.join(KINDS)}")
     cls = KINDS[kind]
     values = {k: v for k, v in _fields(raw, _spec(cls)).items() if v is not _LEFT_OUT}  # left out: the field's default

@@ -44,6 +44,7 @@ __all__ = [
     "Table",
     "as_sine",
     "check_span",
+    "check_spans",
     "closed_form",
     "evaluate",
     "first_bad_sample",
@@ -525,6 +526,23 @@ def check_span(force: object, t_last: float) -> None:
     point 6); a plain callable is not checked."""
     if isinstance(force, Forcing):
         force.check_span(t_last)
+
+
+def check_spans(loads: Sequence[object], drivers: Sequence[object], t_last: float) -> None:
+    """Refuse a run to ``t_last`` (s) over which a network's load or a driven point's velocity cannot be
+    evaluated exactly (:func:`check_span` of each): the one check of a network's histories before any step.
+
+    A driver's velocity is refused in the words of a load's, naming the driver: a sine beyond the range
+    would give NaN positions mid-run (its integral is a cosine of the same argument).
+    """
+    for load in loads:
+        check_span(load.force, t_last)  # type: ignore[attr-defined]
+    for driver in drivers:
+        try:
+            check_span(driver.history, t_last)  # type: ignore[attr-defined]
+        except ValueError as err:
+            reason = str(err).split(": ", 1)[-1].replace("force_", "")
+            raise ValueError(f"driver {driver.name!r} velocity: {reason}") from None  # type: ignore[attr-defined]
 
 
 def parameters(force: object) -> tuple[str, ...]:

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 import re
+import sys
 from typing import NamedTuple
 
 __all__ = ["Origin", "count_of", "expand"]
@@ -145,7 +146,13 @@ def _graded(start: object, stop: object, n: int, key: str) -> list[float]:
             raise ValueError(f"{key}: a grading from {a:g} to {b:g} needs count >= 2 (a at i = 1, b at i = count)")
         return [a]
     step = (b - a) / (n - 1)
-    return [a + k * step for k in range(n - 1)] + [b]
+    values = [a + k * step for k in range(n - 1)] + [b]
+    if not (math.isfinite(b - a) and all(map(math.isfinite, values))):  # b - a beyond the largest double: NaN at i = 1
+        raise ValueError(
+            f"{key}: a grading {{ from = {a:g}, to = {b:g} }} overflows: to - from is beyond the largest double "
+            f"({sys.float_info.max:.4g}); take from and to nearer each other"
+        )
+    return values
 
 
 def _is_number(value: object) -> bool:

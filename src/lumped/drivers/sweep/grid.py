@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import numbers
+import sys
 from collections.abc import Callable, Sequence
 from typing import NamedTuple
 
@@ -188,6 +189,11 @@ def vary_text(spec: str, key: Callable[[str], str] | None = None) -> VaryText:
     n = int(count)
     if n == 1 and start != stop:
         raise ValueError(f"vary: COUNT = 1 needs START == STOP in {spec!r}")
+    if not log and not math.isfinite(stop - start):  # linspace's step would be inf, its values NaN
+        raise ValueError(
+            f"vary: STOP - START overflows (beyond the largest double, {sys.float_info.max:.4g}) in {spec!r}; "
+            "take START and STOP nearer each other"
+        )
     if log and not (start > 0 and stop > 0):
         raise ValueError(f"vary: log spacing needs START > 0 and STOP > 0 in {spec!r}")
     if n > limits.MAX_ROWS:
