@@ -57,6 +57,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     cp.add_argument(
         "--vary",
+        action="append",  # kept to refuse a second one (run): argparse's default would keep the last
         metavar="NAME=START:STOP",
         help="continue over NAME (driver.velocity, element.key, mass.key) from START to STOP; "
         "START:STOP alone: the velocity of the file's one driver",
@@ -105,7 +106,9 @@ def run(args: argparse.Namespace, output: Output) -> str:
     from lumped.drivers.sweep import Progress
     from lumped.model.files import load_system
 
-    vary = None if args.vary is None else _vary(args.vary)
+    if args.vary is not None and len(args.vary) > 1:
+        raise ValueError("--vary is given more than once: cycles continues in one parameter")
+    vary = None if args.vary is None else _vary(args.vary[0])
     points = validate.parse_int("--points", args.points)
     if not 2 <= points <= MAX_POINTS:
         raise ValueError(f"--points: between 2 and {MAX_POINTS} rows, got {points}")
