@@ -186,9 +186,10 @@ def cycles(
     from lumped.drivers.cycles.continuation import continue_branches
 
     name, start, stop = req.vary
-    branch = continue_branches(req.network, name, start, stop, req.points, progress)
+    notes: list[str] = []  # what ended a branch early or found none: the summary says it
+    branch = continue_branches(req.network, name, start, stop, req.points, progress, notes=notes)
     rows = [(p.value, p.branch, p.equilibrium if p.branch == "equilibrium" else p.cycle, p.kind) for p in branch]
-    return CyclesTable(_table(rows, network.mass_names, name), _summary(rows, name))
+    return CyclesTable(_table(rows, network.mass_names, name), "; ".join([_summary(rows, name), *notes]))
 
 
 Row = tuple[float, str, Any, str]  # (value, branch, Equilibrium or Cycle, kind)

@@ -103,7 +103,6 @@ from lumped.drivers.cycles.shooting import (
     RTOL,
     Cycle,
     ReturnsSpent,
-    _gain,
     find_cycle,
     mirror_cycle,
     return_map,
@@ -264,7 +263,7 @@ class _Family:
                 f = (v_next - v) / self.v_s
                 if not abs(f) < last:  # not finite, or Newton does not converge here: no quadratic decrease
                     return None
-                if abs(f) <= tol * _gain(slope):  # the iterate within tol of the branch (shooting._gain)
+                if abs(f) <= tol:
                     return self.point(v, value, tangent)
                 last = abs(f)
                 d_p = 0.0 if fixed else self.derivative(net, v, value, v_next, slope) * self.p_s / self.v_s
@@ -604,10 +603,12 @@ def _from_start(
     fam: _Family, start: float, walk: _Walk, steps: int, progress: Callable[[float], None], found: list[BranchPoint]
 ) -> list[BranchPoint]:
     """The branch through the cycle found at ``start`` from the belt's speed, towards ``stop``: none if Newton
-    finds no cycle there, or if a branch ``found`` from a Hopf point has come to it."""
+    finds no cycle there (its reason in ``fam.notes``: no failure is silent), or if a branch ``found`` from a Hopf
+    point has come to it."""
     try:
         first = fam.point(fam.belt(start), start)
-    except ValueError:
+    except ValueError as err:  # find_cycle names its own argument (v0: ...); the user gave none
+        fam.notes.append(f"no cycle from the belt's speed at {fam.name} = {start:.6g}: {str(err).split(': ', 1)[-1]}")
         return []
     tol = CORRECTOR_TOL * fam.v_s
     if any(

@@ -439,28 +439,13 @@ def find_cycle(network: Network, v0: float, *, tol: float = 1e-12) -> Cycle:
     flight = _fly(sys, v)
     for _ in range(MAX_NEWTON):
         residual = flight.v_next - v
-        if abs(residual) <= tol * max(abs(sys.mdl.V), v) * _gain(flight.derivative):
+        if abs(residual) <= tol * max(abs(sys.mdl.V), v):
             _off_steady_sliding(v, flight.derivative, tol * max(abs(sys.mdl.V), v))
             return _off_rest(sys, _cycle(sys, v, flight, tol))
         if flight.derivative == 1:
             raise ValueError(f"v0: the return map is neutral at v = {v:.6g} m/s (P' = 1): no isolated cycle there")
         v, flight = _newton_step(sys, v, -residual / (flight.derivative - 1))
     raise ValueError(f"v0: Newton's method found no cycle from v0 = {v0:.6g} m/s in {MAX_NEWTON} steps")
-
-
-def _gain(derivative: float) -> float:
-    """``max(1, |P' - 1|)``: the factor by which Newton's residual ``P(v) - v`` exceeds its iterate's distance
-    ``|P(v) - v| / |P' - 1|`` from the fixed point where the map is steep.
-
-    A return's computed ``P`` errs by its integration's local errors carried to the section, each grown by the
-    flow's sensitivity from where it is made, up to ``|P'|`` for an unstable cycle: so the residual cannot fall
-    below about ``|P'|`` times that noise, and a stop on ``|P(v) - v| <= tol S`` alone is never met on a steep
-    map (Newton then runs its :data:`MAX_NEWTON` returns and fails; 300 on the Gaussian Stribeck belt of
-    ``tests/test_cycles_shooting.py``).  Stopping at ``|P(v) - v| <= tol S max(1, |P' - 1|)`` asks instead
-    that the iterate be within ``tol S`` of the fixed point (Newton's error estimate), which the noise allows;
-    where ``|P' - 1| <= 1`` (every stable cycle) the stop is the residual's, as before.
-    """
-    return max(1.0, abs(derivative - 1.0))
 
 
 def _off_steady_sliding(v: float, derivative: float, bound: float) -> None:
