@@ -146,11 +146,12 @@ TRUSTED = 0.9
 #: The returns (:func:`~lumped.drivers.cycles.shooting.returns_budget`) one branch may take, per row asked
 #: (``points``), at least :data:`MIN_RETURNS`: a branch that has not ended by then ends there, and the rows
 #: say where (:func:`continue_branches`' ``notes``).  A smooth step costs 3 to 5 returns (the corrector, the
-#: cycle's Newton, ``F_p``) and a located change some 30 bisections of a few each; the branches of the
-#: notebooks, tests and benchmarks take at most a fifth of this.  A branch whose steps shrink without end (the
-#: Gaussian Stribeck belt's slip-only cycles, their multiplier passing 900 as the orbits beside them start to
-#: stick) is so bounded in time: a return is one period or so of DOP853 at RTOL, some 0.05 s.
-RETURNS_PER_POINT, MIN_RETURNS = 40, 400
+#: cycle's Newton, ``F_p``) and a located change some 30 bisections of a few each: the Veraszto-Stepan branch of
+#: notebook 16 (30 points, a Hopf point, a grazing and a fold located) takes 1409, 47 a point, the most of the
+#: notebooks' and the tests'; the budget is twice that.  A branch whose steps shrink without end (the Gaussian
+#: Stribeck belt's slip-only cycles, their multiplier passing 900 as the orbits beside them start to stick) is so
+#: bounded in time: a return is a period or so of DOP853 at RTOL, some 0.05 s.
+RETURNS_PER_POINT, MIN_RETURNS = 100, 400
 #: The corrector's hyperplane at a fixed parameter.
 _FIXED_P = np.array([0.0, 1.0])
 
@@ -592,7 +593,10 @@ def _from_hopf(
     guess = np.array([HOPF_AMPLITUDE * abs(belt) / fam.v_s, hopf / fam.p_s])
     # v fixed, p solved for; F = v (P'(0) - 1 + O(v^2)) is that small: the tolerance is relative to v
     first = fam._newton(guess, np.array([1.0, 0.0]), tol=CORRECTOR_TOL * guess[0])
-    if first is None or not np.any(first.jacobian):  # none, or a neutral family (a centre): no branch to follow
+    if first is None:  # said, not silent: the Hopf point's row alone
+        fam.notes.append(f"no small cycle found off the Hopf point at {fam.name} = {hopf:.6g}")
+        return rows
+    if not np.any(first.jacobian):  # a neutral family (a centre): no isolated cycle, no branch to follow
         return rows
     rows.append(_row(first, "regular"))
     tangent = _tangent(first, np.array([1.0, 0.0]))
