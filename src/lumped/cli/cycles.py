@@ -42,7 +42,7 @@ eigenvalue, 1/s) and kind (regular, hopf, fold, stick-slip-onset,
 stick-change, period-doubling: the located point of a change).  A value that
 does not apply to a row is an empty cell.
 The work is bounded: each branch takes at most 100 returns to the section a
-point (at least 400; the Hopf branch without --vary 300), each some 0.05 s,
+point (at least 3000; the Hopf branch without --vary 300), each some 0.05 s,
 and where they are spent it ends at its last point and the summary says so;
 progress goes to stderr, a line a second."""
 

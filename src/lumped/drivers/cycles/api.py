@@ -27,6 +27,13 @@ section crosses it at ``V`` exactly: its fixed point, whatever the length of
 its stick, which the long run's natural periods may not reach: 5e6 s on
 ``examples/belt.toml`` at 2e-7 m/s).  With ``vary = (name, start, stop)``: the branches of
 :func:`~lumped.drivers.cycles.continuation.continue_branches` over the range.
+
+A belt running backwards (``V < 0``) is the mirror image ``x -> -x`` of one running forwards
+(:func:`~lumped.drivers.cycles.equilibria.mirrored`) and is computed so: its rows are the forward belt's mirrored,
+exactly.  The work is bounded: each branch walks at most
+:data:`~lumped.drivers.cycles.continuation.RETURNS_PER_POINT` returns a row (the Hopf branch without ``vary``,
+:data:`HOPF_RETURNS`), and a branch cut there, a start that finds no cycle or a Hopf point with no small cycle off
+it is said in the summary: no failure becomes a silent "0 cycles".
 """
 
 from __future__ import annotations

@@ -145,13 +145,16 @@ ACROSS_GAP = 1e-5
 TRUSTED = 0.9
 #: The returns (:func:`~lumped.drivers.cycles.shooting.returns_budget`) one branch may take, per row asked
 #: (``points``), at least :data:`MIN_RETURNS`: a branch that has not ended by then ends there, and the rows
-#: say where (:func:`continue_branches`' ``notes``).  A smooth step costs 3 to 5 returns (the corrector, the
-#: cycle's Newton, ``F_p``) and a located change some 30 bisections of a few each: the Veraszto-Stepan branch of
-#: notebook 16 (30 points, a Hopf point, a grazing and a fold located) takes 1409, 47 a point, the most of the
-#: notebooks' and the tests'; the budget is twice that.  A branch whose steps shrink without end (the Gaussian
+#: say where (:func:`continue_branches`' ``notes``).  Only the walk's returns count: a step costs 3 to 5 (the
+#: corrector, the cycle's Newton, ``F_p``), and one halved where the corrector fails costs them again; locating a
+#: change (:func:`_changes`) is bounded by its own construction (bisections to :data:`LOCATE_TOL`, some 30 of a
+#: few returns each, some 500 for a kink's two pieces) and is not counted.  The Veraszto-Stepan branch of notebook
+#: 16 walks 1206 returns for 30 points, 40 a point; the stick-slip branch of tests/test_cycles_continuation.py
+#: through its discontinuous fold 1054 for 3 (the steps halved at the kink and the search across it): the budget
+#: is some three times each.  A branch whose steps shrink without end (the Gaussian
 #: Stribeck belt's slip-only cycles, their multiplier passing 900 as the orbits beside them start to stick) is so
 #: bounded in time: a return is a period or so of DOP853 at RTOL, some 0.05 s.
-RETURNS_PER_POINT, MIN_RETURNS = 100, 400
+RETURNS_PER_POINT, MIN_RETURNS = 100, 3000
 #: The corrector's hyperplane at a fixed parameter.
 _FIXED_P = np.array([0.0, 1.0])
 
@@ -522,7 +525,8 @@ def _follow(
             outside = _at_end(q.value, walk, fam.p_s)
             if outside:
                 q = _at_edge(fam, p, q, walk) or q
-            found, piece = _changes(fam, p, q, travel)
+            with returns_budget(None):  # bounded by construction: bisections to LOCATE_TOL (RETURNS_PER_POINT)
+                found, piece = _changes(fam, p, q, travel)
             if found is None:
                 ds *= 0.5
                 continue

@@ -141,11 +141,12 @@ _RETURNS_LEFT: contextvars.ContextVar[list[int] | None] = contextvars.ContextVar
 
 
 @contextmanager
-def returns_budget(limit: int) -> Iterator[None]:
+def returns_budget(limit: int | None) -> Iterator[None]:
     """Bound the returns (:func:`_fly`, the unit of work of every cycle computation) made inside the block to
     ``limit``: the next one raises :class:`ReturnsSpent`.  A return costs about the same at any parameter (a
-    natural period or so of DOP853 at :data:`RTOL`, or closed forms), so the bound is one on the block's time."""
-    token = _RETURNS_LEFT.set([limit])
+    natural period or so of DOP853 at :data:`RTOL`, or closed forms), so the bound is one on the block's time.
+    ``None``: no bound inside the block (for work bounded by its own construction), the outer one's count kept."""
+    token = _RETURNS_LEFT.set(None if limit is None else [limit])
     try:
         yield
     finally:
