@@ -56,7 +56,9 @@ def doubles(monkeypatch):
         starts.append(v0)
         return closed_form_cycle(network, v0)
 
-    def continue_branches(network, parameter, start, stop, points=50, progress=None, *, start_branch=True):
+    def continue_branches(
+        network, parameter, start, stop, points=50, progress=None, *, start_branch=True, returns=None, notes=None
+    ):
         continuation.calls.append((parameter, start, stop, start_branch))
         eq = steady_sliding(network)
         cycle = closed_form_cycle(network, 0.2)

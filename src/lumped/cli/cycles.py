@@ -40,7 +40,11 @@ max_multiplier (a cycle's largest Floquet multiplier in modulus, the trivial
 one left out), max_real_part (an equilibrium's largest real part of an
 eigenvalue, 1/s) and kind (regular, hopf, fold, stick-slip-onset,
 stick-change, period-doubling: the located point of a change).  A value that
-does not apply to a row is an empty cell."""
+does not apply to a row is an empty cell.
+The work is bounded: each branch takes at most 100 returns to the section a
+point (at least 3000; the Hopf branch without --vary 300), each some 0.05 s,
+and where they are spent it ends at its last point and the summary says so;
+progress goes to stderr, a line a second."""
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -57,6 +61,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     )
     cp.add_argument(
         "--vary",
+        action="append",  # kept to refuse a second one (run): argparse's default would keep the last
         metavar="NAME=START:STOP",
         help="continue over NAME (driver.velocity, element.key, mass.key) from START to STOP; "
         "START:STOP alone: the velocity of the file's one driver",
@@ -105,13 +110,15 @@ def run(args: argparse.Namespace, output: Output) -> str:
     from lumped.drivers.sweep import Progress
     from lumped.model.files import load_system
 
-    vary = None if args.vary is None else _vary(args.vary)
+    if args.vary is not None and len(args.vary) > 1:
+        raise ValueError("--vary is given more than once: cycles continues in one parameter")
+    vary = None if args.vary is None else _vary(args.vary[0])
     points = validate.parse_int("--points", args.points)
     if not 2 <= points <= MAX_POINTS:
         raise ValueError(f"--points: between 2 and {MAX_POINTS} rows, got {points}")
     check_output(args.output, (".csv",))
     network = load_system(args.system)
-    bar = Progress(sys.stderr, True, label="cycles", unit="")
+    bar = Progress(sys.stderr, True, every=1.0, label="cycles", unit="")  # a line a second: a branch's points
     try:  # every check before the output is reserved and any run is made
         if vary is not None and vary[0] is None:
             vary = (belt_parameter(network), vary[1], vary[2])

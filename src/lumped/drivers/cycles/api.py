@@ -27,6 +27,13 @@ section crosses it at ``V`` exactly: its fixed point, whatever the length of
 its stick, which the long run's natural periods may not reach: 5e6 s on
 ``examples/belt.toml`` at 2e-7 m/s).  With ``vary = (name, start, stop)``: the branches of
 :func:`~lumped.drivers.cycles.continuation.continue_branches` over the range.
+
+A belt running backwards (``V < 0``) is the mirror image ``x -> -x`` of one running forwards
+(:func:`~lumped.drivers.cycles.equilibria.mirrored`) and is computed so: its rows are the forward belt's mirrored,
+exactly.  The work is bounded: each branch walks at most
+:data:`~lumped.drivers.cycles.continuation.RETURNS_PER_POINT` returns a row (the Hopf branch without ``vary``,
+:data:`HOPF_RETURNS`), and a branch cut there, a start that finds no cycle or a Hopf point with no small cycle off
+it is said in the summary: no failure becomes a silent "0 cycles".
 """
 
 from __future__ import annotations
@@ -39,12 +46,15 @@ import numpy as np
 
 from lumped.drivers.cycles.equilibria import (
     Equilibrium,
+    belt_sign,
     check_autonomous,
     hopf_points,
+    mirror_equilibrium,
+    mirrored,
     parameter_member,
     steady_sliding,
 )
-from lumped.drivers.cycles.shooting import Cycle, find_cycle
+from lumped.drivers.cycles.shooting import Cycle, find_cycle, mirror_cycle
 from lumped.model.network import Network
 from lumped.model.system_parameters import system_parameters, with_values
 from lumped.numerics import validate
@@ -54,6 +64,7 @@ from lumped.solvers.event_driven_network import March, model, solve_contact
 __all__ = [
     "COLUMNS",
     "HOPF_REACH",
+    "HOPF_RETURNS",
     "MAX_POINTS",
     "SETTLE_RTOL",
     "CyclesTable",
@@ -73,6 +84,11 @@ SETTLE_RTOL = 1e-6
 SETTLE_PERIODS, SETTLE_PIECES = 20, 50
 #: The Hopf points looked for without ``vary``: belt speeds from ``V / HOPF_REACH`` to ``V * HOPF_REACH``.
 HOPF_REACH = 10.0
+#: The returns the walk along the Hopf branch may take without ``vary``
+#: (:func:`~lumped.drivers.cycles.shooting.returns_budget`): ``examples/stribeck_belt.toml``'s takes 215 to its
+#: speed; a branch crawling (the same file with ``decay = "gaussian"``: its slip-only cycles' multiplier passes
+#: 900 and the steps shrink as the orbits beside them stick) is cut there, some 15 s.
+HOPF_RETURNS = 300
 
 
 class CyclesTable(NamedTuple):
@@ -114,10 +130,12 @@ def request(network: Network, vary: tuple[str, float, float] | None = None, poin
     if not (isinstance(vary, tuple) and len(vary) == 3 and isinstance(vary[0], str)):
         raise ValueError(f"vary: expected (name, start, stop), got {vary!r:.60}")
     name, start, stop = vary
-    try:
-        start, stop = float(start), float(stop)
-    except (TypeError, ValueError):
-        raise ValueError(f"vary: START and STOP must be real numbers, got {start!r:.20}:{stop!r:.20}") from None
+    if not all(
+        isinstance(end, (int, float, np.integer, np.floating)) and not isinstance(end, bool) for end in (start, stop)
+    ):
+        # no conversion: a string is the command line's to parse (--vary), not the API's to guess at
+        raise ValueError(f"vary: START and STOP must be real numbers, got {start!r:.20}:{stop!r:.20}")
+    start, stop = float(start), float(stop)
     if not (math.isfinite(start) and math.isfinite(stop) and start < stop):
         raise ValueError(f"vary: START:STOP must be finite with START < STOP, got {start!r}:{stop!r}")
     if np.unique(np.linspace(start, stop, points)).size < points:  # the equilibria's rows would repeat values
@@ -175,9 +193,10 @@ def cycles(
     from lumped.drivers.cycles.continuation import continue_branches
 
     name, start, stop = req.vary
-    branch = continue_branches(req.network, name, start, stop, req.points, progress)
+    notes: list[str] = []  # what ended a branch early or found none: the summary says it
+    branch = continue_branches(req.network, name, start, stop, req.points, progress, notes=notes)
     rows = [(p.value, p.branch, p.equilibrium if p.branch == "equilibrium" else p.cycle, p.kind) for p in branch]
-    return CyclesTable(_table(rows, network.mass_names, name), _summary(rows, name))
+    return CyclesTable(_table(rows, network.mass_names, name), "; ".join([_summary(rows, name), *notes]))
 
 
 Row = tuple[float, str, Any, str]  # (value, branch, Equilibrium or Cycle, kind)
@@ -185,19 +204,25 @@ Row = tuple[float, str, Any, str]  # (value, branch, Equilibrium or Cycle, kind)
 
 def _rows_at_file(network: Network, points: int, progress: Callable | None) -> tuple[list[Row], list[str]]:
     """The equilibrium's row, then the cycles found from the initial state and from the Hopf branch; and what
-    was not found, in words, for the summary."""
+    was not found, in words, for the summary.  A belt running backwards is computed as its mirror image
+    (:func:`~lumped.drivers.cycles.equilibria.mirrored`), and its rows mirrored back."""
+    if belt_sign(network) < 0:
+        rows, notes = _rows_at_file(mirrored(network), points, progress)
+        mirror = lambda item: mirror_equilibrium(item) if isinstance(item, Equilibrium) else mirror_cycle(item)
+        return [(value, branch, mirror(item), kind) for value, branch, item, kind in rows], notes
     tick = progress or (lambda done, total: None)
     eq = steady_sliding(network)
     rows: list[Row] = [(math.nan, "equilibrium", eq, "regular")]
     notes = []
     starts = []
-    tick(1, 3)
+    tick(0, 3000)
     v0, note = _settled_crossing(network, eq)
     if note:
         notes.append(note)
     starts.append(("the initial state", v0))
-    tick(2, 3)
-    starts.append(("the Hopf branch", _hopf_branch_crossing(network, points)))
+    tick(2000, 3000)
+    walked = None if progress is None else lambda done, total: progress(2000 + min(done, 999), 3000)
+    starts.append(("the Hopf branch", _hopf_branch_crossing(network, points, notes, walked)))
     belt = model(network).V
     starts.append(("the belt's speed", belt if belt > 0 else None))  # a cycle stuck at the section crosses it at V
     for i, (where, v) in enumerate(starts):
@@ -211,14 +236,20 @@ def _rows_at_file(network: Network, points: int, progress: Callable | None) -> t
             continue
         if not any(_same(cycle, row[2]) for row in rows[1:]):
             rows.append((math.nan, "cycle", cycle, "regular"))
-    tick(3, 3)
+    tick(3000, 3000)
     return rows, notes
 
 
 def _same(a: Cycle, b: Cycle) -> bool:
-    """Two cycles found from two starts are one if they cross the section at the same speed (to Newton's 1e-12
-    relative, with a margin of 1e4 for the two starts)."""
-    return abs(a.section - b.section) <= 1e-8 * max(abs(a.section), abs(b.section))
+    """Two cycles found from two starts are one if they stick as often and cross the section at the same speed
+    in the same period (each to Newton's 1e-12 relative, with a margin of 1e4 for the two starts).
+
+    The speed alone does not tell them apart: a stick-slip cycle whose stick is short crosses the section at
+    the belt's speed ``V`` and a slip-only cycle grazing the stuck state crosses it just below (on the
+    static/kinetic belt with ``static - kinetic = 1e-6 K``, stuck 1e-5 s a period, both within 1e-11 of ``V``);
+    their stick phases (1 and 0) and their periods (``2 pi + 1e-5`` s and ``2 pi`` s) differ."""
+    close = lambda p, q: abs(p - q) <= 1e-8 * max(abs(p), abs(q))
+    return a.stick_phases == b.stick_phases and close(a.section, b.section) and close(a.period, b.period)
 
 
 def _settled_crossing(network: Network, eq: Equilibrium) -> tuple[float | None, str]:
@@ -261,9 +292,12 @@ def _crossings(march: March, t: np.ndarray, x: np.ndarray, v: np.ndarray, x_star
     return out
 
 
-def _hopf_branch_crossing(network: Network, points: int) -> float | None:
+def _hopf_branch_crossing(network: Network, points: int, notes: list[str], progress: Callable | None) -> float | None:
     """The section speed of the cycle nearest the file's belt speed on the branch born at the nearest Hopf point
-    in that speed (within :data:`HOPF_REACH`), or ``None`` where there is none."""
+    in that speed (within :data:`HOPF_REACH`), or ``None`` where there is none: a branch that does not come
+    within the range (a subcritical Hopf point's, on the side away from the file's speed) has only its cycle of
+    zero amplitude, which is steady sliding, no start.  The walk takes at most :data:`HOPF_RETURNS` returns (a
+    branch crawling with its steps is cut there and the notes say so), its progress reported as it goes."""
     name = belt_parameter(network)
     (param,) = system_parameters(network, [name])
     V = param.value
@@ -277,8 +311,13 @@ def _hopf_branch_crossing(network: Network, points: int) -> float | None:
     from lumped.drivers.cycles.continuation import continue_branches
 
     start, stop = sorted((nearest, V))
-    rows = continue_branches(network, name, start, stop, points, start_branch=False)  # the Hopf branch alone
-    branch = [p for p in rows if p.branch == "cycle"]
+    rows = continue_branches(  # the Hopf branch alone
+        network, name, start, stop, points, progress, start_branch=False, returns=HOPF_RETURNS, notes=notes
+    )
+    # its cycles strictly inside the range: not those at the Hopf point (its zero amplitude's, steady sliding, and the
+    # branch's point at the range's end there), nor beyond it: the first small cycle of a subcritical branch lies on
+    # the side away from V, and Newton from any of them at V would come to steady sliding
+    branch = [p for p in rows if p.branch == "cycle" and (start < p.value < stop or p.value == V)]
     if not branch:
         return None
     return float(min(branch, key=lambda p: abs(p.value - V)).cycle.section)

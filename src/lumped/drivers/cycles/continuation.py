@@ -90,16 +90,33 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.drivers.cycles.equilibria import Equilibrium, check_autonomous, hopf_points, steady_sliding
-from lumped.drivers.cycles.shooting import RTOL, Cycle, find_cycle, return_map
+from lumped.drivers.cycles.equilibria import (
+    Equilibrium,
+    belt_sign,
+    check_autonomous,
+    hopf_points,
+    mirror_equilibrium,
+    mirrored,
+    steady_sliding,
+)
+from lumped.drivers.cycles.shooting import (
+    RTOL,
+    Cycle,
+    ReturnsSpent,
+    find_cycle,
+    mirror_cycle,
+    return_map,
+    returns_budget,
+)
 from lumped.drivers.response.continuation import check_points
 from lumped.model.network import Network
-from lumped.model.system_parameters import system_parameters, with_values
+from lumped.model.system_parameters import SystemParameter, system_parameters, with_values
+from lumped.numerics import validate
 from lumped.numerics.arclength import predict, unit_tangent
 from lumped.numerics.roots import brentq
 from lumped.solvers.event_driven_network import model
 
-__all__ = ["HOPF_AMPLITUDE", "BranchPoint", "continue_branches"]
+__all__ = ["HOPF_AMPLITUDE", "RETURNS_PER_POINT", "BranchPoint", "continue_branches"]
 
 #: The corrector's tolerance on ``|F|``, in units of the speed scale ``v_s``: a hundred times the shooting's
 #: 1e-12, so that the noise of the return map's integration (and of ``F_p``'s) never stalls it; the row's
@@ -126,6 +143,18 @@ KINK_STEP = 1e-4
 ACROSS_GAP = 1e-5
 #: The cosine of the largest angle between a point's tangent and the secant to it for the tangent to be used.
 TRUSTED = 0.9
+#: The returns (:func:`~lumped.drivers.cycles.shooting.returns_budget`) one branch may take, per row asked
+#: (``points``), at least :data:`MIN_RETURNS`: a branch that has not ended by then ends there, and the rows
+#: say where (:func:`continue_branches`' ``notes``).  Only the walk's returns count: a step costs 3 to 5 (the
+#: corrector, the cycle's Newton, ``F_p``), and one halved where the corrector fails costs them again; locating a
+#: change (:func:`_changes`) is bounded by its own construction (bisections to :data:`LOCATE_TOL`, some 30 of a
+#: few returns each, some 500 for a kink's two pieces) and is not counted.  The Veraszto-Stepan branch of notebook
+#: 16 walks 1206 returns for 30 points, 40 a point; the stick-slip branch of tests/test_cycles_continuation.py
+#: through its discontinuous fold 1054 for 3 (the steps halved at the kink and the search across it): the budget
+#: is some three times each.  A branch whose steps shrink without end (the Gaussian
+#: Stribeck belt's slip-only cycles, their multiplier passing 900 as the orbits beside them start to stick) is so
+#: bounded in time: a return is a period or so of DOP853 at RTOL, some 0.05 s.
+RETURNS_PER_POINT, MIN_RETURNS = 100, 3000
 #: The corrector's hyperplane at a fixed parameter.
 _FIXED_P = np.array([0.0, 1.0])
 
@@ -174,14 +203,21 @@ def _forward_step(value: float, span: float) -> float:
 class _Family:
     """The members of the family, the scales and the residual ``F`` with its Jacobian."""
 
-    def __init__(self, network: Network, parameter: str, start: float, stop: float) -> None:
+    def __init__(self, network: Network, parameter: str, start: float, stop: float, budget: int = MIN_RETURNS) -> None:
         (self.parameter,) = system_parameters(network, [parameter], "vary")
-        self.network, self.name = network, parameter
+        self.network, self.name, self.budget = network, parameter, budget
+        self.notes: list[str] = []  # what ended a branch early, in words
+        # the belt's sign over the range (a driver's range never reaches 0: parameter_member); V < 0 is computed
+        # as its mirror (equilibria.mirrored), whose belt runs forwards, and the rows are mirrored back
+        self.sign = belt_sign(with_values(network, (self.parameter,), [start]))
+        self.belt_rate = self.sign * _drives_contact(network, self.parameter)  # dV/dp of the members: V is affine
         self.p_s = abs(stop - start)
         self.v_s = max(abs(self.belt(start)), abs(self.belt(stop)))
 
     def member(self, value: float) -> Network:
-        return with_values(self.network, (self.parameter,), [value])
+        """The system at ``value`` of the parameter, mirrored where its belt runs backwards."""
+        net = with_values(self.network, (self.parameter,), [value])
+        return mirrored(net) if self.sign < 0 else net
 
     def belt(self, value: float) -> float:
         """The speed of the contact's other point (m/s) in the member at ``value``."""
@@ -290,19 +326,34 @@ class _Family:
         (an affine function of it: its difference over a unit step); else the one-sided difference
         ``(P(v; p + h) - v_next) / h`` with :func:`_forward_step`'s ``h``: one return more, ``v_next`` being known."""
         if slope == 0 and v_next == self.belt(value):
-            return self.belt(value + 1.0) - self.belt(value)
+            return self.belt_rate
         return self._difference(v, value, v_next)
 
     def _difference(self, v: float, value: float, v_next: float) -> float:
-        """``(P(v; p + h) - v_next) / h`` at ``p = value``, ``h`` :func:`_forward_step`'s."""
+        """``(P(v; p + h) - v_next) / h`` at ``p = value``, ``h`` :func:`_forward_step`'s, or the backward one
+        (``-h``) where the system refuses ``p + h`` (a range ending at the edge of the values it takes, such as
+        ``kinetic`` just below ``static``: the range's ends are checked, not what lies beyond them)."""
         h = _forward_step(value, self.p_s)
-        return (return_map(self.member(value + h), v)[0] - v_next) / h
+        try:
+            ahead = self.member(value + h)
+        except ValueError:
+            h, ahead = -h, self.member(value - h)
+        return (return_map(ahead, v)[0] - v_next) / h
 
     def _snapped(self, u: np.ndarray) -> tuple[float, float]:
         """``(v, p)`` at ``u``, with ``v`` the belt's speed where it is within the tolerance of it (Notes)."""
         v, value = float(u[0] * self.v_s), float(u[1] * self.p_s)
         belt = self.belt(value)
         return (belt if abs(v - belt) <= CORRECTOR_TOL * self.v_s else v), value
+
+
+def _drives_contact(network: Network, parameter: SystemParameter) -> float:
+    """``dV/dp``: 1 if ``parameter`` is the velocity of the driven point the friction contact slides on (the belt's
+    speed is that velocity), else 0 (no other parameter moves it)."""
+    if parameter.table != "driver":
+        return 0.0
+    contact = model(network).contact.link.element
+    return 1.0 if network.drivers[parameter.index].name in network.elements[contact].between else 0.0
 
 
 def _signature(p: _Point, tangent: np.ndarray) -> tuple[int, float, float]:
@@ -459,41 +510,54 @@ def _follow(
     rows: list[BranchPoint] = []
     p, back, ds, crossed, trail = first, None, walk.largest(tangent), False, [first]
     travel = tangent  # the branch's direction at p: the secant to it from the point before on its piece
-    for _ in range(steps):
-        guess = predict(p.u, tangent, ds, back)
-        q = fam.correct(guess, tangent) or fam._newton(guess, fam.landed(guess, tangent))
-        if q is None and not crossed and ds < KINK_STEP * walk.largest(tangent):
-            q, crossed = fam.across(_back_from(trail, p)), True
-        if q is None or abs(q.u[1] - p.u[1]) > 1.5 * walk.dp or abs(q.u[0] - p.u[0]) > 1.5 * walk.dv:
-            ds *= 0.5
-            if ds < MIN_STEP * walk.largest(tangent):
+    try:
+        for _ in range(steps):
+            guess = predict(p.u, tangent, ds, back)
+            q = fam.correct(guess, tangent) or fam._newton(guess, fam.landed(guess, tangent))
+            if q is None and not crossed and ds < KINK_STEP * walk.largest(tangent):
+                q, crossed = fam.across(_back_from(trail, p)), True
+            if q is None or abs(q.u[1] - p.u[1]) > 1.5 * walk.dp or abs(q.u[0] - p.u[0]) > 1.5 * walk.dv:
+                ds *= 0.5
+                if ds < MIN_STEP * walk.largest(tangent):
+                    break
+                continue
+            crossed = False
+            outside = _at_end(q.value, walk, fam.p_s)
+            if outside:
+                q = _at_edge(fam, p, q, walk) or q
+            with returns_budget(None):  # bounded by construction: bisections to LOCATE_TOL (RETURNS_PER_POINT)
+                found, piece = _changes(fam, p, q, travel)
+            if found is None:
+                ds *= 0.5
+                continue
+            rows += [*found, _row(q, "regular")]
+            # across a kink the branch may turn back: the tangent is oriented from where q's piece begins; it is the
+            # secant from there where F_p (a difference: no derivative within its step of a kink) turns it
+            begins = p if piece is None or np.array_equal(piece.u, q.u) else piece
+            secant = (q.u - begins.u) / np.linalg.norm(q.u - begins.u)
+            jacobian = _tangent(q, secant)
+            trusted = jacobian @ secant > TRUSTED
+            back = (p.u, tangent) if piece is None and trusted else None  # no Hermite cubic through a kink
+            tangent, travel = (jacobian if trusted else secant), secant
+            progress(q.value)
+            if piece is not None:  # a new piece, known from its end to q: the steps grow again from that length
+                ds = float(np.linalg.norm(q.u - begins.u))
+            p, ds = q, min(1.5 * ds, walk.largest(tangent))
+            trail.append(q)
+            if outside or q.u[0] < walk.floor:
                 break
-            continue
-        crossed = False
-        outside = q.u[1] < walk.lo + LOCATE_TOL or q.u[1] > walk.hi - LOCATE_TOL  # at an end: the end itself
-        if outside:
-            q = _at_edge(fam, p, q, walk) or q
-        found, piece = _changes(fam, p, q, travel)
-        if found is None:
-            ds *= 0.5
-            continue
-        rows += [*found, _row(q, "regular")]
-        # across a kink the branch may turn back: the tangent is oriented from where q's piece begins; it is the
-        # secant from there where F_p (a difference: no derivative within its step of a kink) turns it
-        begins = p if piece is None or np.array_equal(piece.u, q.u) else piece
-        secant = (q.u - begins.u) / np.linalg.norm(q.u - begins.u)
-        jacobian = _tangent(q, secant)
-        trusted = jacobian @ secant > TRUSTED
-        back = (p.u, tangent) if piece is None and trusted else None  # no Hermite cubic through a kink
-        tangent, travel = (jacobian if trusted else secant), secant
-        progress(q.value)
-        if piece is not None:  # a new piece, known from its end to q: the steps grow again from that length
-            ds = float(np.linalg.norm(q.u - begins.u))
-        p, ds = q, min(1.5 * ds, walk.largest(tangent))
-        trail.append(q)
-        if outside or q.u[0] < walk.floor:
-            break
+    except ReturnsSpent:  # the branch's budget (RETURNS_PER_POINT): it ends at its last point, which says so
+        fam.notes.append(f"a branch ends at {fam.name} = {p.value:.6g}, its {fam.budget} returns spent")
     return rows
+
+
+def _at_end(value: float, walk: _Walk, span: float) -> bool:
+    """Whether ``value`` is at or past an end of the range, to :data:`LOCATE_TOL` of its length ``span``: then the
+    branch's point is the end's own (:func:`_at_edge`), and the branch ends.  In the parameter's unit, not the
+    scaled ``p / span``: on a range a few ulps long that is ``1e16`` or more, whose ulp exceeds LOCATE_TOL, and a
+    step landing on the end exactly was then not at it (the end's row written twice)."""
+    lo, hi = walk.ends
+    return value <= lo + LOCATE_TOL * span or value >= hi - LOCATE_TOL * span
 
 
 def _back_from(trail: list[_Point], p: _Point) -> _Point:
@@ -533,7 +597,10 @@ def _from_hopf(
     guess = np.array([HOPF_AMPLITUDE * abs(belt) / fam.v_s, hopf / fam.p_s])
     # v fixed, p solved for; F = v (P'(0) - 1 + O(v^2)) is that small: the tolerance is relative to v
     first = fam._newton(guess, np.array([1.0, 0.0]), tol=CORRECTOR_TOL * guess[0])
-    if first is None or not np.any(first.jacobian):  # none, or a neutral family (a centre): no branch to follow
+    if first is None:  # said, not silent: the Hopf point's row alone
+        fam.notes.append(f"no small cycle found off the Hopf point at {fam.name} = {hopf:.6g}")
+        return rows
+    if not np.any(first.jacobian):  # a neutral family (a centre): no isolated cycle, no branch to follow
         return rows
     rows.append(_row(first, "regular"))
     tangent = _tangent(first, np.array([1.0, 0.0]))
@@ -544,10 +611,12 @@ def _from_start(
     fam: _Family, start: float, walk: _Walk, steps: int, progress: Callable[[float], None], found: list[BranchPoint]
 ) -> list[BranchPoint]:
     """The branch through the cycle found at ``start`` from the belt's speed, towards ``stop``: none if Newton
-    finds no cycle there, or if a branch ``found`` from a Hopf point has come to it."""
+    finds no cycle there (its reason in ``fam.notes``: no failure is silent), or if a branch ``found`` from a Hopf
+    point has come to it."""
     try:
         first = fam.point(fam.belt(start), start)
-    except ValueError:
+    except ValueError as err:  # find_cycle names its own argument (v0: ...); the user gave none
+        fam.notes.append(f"no cycle from the belt's speed at {fam.name} = {start:.6g}: {str(err).split(': ', 1)[-1]}")
         return []
     tol = CORRECTOR_TOL * fam.v_s
     if any(
@@ -567,6 +636,8 @@ def continue_branches(
     progress: Callable[[int, int], None] | None = None,
     *,
     start_branch: bool = True,
+    returns: int | None = None,
+    notes: list[str] | None = None,
 ) -> list[BranchPoint]:
     """Steady sliding and its limit cycles from ``parameter = start`` to ``stop`` (the module docstring).
 
@@ -587,6 +658,11 @@ def continue_branches(
     start_branch : bool
         Whether to follow the branch of the cycle found at ``start`` too (module docstring); false: the branches
         from the Hopf points alone (``cycles`` without ``vary`` wants the Hopf branch's cycle and no other).
+    returns : int, optional
+        The returns each branch may take (:func:`~lumped.drivers.cycles.shooting.returns_budget`; default
+        :data:`RETURNS_PER_POINT` ``points``, at least :data:`MIN_RETURNS`): a branch ends where they are spent.
+    notes : list of str, optional
+        Appended with what ended a branch early, in words (its budget spent).
 
     Returns
     -------
@@ -603,7 +679,10 @@ def continue_branches(
     check_autonomous(network)
     points = check_points(points)
     hopf = hopf_points(network, parameter, start, stop)  # checks the parameter and the range (vary: ...)
-    fam = _Family(network, parameter, start, stop)
+    budget = (
+        max(MIN_RETURNS, RETURNS_PER_POINT * points) if returns is None else validate.positive_int("returns", returns)
+    )
+    fam = _Family(network, parameter, start, stop, budget)
     report = _reporter(progress, start, stop)
     rows = _equilibria(fam, start, stop, points, hopf)
     lo, hi = sorted((start / fam.p_s, stop / fam.p_s))
@@ -620,7 +699,7 @@ def continue_branches(
     for h in hopf:
         if h in reached:
             continue  # its branch is the one that came to it: no second walk along it
-        branch = _from_hopf(fam, h, walk, 50 * points, report)
+        branch = _bounded(fam, lambda h=h: _from_hopf(fam, h, walk, 50 * points, report)) or [_hopf_row(fam, h)]
         rows += branch
         end = branch[-1]
         others = [g for g in hopf if g != h]
@@ -628,10 +707,30 @@ def continue_branches(
             reached.append(min(others, key=lambda g: abs(g - end.value)))
             rows.append(_hopf_row(fam, reached[-1]))
     if start_branch:
-        rows += _from_start(fam, start, walk, 50 * points, report, rows)
+        rows += _bounded(fam, lambda: _from_start(fam, start, walk, 50 * points, report, rows))
     if progress is not None:
         progress(1000, 1000)
-    return rows
+    if notes is not None:
+        notes += fam.notes
+    return rows if fam.sign > 0 else [_mirrored_row(r) for r in rows]
+
+
+def _bounded(fam: _Family, branch: Callable[[], list[BranchPoint]]) -> list[BranchPoint]:
+    """``branch()``'s rows, its returns bounded by ``fam.budget`` (:data:`RETURNS_PER_POINT`); none, and a note,
+    where the budget is spent before its first cycle (a walk under way keeps its rows: :func:`_follow`)."""
+    with returns_budget(fam.budget):
+        try:
+            return branch()
+        except ReturnsSpent:
+            fam.notes.append(f"a branch of {fam.name} found no cycle in its {fam.budget} returns")
+            return []
+
+
+def _mirrored_row(row: BranchPoint) -> BranchPoint:
+    """A row of the mirrored family (a belt running backwards, :class:`_Family`) as the system's own."""
+    eq = None if row.equilibrium is None else mirror_equilibrium(row.equilibrium)
+    cycle = None if row.cycle is None else mirror_cycle(row.cycle)
+    return row._replace(equilibrium=eq, cycle=cycle)
 
 
 def _reporter(progress: Callable[[int, int], None] | None, start: float, stop: float) -> Callable[[float], None]:

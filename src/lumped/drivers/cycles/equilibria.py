@@ -47,7 +47,17 @@ from lumped.model.system_parameters import SystemParameter, system_parameters, w
 from lumped.numerics.roots import brentq
 from lumped.solvers.event_driven_network import Contact, Link, classify
 
-__all__ = ["HOPF_RTOL", "HOPF_SAMPLES", "Equilibrium", "check_autonomous", "hopf_points", "steady_sliding"]
+__all__ = [
+    "HOPF_RTOL",
+    "HOPF_SAMPLES",
+    "Equilibrium",
+    "belt_sign",
+    "check_autonomous",
+    "hopf_points",
+    "mirror_equilibrium",
+    "mirrored",
+    "steady_sliding",
+]
 
 #: What ``cycles`` runs, in words (the refusals).
 SCOPE = (
@@ -213,6 +223,36 @@ def check_autonomous(network: Network) -> None:
         f"no falling law: {what}, so steady sliding at x = {eq.position[0]:.6g} m (eigenvalues {roots} 1/s) "
         "cannot lose stability and there is no cycle"
     )
+
+
+def belt_sign(network: Network) -> int:
+    """``+1`` or ``-1``: the sign of the belt's speed ``V`` (the velocity of the contact's other point) in a
+    system in scope (:func:`check_autonomous`)."""
+    contact = _sliding(network).contact
+    speed = contact.link.velocity if contact is not None else 1.0
+    return 1 if speed > 0 else -1
+
+
+def mirrored(network: Network) -> Network:
+    """``network`` seen in the mirror ``x -> -x``: every driven point's velocity and each mass's ``x0`` and ``v0``
+    negated.
+
+    The systems in scope are symmetric under it: the springs pull towards points at rest at 0, a dashpot's force
+    ``-c (x' - V_i)`` and the contact's odd tension ``sgn(u) g(|u|)`` change sign with every velocity, so a motion
+    ``x(t)`` of ``network`` is ``-x(t)`` of its mirror, steady sliding at ``x*`` is at ``-x*`` with the same
+    eigenvalues, and a cycle keeps its period, stick time and multipliers with its extremes swapped and negated.
+    ``cycles`` computes a belt running backwards (``V < 0``) as its mirror, whose belt runs forwards, where the
+    section's crossing and a stuck cycle's speed there (``V``) are those of :mod:`~lumped.drivers.cycles.shooting`.
+    """
+    names = [f"{d.name}.velocity" for d in network.drivers if d.constant_velocity is not None]
+    names += [f"{m.name}.{key}" for m in network.masses for key in ("x0", "v0")]
+    params = system_parameters(network, names)
+    return with_values(network, params, [-p.value for p in params])
+
+
+def mirror_equilibrium(eq: Equilibrium) -> Equilibrium:
+    """The equilibrium of the mirrored system (:func:`mirrored`): position and forces negated."""
+    return eq._replace(position=-eq.position, forces=-eq.forces)
 
 
 def parameter_member(network: Network, parameter: str, start: float, stop: float) -> tuple[SystemParameter, list]:

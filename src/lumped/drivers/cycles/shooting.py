@@ -12,7 +12,9 @@ and steady sliding sits at ``x*`` (the mass at rest, ``u = -V``).
 
 **The section and the return map.**  The section is the line ``x = x*``
 crossed upward (``x' = v > 0``), its coordinate the mass's velocity ``v``
-(:func:`section_of`).  The return map ``P(v)`` follows the motion from
+(:func:`section_of`); on a belt running backwards (``V < 0``) it is crossed downward (``v < 0``), in the
+belt's direction: such a system is computed as its mirror image ``x -> -x``, whose belt runs forwards
+(:func:`~lumped.drivers.cycles.equilibria.mirrored`), so that the two directions give mirrored cycles exactly.  The return map ``P(v)`` follows the motion from
 ``(x*, v)`` by the event-driven method's phases and rule (:class:`March`:
 stick, slip, stop, reversal, breakaway) to its next upward crossing; a
 limit cycle is a fixed point ``P(v) = v``, its period the return time,
@@ -69,12 +71,15 @@ method's :class:`~lumped.solvers.event_driven_network.ContactSlip`) at
 
 from __future__ import annotations
 
+import contextvars
 import math
+from collections.abc import Iterator
+from contextlib import contextmanager
 from typing import NamedTuple
 
 import numpy as np
 
-from lumped.drivers.cycles.equilibria import check_autonomous, steady_sliding
+from lumped.drivers.cycles.equilibria import belt_sign, check_autonomous, mirrored, steady_sliding
 from lumped.model.network import Network
 from lumped.model.system_parameters import system_parameters, with_values
 from lumped.numerics import validate
@@ -88,9 +93,12 @@ __all__ = [
     "MULTIPLIER_MARGIN",
     "RTOL",
     "Cycle",
+    "ReturnsSpent",
     "cycle_derivative_in",
     "find_cycle",
+    "mirror_cycle",
     "return_map",
+    "returns_budget",
     "section_of",
 ]
 
@@ -111,11 +119,46 @@ MAX_NEWTON, MAX_HALVINGS = 40, 30
 #: 80 steps of 2e-13, grown 22 times), and ``log P'`` by that times ``int |g''| dt / m`` over a period,
 #: below 1e-7 for a curve that changes its slope by O(1) over O(1) of its speeds; 1e-6 keeps a factor 10.
 MULTIPLIER_MARGIN = 1e-6
+#: A cycle's swing ``x_max - x_min`` must exceed this fraction of the motion's scale (:func:`_off_rest`): the
+#: returns' states err by some 1e-9 of their scale at :data:`RTOL` (:data:`MULTIPLIER_MARGIN`'s derivation).
+SWING_TOL = 1e-9
 #: Gauss-Legendre nodes and weights on ``[-1, 1]`` for ``int g'(|u|) dt`` on each step of a slip phase: exact
 #: for polynomials of degree 15, beyond the order-7 dense output they integrate.
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(8)
 #: Samples per step of a slip phase's dense output when its crossings and extremes are bracketed.
 _SUBSTEPS = 4
+
+
+class ReturnsSpent(Exception):
+    """A return asked for beyond the budget of :func:`returns_budget`.
+
+    Not a ``ValueError``: the continuation takes a ``ValueError`` from a return for "no cycle from there" and
+    tries elsewhere, which would turn a spent budget into more work; this one ends the work it bounds."""
+
+
+#: The returns left to the innermost :func:`returns_budget` (a one-item list), or ``None``: no bound.
+_RETURNS_LEFT: contextvars.ContextVar[list[int] | None] = contextvars.ContextVar("returns_left", default=None)
+
+
+@contextmanager
+def returns_budget(limit: int | None) -> Iterator[None]:
+    """Bound the returns (:func:`_fly`, the unit of work of every cycle computation) made inside the block to
+    ``limit``: the next one raises :class:`ReturnsSpent`.  A return costs about the same at any parameter (a
+    natural period or so of DOP853 at :data:`RTOL`, or closed forms), so the bound is one on the block's time.
+    ``None``: no bound inside the block (for work bounded by its own construction), the outer one's count kept."""
+    token = _RETURNS_LEFT.set(None if limit is None else [limit])
+    try:
+        yield
+    finally:
+        _RETURNS_LEFT.reset(token)
+
+
+def _spend_return() -> None:
+    left = _RETURNS_LEFT.get()
+    if left is not None:
+        left[0] -= 1
+        if left[0] < 0:
+            raise ReturnsSpent("the returns allowed are spent")
 
 
 class Cycle(NamedTuple):
@@ -135,6 +178,13 @@ class Cycle(NamedTuple):
     multipliers: np.ndarray
     max_multiplier: float
     stable: bool
+
+
+def mirror_cycle(cycle: Cycle) -> Cycle:
+    """The cycle of the mirrored system (:func:`~lumped.drivers.cycles.equilibria.mirrored`): its extremes swapped
+    and negated, its ``section`` the velocity at the crossing of ``x = x*`` in the mirrored belt's direction
+    (downward for a belt at ``V < 0``), negated; period, stick and multipliers the same."""
+    return cycle._replace(section=-cycle.section, x_max=-cycle.x_min, x_min=-cycle.x_max)
 
 
 class _Flight(NamedTuple):
@@ -217,6 +267,7 @@ def _fly(sys: _System, v: float, rtol: float = RTOL) -> _Flight:
     radius.  Past ``t = sqrt(2 CLOCK_TOL) / (omega eps)`` that passes :data:`CLOCK_TOL` of the motion's scale, and
     the return is refused in one line (a belt slower than about 1.6e-10 m/s for ``examples/belt.toml``).
     """
+    _spend_return()
     mdl = sys.mdl
     natural = 2 * math.pi * math.sqrt(mdl.m / mdl.K)
     longest_stick = 2 * mdl.contact.static / (mdl.K * abs(mdl.V))
@@ -343,8 +394,22 @@ def return_map(network: Network, v: float) -> tuple[float, float, float]:
     ValueError
         One line: a network out of scope, ``v <= 0``, or no return within :data:`RETURN_PERIODS`.
     """
+    sign = belt_sign(network) if isinstance(network, Network) else 1  # not a Network: _system refuses it
+    if sign < 0:  # the mirror's map, conjugated: P(v) = -P_mirror(-v)
+        v_next, derivative, time = return_map(mirrored(network), -_along_belt("v", v, sign))
+        return -v_next, derivative, time
     flight = _fly(_system(network), validate.positive("v", v))
     return flight.v_next, flight.derivative, flight.time
+
+
+def _along_belt(name: str, v: object, sign: int) -> float:
+    """``v`` checked to cross the section in the belt's direction, ``sign v > 0`` (finite)."""
+    out = validate.finite(name, v)
+    if sign < 0 and not out < 0:
+        raise ValueError(
+            f"{name}: the belt runs at V < 0, so the section is crossed downward: {name} must be < 0, got {out}"
+        )
+    return out
 
 
 def find_cycle(network: Network, v0: float, *, tol: float = 1e-12) -> Cycle:
@@ -366,6 +431,9 @@ def find_cycle(network: Network, v0: float, *, tol: float = 1e-12) -> Cycle:
         One line: bad arguments, a neutral map (``P' = 1``: no isolated cycle), no convergence in
         :data:`MAX_NEWTON` steps, or convergence to steady sliding (:func:`_off_steady_sliding`).
     """
+    sign = belt_sign(network) if isinstance(network, Network) else 1
+    if sign < 0:  # the mirror's cycle, mirrored back (equilibria.mirrored)
+        return mirror_cycle(find_cycle(mirrored(network), -_along_belt("v0", v0, sign), tol=tol))
     sys = _system(network)
     v = validate.positive("v0", v0)
     tol = validate.positive("tol", tol)
@@ -374,7 +442,7 @@ def find_cycle(network: Network, v0: float, *, tol: float = 1e-12) -> Cycle:
         residual = flight.v_next - v
         if abs(residual) <= tol * max(abs(sys.mdl.V), v):
             _off_steady_sliding(v, flight.derivative, tol * max(abs(sys.mdl.V), v))
-            return _cycle(sys, v, flight, tol)
+            return _off_rest(sys, _cycle(sys, v, flight, tol))
         if flight.derivative == 1:
             raise ValueError(f"v0: the return map is neutral at v = {v:.6g} m/s (P' = 1): no isolated cycle there")
         v, flight = _newton_step(sys, v, -residual / (flight.derivative - 1))
@@ -396,6 +464,27 @@ def _off_steady_sliding(v: float, derivative: float, bound: float) -> None:
             f"v0: Newton's method came to v = {v:.3g} m/s, within its error of 0 (P' = {derivative:.6g}): steady "
             "sliding, not a cycle"
         )
+
+
+def _off_rest(sys: _System, cycle: Cycle) -> Cycle:
+    """``cycle``, or a one-line ``ValueError`` where its swing ``x_max - x_min`` is within the positions' error
+    of 0: a fixed point of the map that is steady sliding seen through the integrator's noise.
+
+    The returns' states err by some :data:`SWING_TOL` of the motion's scale ``max(static/K, |x*|)`` (the
+    integrator's absolute tolerance on ``x`` is set on that scale: :func:`_march`; the derivation of
+    :data:`MULTIPLIER_MARGIN`), so a swing below that is no motion that can be told from rest: an overdamped
+    belt's motion from ``(x*, v)`` creeps back to ``x*`` and "crosses" it by its error (``x_max - x_min`` of
+    7e-14 m at ``x* = 2.16`` m, its multiplier 2e-35), which is no cycle.
+    """
+    mdl = sys.mdl
+    scale = max(mdl.contact.static / mdl.K, abs(sys.x_star))
+    swing = float(cycle.x_max[0] - cycle.x_min[0])
+    if swing <= SWING_TOL * scale:
+        raise ValueError(
+            f"v0: Newton's method came to a motion of swing {swing:.3g} m, within the positions' error "
+            f"({SWING_TOL:.0e} of {scale:.3g} m) of rest: steady sliding, not a cycle"
+        )
+    return cycle
 
 
 def _newton_step(sys: _System, v: float, step: float) -> tuple[float, _Flight]:
