@@ -42,6 +42,7 @@ from lumped.numerics.expm import expm
 from lumped.numerics.roots import brentq
 from lumped.solvers.network_modes import (
     NetworkEvent,
+    crossed,
     event_rows,
     grid_rows,
     initial_mode,
@@ -79,9 +80,9 @@ def _next_event(p: Parts, ph: Phase, t_lim: float) -> tuple[float, list[tuple[in
         t1 = min(t0 + h, t_lim)
         z1 = step @ z if t1 == t0 + h else expm(ph.a * (t1 - t0)) @ z
         g0, g1 = rows @ z, rows @ z1
-        fired = np.flatnonzero(g1 <= 0) if t0 > ph.start else np.flatnonzero((g1 <= 0) & ~((g0 <= 0) & (g1 >= g0)))
-        if fired.size:
-            return _locate(ph, rows, what, fired, t0, z, t1, g0)
+        hit = crossed(what, g0, g1, t0 == ph.start)
+        if hit.size:
+            return _locate(ph, rows, what, hit, t0, z, t1, g0)
         t0, z = t1, z1
     return t_lim, []
 

@@ -1,0 +1,81 @@
+"""``exact`` at the edges its twins handle (issue 41, part B), against closed forms.
+
+The stick rule of every method is the closed band of :func:`lumped.laws.sticks`: a contact (or a
+Bingham element) whose holding force is exactly its static bound sticks, one a hair above it breaks
+away at once.  ``exact`` on networks, the ``event-locating`` method (both choose their modes with
+:func:`lumped.solvers.network_modes.select` and fire their events with
+:func:`lumped.solvers.network_modes.crossed`), backward Euler and ``event-driven`` must agree there.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import lumped as L
+from lumped import Bingham, Friction, Load, Mass, Network, Spring
+from lumped.model.forcing import Constant
+from lumped.solvers.exact_network import solve_exact_network
+
+G = "ground"
+#: The issue's contact: static 1 N, kinetic 0.5 N, on m = 1 kg held by k = 1 N/m.
+STATIC, KINETIC = 1.0, 0.5
+
+
+def contact(load: float) -> Network:
+    """The mass on its spring and its contact to the ground, under the constant ``load`` from t = 0."""
+    elements = [Spring("s", (G, "m"), 1.0), Friction("f", (G, "m"), static=STATIC, kinetic=KINETIC)]
+    return Network([Mass("m", 1.0)], elements, [Load("m", Constant(load))])
+
+
+def test_a_contact_loaded_a_hair_above_static_breaks_away_at_once() -> None:
+    """``P = static + 1e-12``: at t = 0 the holding force ``P - k x = P`` exceeds ``static``, so the mass
+    slips at once with the kinetic force, ``m x'' + k x = P - kinetic`` from rest:
+    ``x = (P - kinetic)/k (1 - cos t)`` until ``v`` returns to zero at ``t = pi``.  ``exact`` takes that
+    phase as one matrix exponential (a few ulps of the 0.23 m motion); 1e-12 relative is 4e3 ulps, and
+    a breakaway one bracketing sub-step late (the fault) is 3.6 % off."""
+    load = STATIC + 1e-12
+    tr = L.solve(L.Problem(contact(load), 1.0), 1e-3, method="exact")
+    closed = (load - KINETIC) * (1 - np.cos(tr.t))
+    np.testing.assert_allclose(tr.positions[:, 0], closed, rtol=1e-12, atol=1e-15)
+    assert [e.kind for e in tr.events] == []  # it slips from t = 0 to past t_end: no event
+
+
+@pytest.mark.parametrize("method", ["exact", "backward-euler", "event-driven"])
+def test_a_contact_loaded_exactly_at_static_sticks_in_every_method(method: str) -> None:
+    """``P = static``: ``|F| <= static`` sticks (the closed band), so the mass never moves: ``x = 0``
+    exactly at every time (no rounding can enter a motion that never starts)."""
+    tr = L.solve(L.Problem(contact(STATIC), 2.0), 1e-3, method=method)
+    assert np.all(tr.positions == 0.0)
+    assert np.all(tr.velocities == 0.0)
+
+
+def bingham_at_threshold(gamma: float) -> Network:
+    """Two masses on springs, the second held to the ground by a Bingham element (threshold 1 N) and
+    loaded by exactly 1 N: at rest the element holds the whole load, exactly its threshold."""
+    elements = [
+        Spring("s", (G, "a"), 1.0),
+        Spring("s2", ("a", "b"), 1.0),
+        Bingham("d", (G, "b"), threshold=1.0, gamma=gamma),
+    ]
+    return Network([Mass("a", 1.0), Mass("b", 1.0)], elements, [Load("b", Constant(1.0))])
+
+
+@pytest.mark.parametrize("gamma", [1.0, math.inf])
+def test_a_bingham_element_loaded_exactly_at_its_threshold_sticks_without_events(gamma: float) -> None:
+    """The element's reaction is the load, 1 N, exactly its threshold: it sticks for ever, with no event
+    (the fault fired a breakaway at every bracketing sub-step and never reached ``t_end``; the bound of 50
+    events makes that fault a quick failure).  Both masses stay at 0 exactly and rest from t = 0."""
+    tr = solve_exact_network(bingham_at_threshold(gamma), 10.0, 1e-2, max_events=50)
+    assert tr.events == ()
+    assert np.all(tr.positions == 0.0)
+    np.testing.assert_array_equal(tr.final_rest[0], [math.nan, 0.0])  # a, on its spring alone, is not held
+
+
+@pytest.mark.parametrize("method", ["event-locating", "backward-euler"])
+def test_a_bingham_element_at_its_threshold_sticks_in_every_network_method(method: str) -> None:
+    """The same network by the other methods that run it (``exact`` above): nothing moves, exactly."""
+    tr = L.solve(L.Problem(bingham_at_threshold(1.0), 1.0), 1e-2, method=method)
+    assert np.all(tr.positions == 0.0)
