@@ -17,6 +17,7 @@ import pytest
 import lumped as L
 from lumped import Bingham, Friction, Load, Mass, Network, Spring
 from lumped.model.forcing import Constant
+from lumped.solvers.closed_form_belt import belt_cycle
 from lumped.solvers.exact_network import solve_exact_network
 
 G = "ground"
@@ -79,3 +80,26 @@ def test_a_bingham_element_at_its_threshold_sticks_in_every_network_method(metho
     """The same network by the other methods that run it (``exact`` above): nothing moves, exactly."""
     tr = L.solve(L.Problem(bingham_at_threshold(1.0), 1.0), 1e-2, method=method)
     assert np.all(tr.positions == 0.0)
+
+
+def test_a_slow_belt_over_a_long_run_meets_the_closed_form_cycle() -> None:
+    """A block on a spring (m = k = 1) riding a belt at V = 1e-6 m/s through the contact (static 1, kinetic
+    0.5) for 3e6 s: it rides for 1e6 s between slips of pi s, so the stuck phases are a million seconds long.
+
+    From rest on the moving belt it slips at once and the kinetic force brings it to the belt's speed at
+    ``t_s = asin(V/K)`` (``m x'' = K - k x``, ``v = K sin t``), at ``x_s = K (1 - cos t_s)``; it breaks away
+    at ``t_1 = t_s + (S - x_s)/V`` and then follows the closed-form cycle (:func:`belt_cycle`): sticks again
+    at ``stick_position`` after ``slip_time``, breaks away a period later.  At ``t_end`` (after the second
+    slip) it rides at ``stick_position + V (t_end - t_1 - period - slip_time)``: 0.99999372 m.  ``exact``'s
+    event times are roots to a few ulps of 3e6 s (5e-10 s each, 5e-16 m at this speed); 1e-12 m is a wide
+    margin.  The fault (stuck phases' exponentials scaled by their norm) ended at 1.4e-6 m."""
+    v, t_end = 1e-6, 3e6
+    elements = [Spring("spring", (G, "m"), 1.0), Friction("fric", ("belt", "m"), static=STATIC, kinetic=KINETIC)]
+    net = Network([Mass("m", 1.0)], elements, [], [L.Driver("belt", v)])
+    tr = L.solve(L.Problem(net, t_end), 1e4, method="exact")
+    cycle = belt_cycle(1.0, 1.0, STATIC, KINETIC, v)
+    t_s = math.asin(v / KINETIC)
+    t_1 = t_s + (STATIC - KINETIC * (1 - math.cos(t_s))) / v
+    expected = cycle.stick_position + v * (t_end - t_1 - cycle.period - cycle.slip_time)
+    assert abs(tr.positions[-1, 0] - expected) <= 1e-12
+    assert [e.kind for e in tr.events] == ["stop", "breakaway", "stop", "breakaway", "stop"]
