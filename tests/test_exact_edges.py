@@ -103,3 +103,65 @@ def test_a_slow_belt_over_a_long_run_meets_the_closed_form_cycle() -> None:
     expected = cycle.stick_position + v * (t_end - t_1 - cycle.period - cycle.slip_time)
     assert abs(tr.positions[-1, 0] - expected) <= 1e-12
     assert [e.kind for e in tr.events] == ["stop", "breakaway", "stop", "breakaway", "stop"]
+
+
+def two_masses(*extra: L.Element, loads: tuple = ()) -> Network:
+    """Mass ``a`` (released at 0.5 m) on a spring to the ground, ``b`` on a spring to ``a``, and ``extra``."""
+    springs = [Spring("s", (G, "a"), 1.0), Spring("s2", ("a", "b"), 1.0)]
+    return Network([Mass("a", 1.0, 0.5), Mass("b", 1.0)], [*springs, *extra], list(loads))
+
+
+def test_a_grid_step_far_past_t_end_gives_the_decayed_motion_exactly() -> None:
+    """With a dashpot every mode decays; at the grid's last time ``t_1 = dt = 1e300`` s each is below the
+    smallest double, so the exact motion is the equilibrium, 0, to the last bit (no NaN)."""
+    net = two_masses(Bingham("d", (G, "b"), threshold=0.0, gamma=1.0))
+    tr = L.solve(L.Problem(net, 4.0), 1e300, method="exact")
+    assert tr.t[-1] == 1e300
+    np.testing.assert_array_equal(tr.positions[-1], [0.0, 0.0])
+
+
+@pytest.mark.parametrize(
+    ("extra", "loads", "match"),
+    [
+        ((), (), r"^dt: the exact motion at t = 1e\+300 s .* phase of 1\.6\d*e\+300 rad"),  # undamped: no digit left
+        ((), (Load("a", Constant(1.0)),), r"^dt: the exact motion is not finite"),  # x = t^2/4 overflows
+        (
+            (Bingham("d0", (G, "a"), threshold=0.0, gamma=1.0), Bingham("d", (G, "b"), threshold=0.1, gamma=1.0)),
+            (),
+            r"^t_end: the phase from t = \S+ s has no event in 100 sub-steps",
+        ),
+    ],
+    ids=["undamped", "overflowing", "events to bracket"],
+)
+def test_a_grid_step_beyond_double_precision_is_refused_in_one_line(extra, loads, match, monkeypatch) -> None:  # noqa: ANN001
+    """``dt = 1e300`` past ``t_end = 4`` s: an undamped mode's phase (1.6e300 rad) has no digit left, a free
+    pair under a constant load is beyond the largest double, and a damped phase with a sticking element
+    would need 1e301 bracketing sub-steps: each a one-line ``ValueError`` (the fault wrote a row of NaN, or ran
+    for ever), and no row is written.  The bound on sub-steps is lowered to 100 to keep the test fast
+    (it is reached the same way at any bound)."""
+    monkeypatch.setattr("lumped.solvers.exact_network.MAX_SUBSTEPS", 100)
+    net = two_masses(*extra, loads=loads)
+    if loads:  # the free pair: no spring to the ground
+        net = Network(net.masses, [Spring("s2", ("a", "b"), 1.0)], list(loads))
+    with pytest.raises(ValueError, match=match) as err:
+        L.solve(L.Problem(net, 4.0), 1e300, method="exact")
+    assert "\n" not in str(err.value)
+
+
+def test_the_command_line_refuses_a_step_beyond_double_precision(tmp_path) -> None:  # noqa: ANN001
+    """The same refusal from ``simulate``: exit status 2, one line, no file."""
+    from cli_run import run_lumped
+
+    system = tmp_path / "two.toml"
+    system.write_text(
+        '[[mass]]\nname = "a"\nmass = 1.0\nx0 = 0.5\n[[mass]]\nname = "b"\nmass = 1.0\n'
+        '[[element]]\nname = "s"\nkind = "spring"\nbetween = ["ground", "a"]\nstiffness = 1.0\n'
+        '[[element]]\nname = "s2"\nkind = "spring"\nbetween = ["a", "b"]\nstiffness = 1.0\n'
+    )
+    out = tmp_path / "out.csv"
+    done = run_lumped(
+        "simulate", "--system", system, "--t-end", "4", "--dt", "1e300", "--method", "exact", "--output", out
+    )
+    assert done.returncode == 2
+    assert len(done.stderr.strip().splitlines()) == 1 and "dt:" in done.stderr
+    assert not out.exists()

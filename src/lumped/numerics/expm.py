@@ -121,34 +121,38 @@ def _ell(a: np.ndarray, m: int) -> int:
     if norm == 0:
         return 0
     row = np.ones(a.shape[0])
-    magnitudes = np.abs(a)
+    magnitudes = np.abs(a) / norm  # scaled by the norm, so no power overflows: |A|^p = norm^p |A/norm|^p
     for _ in range(2 * m + 1):
         row = row @ magnitudes
     power = float(row.max(initial=0.0))
-    if power == 0 or not math.isfinite(power):
-        return 0 if power == 0 else 64
+    if power == 0:
+        return 0
     reciprocal = math.comb(2 * m, m) * math.factorial(2 * m + 1)
-    alpha = power / norm / reciprocal
-    return max(0, math.ceil(math.log2(alpha / 2.0**-53) / (2 * m)))
+    log2_alpha = math.log2(power) + 2 * m * math.log2(norm) - math.log2(reciprocal)  # norm^(2m+1) power / norm
+    return max(0, math.ceil((log2_alpha + 53) / (2 * m)))
 
 
-def _by_powers(a: np.ndarray) -> tuple[int, int]:
+def _by_powers(a: np.ndarray) -> tuple[int, int] | None:
     """``(m, s)``: the degree and the squarings that Al-Mohy and Higham's bound through the norms of powers
-    allows (module Notes)."""
-    a2 = a @ a
-    a4 = a2 @ a2
-    a6 = a4 @ a2
-    d6 = _norm1(a6) ** (1 / 6)
-    eta = max(_norm1(a4) ** 0.25, d6)
+    allows (module Notes); ``None`` where a power overflows (the 1-norm's choice then stands)."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        a2 = a @ a
+        a4 = a2 @ a2
+        a6 = a4 @ a2
+        a8 = a4 @ a4
+        a10 = a4 @ a6
+    d4, d6, d8, d10 = (_norm1(p) ** (1 / k) for p, k in ((a4, 4), (a6, 6), (a8, 8), (a10, 10)))
+    if not math.isfinite(d10 + d8 + d6 + d4):
+        return None
+    eta = max(d4, d6)
     for m in (3, 5):
         if eta <= THETA_POWERS[m] and _ell(a, m) == 0:
             return m, 0
-    d8 = _norm1(a4 @ a4) ** 0.125
     eta = max(d6, d8)
     for m in (7, 9):
         if eta <= THETA_POWERS[m] and _ell(a, m) == 0:
             return m, 0
-    eta = min(eta, max(d8, _norm1(a4 @ a6) ** 0.1))
+    eta = min(eta, max(d8, d10))
     s = max(0, math.ceil(math.log2(eta / THETA_POWERS[13]))) if eta > 0 else 0
     return 13, s + _ell(a / 2.0**s, 13)
 
@@ -163,8 +167,8 @@ def expm(a: np.ndarray) -> np.ndarray:
         if norm <= THETA[m]:
             return _pade(a, m)
     m, s = 13, max(0, math.ceil(math.log2(norm / THETA[13])))
-    if s > 0:
-        m, s = min((m, s), _by_powers(a), key=lambda choice: (choice[1], choice[0]))
+    if s > 0 and (powers := _by_powers(a)) is not None:
+        m, s = min((m, s), powers, key=lambda choice: (choice[1], choice[0]))
     r = _pade(a / 2.0**s, m)
     for _ in range(s):
         r = r @ r
