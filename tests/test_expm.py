@@ -45,3 +45,25 @@ def test_agrees_with_scipys_expm(scale):
 def test_a_non_finite_matrix_is_refused_in_one_line():
     with pytest.raises(ValueError, match="non-finite"):
         expm(np.array([[math.nan]]))
+
+
+@pytest.mark.parametrize("t", [1e3, 3e5, 9e7, 1e9])
+def test_a_stuck_phase_of_any_length_is_its_exact_integral(t):
+    # A mass stuck to a driven point: z = (1, ramp), z' = (0, 1), so exp(t [[0, 0], [1, 0]]) = [[1, 0], [t, 1]]
+    # exactly.  The generator is nilpotent: |A^p|^(1/p) = 0, no squaring, and r_3(A) = (I - A/2)^-1 (I + A/2) is
+    # I + A to the rounding of one pivoted 2 x 2 solve, a few ulps of each entry (of 1 where it is 0).  Scaled by
+    # its 1-norm instead, 2^s ~ t squarings multiplied that rounding by t (6e-2 absolute at t = 3e5, 1e-9
+    # relative at 9e7).
+    out = expm(np.array([[0.0, 0.0], [t, 0.0]]))
+    exact = np.array([[1.0, 0.0], [t, 1.0]])
+    assert np.all(np.abs(out - exact) <= 4 * EPS * np.maximum(np.abs(exact), 1.0))
+
+
+@pytest.mark.parametrize("t", [1.0, 1e6, 1e9])
+def test_a_free_mass_under_a_constant_load_is_its_exact_integral(t):
+    # z = (u, u', 1) with u'' = a: exp = [[1, t, a t^2/2], [0, 1, a t], [0, 0, 1]] (A^3 = 0, so r_3, exact to
+    # degree 6, is the series; its rounding is a few ulps of each entry, of 1 where it is 0).
+    a = 0.3
+    out = expm(np.array([[0.0, t, 0.0], [0.0, 0.0, a * t], [0.0, 0.0, 0.0]]))
+    exact = np.array([[1.0, t, a * t * t / 2], [0.0, 1.0, a * t], [0.0, 0.0, 1.0]])
+    assert np.all(np.abs(out - exact) <= 4 * EPS * np.maximum(np.abs(exact), 1.0))

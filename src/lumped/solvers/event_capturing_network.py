@@ -45,7 +45,16 @@ from lumped.model.forcing import jumps
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
 from lumped.numerics.roots import brentq
-from lumped.solvers.network_modes import NetworkEvent, event_rows, grid_rows, initial_mode, select, trajectory, zero_set
+from lumped.solvers.network_modes import (
+    NetworkEvent,
+    crossed,
+    event_rows,
+    grid_rows,
+    initial_mode,
+    select,
+    trajectory,
+    zero_set,
+)
 from lumped.solvers.network_phase import Parts, Phase, parts
 
 __all__ = ["MAX_SWITCHES_PER_STEP", "solve_capturing_network"]
@@ -137,9 +146,7 @@ class _March:
 
     def _fired(self, g0: np.ndarray, g1: np.ndarray, t0: float) -> list[int]:
         """The rows at or below zero at the step's end (at a phase's start, not those leaving zero upwards)."""
-        if t0 > self.mode.ph.start:
-            return [int(r) for r in np.flatnonzero(g1 <= 0)]
-        return [int(r) for r in np.flatnonzero((g1 <= 0) & ~((g0 <= 0) & (g1 >= g0)))]
+        return [int(r) for r in crossed(self.mode.what, g0, g1, t0 == self.mode.ph.start)]
 
     def _locate(self, z0, f0, t0, t1, g0, fired) -> tuple[float, list[tuple[int, str]]]:  # noqa: ANN001
         """The earliest crossing among the rows ``fired`` on the partial steps, and every row crossing there."""

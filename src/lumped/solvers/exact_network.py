@@ -40,8 +40,10 @@ from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
 from lumped.numerics.expm import expm
 from lumped.numerics.roots import brentq
+from lumped.numerics.sine import MAX_ARGUMENT
 from lumped.solvers.network_modes import (
     NetworkEvent,
+    crossed,
     event_rows,
     grid_rows,
     initial_mode,
@@ -51,12 +53,16 @@ from lumped.solvers.network_modes import (
 )
 from lumped.solvers.network_phase import Parts, Phase, parts, switch_times
 
-__all__ = ["NetworkEvent", "solve_exact_network", "march", "sample", "MAX_EVENTS"]
+__all__ = ["MAX_EVENTS", "MAX_SUBSTEPS", "NetworkEvent", "check_span", "march", "sample", "solve_exact_network"]
 
 #: Most phases of one run before it is refused (each costs a few matrix exponentials).
 MAX_EVENTS = 20_000
 #: Sub-steps per shortest period of a phase, for bracketing the events.
 _PER_PERIOD = 50
+#: Most bracketing sub-steps of one phase (about 15 s of work, at 15 us each) before the run is refused.
+MAX_SUBSTEPS = 1_000_000
+#: ``exp(x)`` underflows to 0 below this: a mode decayed by more carries no digit into the motion.
+_DECAYED = math.log(np.finfo(float).tiny)
 
 
 def step_for(ph: Phase, span: float) -> float:
@@ -75,14 +81,22 @@ def _next_event(p: Parts, ph: Phase, t_lim: float) -> tuple[float, list[tuple[in
     h = step_for(ph, t_lim - ph.start)
     step = expm(ph.a * h)
     t0, z = ph.start, ph.z0
-    while t0 < t_lim:
+    for _ in range(MAX_SUBSTEPS):
+        if t0 >= t_lim:
+            break
         t1 = min(t0 + h, t_lim)
         z1 = step @ z if t1 == t0 + h else expm(ph.a * (t1 - t0)) @ z
         g0, g1 = rows @ z, rows @ z1
-        fired = np.flatnonzero(g1 <= 0) if t0 > ph.start else np.flatnonzero((g1 <= 0) & ~((g0 <= 0) & (g1 >= g0)))
-        if fired.size:
-            return _locate(ph, rows, what, fired, t0, z, t1, g0)
+        hit = crossed(what, g0, g1, t0 == ph.start)
+        if hit.size:
+            return _locate(ph, rows, what, hit, t0, z, t1, g0)
         t0, z = t1, z1
+    if t0 < t_lim:
+        raise ValueError(
+            f"t_end: the phase from t = {ph.start:.6g} s has no event in {MAX_SUBSTEPS} sub-steps of {h:.3g} s (a "
+            f"fiftieth of its shortest period), {(t_lim - ph.start) / h:.3g} of which reach t = {t_lim:.6g} s; "
+            "shorten t_end (or dt: the grid's last time may lie past t_end) or use backward Euler"
+        )
     return t_lim, []
 
 
@@ -138,8 +152,33 @@ def march(
             raise ValueError(f"t_end: more than the {max_events} events a run may have before t_end = {t_end:g} s")
 
 
+def check_span(ph: Phase, t: float) -> None:
+    """Refuse a time ``t`` at which the phase ``ph`` keeps no digit of its motion (one line).
+
+    ``z(t) = expm(a (t - start)) z0`` carries each eigenvalue ``l`` of ``a`` as ``exp(l (t - start))``: a mode
+    decayed below the smallest double (``Re l (t - start) < log(tiny)``) is exactly 0, but one that survives
+    with a phase ``|Im l| (t - start)`` beyond :data:`~lumped.numerics.sine.MAX_ARGUMENT` (the range of
+    every sine of the project, as the loads' own :func:`~lumped.model.forcing.check_span`) has lost it.
+    """
+    span = t - ph.start
+    lam = np.linalg.eigvals(ph.a)
+    live = lam.real * span > _DECAYED
+    turns = float(np.max(np.abs(lam.imag[live]), initial=0.0)) * span
+    if turns > MAX_ARGUMENT:
+        raise ValueError(
+            f"dt: the exact motion at t = {t:.6g} s (the grid's last time) has a phase of {turns:.3g} rad since "
+            f"t = {ph.start:.6g} s, beyond the {MAX_ARGUMENT:.0e} rad of double precision; lower dt or t_end"
+        )
+
+
 def sample(phases: list[Phase], times: np.ndarray) -> tuple[np.ndarray, ...]:
-    """Positions, velocities, forces (rows per time) and the rigid flags, from the phase holding each time."""
+    """Positions, velocities, forces (rows per time) and the rigid flags, from the phase holding each time.
+
+    Raises
+    ------
+    ValueError
+        At a time whose phase is beyond double precision (:func:`check_span`), or a value that is not finite.
+    """
     starts = np.array([ph.start for ph in phases])
     which = np.searchsorted(starts, times, side="right") - 1
     rows = [[], [], [], []]
@@ -147,14 +186,22 @@ def sample(phases: list[Phase], times: np.ndarray) -> tuple[np.ndarray, ...]:
         at = times[which == i]
         if not at.size:
             continue
-        z = np.array([ph.z(s) for s in at])
-        y = z @ ph.out.T
+        check_span(ph, float(at[-1]))
+        with np.errstate(over="ignore", invalid="ignore"):  # beyond double precision: refused below
+            y = np.array([ph.z(s) for s in at]) @ ph.out.T
         n = ph.n
         rows[0].append(y[:, :n])
         rows[1].append(y[:, n : 2 * n])
         rows[2].append(y[:, 3 * n :])
         rows[3].append(np.repeat((ph.mode == 0)[None, :], at.size, axis=0))
-    return tuple(np.vstack(r) for r in rows)
+    out = tuple(np.vstack(r) for r in rows)
+    bad = ~np.all(np.isfinite(np.hstack(out[:3])), axis=1)
+    if bad.any():
+        raise ValueError(
+            f"dt: the exact motion is not finite at t = {float(times[bad][0]):.6g} s (the grid's last time is "
+            f"{float(times[-1]):.6g} s; beyond double precision); lower dt or t_end"
+        )
+    return out
 
 
 def solve_exact_network(

@@ -9,7 +9,8 @@ module holds what both methods do at the boundaries of phases:
 * :func:`initial_mode` and :func:`select`, the choice of a consistent mode
   among the elements at zero rate: all start sticking, those breaking away
   slip in the direction of their force; while a sticking element's reaction
-  leaves its band (by more than 1e-9 of it), the one furthest out slips in
+  leaves its closed band (:func:`lumped.laws.sticks`, the one stick test of
+  every method: a force exactly at its threshold holds), the one furthest out slips in
   the direction of its force, and a slipping one whose rate would turn back
   sticks again;
 * :func:`event_rows`, the event functions of a phase as linear rows on its
@@ -27,14 +28,15 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from lumped.laws import sticks
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
 from lumped.solvers.network_phase import Parts, Phase, generator_one, phase, refusal
 
 __all__ = [
-    "BAND",
     "NetworkEvent",
+    "crossed",
     "event_rows",
     "final_rest",
     "grid_index",
@@ -44,9 +46,6 @@ __all__ = [
     "trajectory",
     "zero_set",
 ]
-
-#: A sticking element's reaction may exceed its threshold by this fraction (round-off) and still stick.
-BAND = 1e-9
 
 
 @dataclass(frozen=True)
@@ -79,7 +78,7 @@ def _consistent(
 ) -> tuple[int, int] | None:
     """``None`` if the mode of ``ph`` holds at its start (with the further ``load``), else ``(element, new mode)``."""
     _, _, acc, f = ph.values(ph.z0, load)
-    out = [e for e in zero if ph.mode[e] == 0 and abs(f[e]) > p.tau[e] * (1 + BAND)]
+    out = [e for e in zero if ph.mode[e] == 0 and not sticks(f[e], -p.tau[e], p.tau[e])]
     if out:
         e = max(out, key=lambda e: abs(f[e]) / p.tau[e])
         return e, int(np.sign(f[e]))
@@ -135,6 +134,19 @@ def event_rows(p: Parts, ph: Phase) -> tuple[np.ndarray, np.ndarray, list[tuple[
             feed += [-f_in[e], f_in[e]]
             what += [(int(e), "breakaway")] * 2
     return np.array(rows).reshape(len(rows), ph.a.shape[0]), np.array(feed).reshape(len(rows), ph.n), what
+
+
+def crossed(what: list[tuple[int, str]], g0: np.ndarray, g1: np.ndarray, at_start: bool) -> np.ndarray:
+    """The rows of :func:`event_rows` past their event at the end of an interval (values ``g1``, ``g0`` at its
+    start): a slipping element's rate at or below zero (a *stop*), a sticking element's margin below zero (a
+    *breakaway*: the stick band is closed, :func:`lumped.laws.sticks`, so a force exactly at its threshold
+    holds).  At a phase's start, not those leaving their event level upwards (the event that began it)."""
+    strict = np.array([kind == "breakaway" for _, kind in what], dtype=bool)
+    past1 = np.where(strict, g1 < 0, g1 <= 0)
+    if not at_start:
+        return np.flatnonzero(past1)
+    past0 = np.where(strict, g0 < 0, g0 <= 0)
+    return np.flatnonzero(past1 & ~(past0 & (g1 >= g0)))
 
 
 def zero_set(p: Parts, ph: Phase, v: np.ndarray, fired: list[int]) -> list[int]:
