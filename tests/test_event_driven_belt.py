@@ -1,0 +1,123 @@
+"""The ``event-driven`` method on a belt fast against the mass (issue 41): pure slip to its closed form.
+
+One mass ``m`` on a spring ``k`` to the wall, on a friction contact (static ``F_s``, kinetic ``F_k``) with a belt
+at ``V``.  From rest the contact slips backwards (``u = v - V < 0`` while ``|v| < |V|``), the kinetic force drags
+the mass towards the belt's side, and ``m x'' + k x = sgn(V) F_k``:
+
+    x(t) = sgn(V) (F_k / k) (1 - cos(w t)),    v(t) = sgn(V) (F_k / k) w sin(w t),    w = sqrt(k / m).
+
+The speed never passes ``F_k w / k``, so on a belt faster than that the contact never sticks: pure slip for
+ever, whatever ``V``.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from lumped.model.files import parse_system
+from lumped.solvers.event_driven import _ATOL_FACTOR, DEFAULT_RTOL
+from lumped.solvers.event_driven_network import solve_contact
+
+T_END = 10.0
+
+
+def belt_system(V: float, static: float, kinetic: float, *, m: float = 1.0, k: float = 1.0, v0: float = 0.0) -> str:
+    """The system file of the module docstring, the mass at rest at ``x = 0`` (or moving at ``v0``)."""
+    return f"""
+[[mass]]
+name = "m"
+mass = {m!r}
+v0 = {v0!r}
+
+[[driver]]
+name = "belt"
+velocity = {V!r}
+
+[[element]]
+name = "spring"
+kind = "spring"
+between = ["ground", "m"]
+stiffness = {k!r}
+
+[[element]]
+name = "fric"
+kind = "friction"
+between = ["belt", "m"]
+static = {static!r}
+kinetic = {kinetic!r}
+"""
+
+
+def pure_slip(t: np.ndarray, V: float, kinetic: float, m: float, k: float, v0: float = 0.0):
+    """The closed form (module docstring), from ``x = 0`` with ``v0``: ``x``, ``v``."""
+    w, c = math.sqrt(k / m), math.copysign(kinetic / k, V)
+    return c * (1 - np.cos(w * t)) + v0 / w * np.sin(w * t), c * w * np.sin(w * t) + v0 * np.cos(w * t)
+
+
+def global_bound(motion, static: float, kinetic: float, m: float, k: float, amplitude: float, speed: float):
+    """Bounds on the errors of ``x`` and ``v`` at ``rtol = DEFAULT_RTOL``, derived from DOP853's error control.
+
+    An accepted step's error estimate has RMS below 1 in units of ``sc = atol + rtol |y|`` (dop853's Notes), so
+    each component errs locally by less than ``sqrt(2) sc`` (the estimate, of the embedded lower-order pair,
+    bounds the order-8 step's true error: the premise of every such control).  The error obeys the
+    homogeneous oscillator ``m e'' + k e = 0``, whose flow keeps the energy norm ``sqrt(k ex^2 + m ev^2)``: the
+    global error in that norm is at most the sum of the local ones over the ``N`` steps, and ``|ex| <= norm /
+    sqrt(k)``, ``|ev| <= norm / sqrt(m)``.  ``atol`` is the method's: ``1e-3 rtol`` times the band
+    ``static / k`` (velocities: over ``sqrt(k m)``).
+    """
+    rtol = DEFAULT_RTOL
+    (phase,) = motion.phases  # pure slip: one phase, no event
+    steps = len(phase.motion.steps) - 1
+    sc_x = _ATOL_FACTOR * rtol * static / k + rtol * amplitude
+    sc_v = _ATOL_FACTOR * rtol * static / math.sqrt(k * m) + rtol * speed
+    norm = steps * math.sqrt(2) * math.hypot(math.sqrt(k) * sc_x, math.sqrt(m) * sc_v)
+    return norm / math.sqrt(k), norm / math.sqrt(m)
+
+
+# (static, kinetic, m, k): metre-scaled; the issue's scaled-down contact (1e-15 N); micrometre and kilometre
+# systems (a band of 1e-6 m and 1e3 m; the kilometre one with m = 4, k = 1e-3 so that w = 1/63 rad/s).
+SCALES = {
+    "metre": (1.0, 0.5, 1.0, 1.0),
+    "femto-newton": (1e-15, 0.5e-15, 1.0, 1.0),
+    "micrometre": (2e-6, 1e-6, 1.0, 1.0),
+    "kilometre": (2.0, 1.0, 4.0, 1e-3),
+}
+SPEEDS = (0.2, 10.0, 1e3, 1e6, 2e8, 1e9, 1e12, 1e15, -1e12)
+
+
+def _pure(scale: str, V: float) -> bool:
+    """Whether the belt outruns the mass: ``|V|`` above the peak speed ``(F_k / k) w`` (twice, for room)."""
+    _, kinetic, m, k = SCALES[scale]
+    return abs(V) > 2 * kinetic / math.sqrt(k * m)
+
+
+@pytest.mark.parametrize(("scale", "V"), [(s, V) for s in SCALES for V in SPEEDS if _pure(s, V)])
+def test_pure_slip_meets_its_closed_form_at_every_belt_speed(scale: str, V: float) -> None:
+    static, kinetic, m, k = SCALES[scale]
+    motion = solve_contact(parse_system(belt_system(V, static, kinetic, m=m, k=k)), T_END)
+    t = np.linspace(0.0, T_END, 101)
+    x, v = motion.state(t)
+    x_ref, v_ref = pure_slip(t, V, kinetic, m, k)
+    amplitude, speed = 2 * kinetic / k, kinetic / math.sqrt(k * m)
+    bound_x, bound_v = global_bound(motion, static, kinetic, m, k, amplitude, speed)
+    assert np.max(np.abs(x - x_ref)) <= bound_x
+    assert np.max(np.abs(v - v_ref)) <= bound_v
+    assert not motion.events
+
+
+@pytest.mark.parametrize("V", [1e12, -2e8])
+def test_pure_slip_keeps_a_start_velocity_small_against_the_belt(V: float) -> None:
+    """``v0 = 0.3`` m/s on a belt at ``|V| >= 2e8``: ``u0 = v0 - V`` keeps ``v0`` only to ``eps |V|`` (1e-4 m/s at
+    1e12); the start must take ``v0`` itself.  The bound is :func:`global_bound`'s plus nothing: the start is exact."""
+    v0 = 0.3
+    motion = solve_contact(parse_system(belt_system(V, 1.0, 0.5, v0=v0)), T_END)
+    t = np.linspace(0.0, T_END, 101)
+    x, v = motion.state(t)
+    x_ref, v_ref = pure_slip(t, V, 0.5, 1.0, 1.0, v0)
+    amplitude, speed = 0.5 + 0.5 + v0, 0.5 + v0
+    bound_x, bound_v = global_bound(motion, 1.0, 0.5, 1.0, 1.0, amplitude, speed)
+    assert np.max(np.abs(x - x_ref)) <= bound_x
+    assert np.max(np.abs(v - v_ref)) <= bound_v
