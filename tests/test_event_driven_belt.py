@@ -16,7 +16,9 @@ import math
 
 import numpy as np
 import pytest
+from cli_run import run_lumped
 
+import lumped as L
 from lumped.model.files import parse_system
 from lumped.solvers.event_driven import _ATOL_FACTOR, DEFAULT_RTOL
 from lumped.solvers.event_driven_network import solve_contact
@@ -121,3 +123,40 @@ def test_pure_slip_keeps_a_start_velocity_small_against_the_belt(V: float) -> No
     bound_x, bound_v = global_bound(motion, 1.0, 0.5, 1.0, 1.0, amplitude, speed)
     assert np.max(np.abs(x - x_ref)) <= bound_x
     assert np.max(np.abs(v - v_ref)) <= bound_v
+
+
+# A driven point beyond double precision (issue 41: a belt at 1e308 m/s wrote inf into the CSV).
+ALL_METHODS = ("backward-euler", "exact", "event-driven", "event-locating", "theta", "moreau-jean")
+
+
+@pytest.mark.parametrize("method", ALL_METHODS)
+def test_a_belt_whose_position_overflows_is_refused_by_every_method(method: str) -> None:
+    """At 1e308 m/s the belt's position ``1e308 t`` passes the largest double (1.8e308) at ``t = 1.8 s``: a run to
+    3 s is refused before any method runs; to 1 s (position 1e308) it runs, finite, where the method takes belts."""
+    net = parse_system(belt_system(1e308, 1.0, 0.5))
+    with pytest.raises(ValueError, match=r"^driver 'belt': moving at 1e\+308 m/s, its position passes the largest"):
+        L.solve(L.Problem(net, 3.0), 0.5, method=method)
+    if method in ("backward-euler", "exact", "event-driven"):
+        traj = L.solve(L.Problem(net, 1.0), 0.5, method=method)
+        assert np.all(np.isfinite(traj.positions)) and np.all(np.isfinite(traj.forces))
+
+
+def test_a_spring_pulled_beyond_double_precision_is_refused() -> None:
+    """A spring of 10 N/m to the belt at 1e308 m/s would carry 1e309 N by 1 s: refused, naming the spring."""
+    text = belt_system(1e308, 1.0, 0.5).replace('between = ["ground", "m"]', 'between = ["belt", "m"]')
+    net = parse_system(text.replace("stiffness = 1.0", "stiffness = 10.0"))
+    for method in ("backward-euler", "exact", "event-driven"):
+        with pytest.raises(ValueError, match=r"^element 'spring': its stiffness 10 N/m times the travel of driver"):
+            L.solve(L.Problem(net, 1.0), 0.5, method=method)
+    with pytest.raises(ValueError, match=r"^element 'spring'"):
+        solve_contact(net, 1.0)  # the method's own entry point refuses too
+
+
+def test_the_command_line_refuses_the_overflowing_belt_in_one_line(tmp_path) -> None:
+    (tmp_path / "s.toml").write_text(belt_system(1e308, 1.0, 0.5), encoding="utf-8")
+    for method in ("backward-euler", "exact", "event-driven"):
+        args = ("--system", "s.toml", "--t-end", "3", "--dt", "0.5", "--method", method, "--output", "o.csv")
+        result = run_lumped("simulate", *args, cwd=tmp_path)
+        assert result.returncode == 2 and result.stdout == ""
+        assert result.stderr.count("\n") == 1 and "driver 'belt'" in result.stderr
+        assert not (tmp_path / "o.csv").exists()

@@ -463,6 +463,7 @@ def solve_contact(network: Network, t_end: float, **options: object) -> March:
 
 def _march(network: Network, t_end: float, rtol: float, max_events: int, max_steps: int) -> March:
     """The :class:`March` of an accepted network from its initial state to ``t_end``."""
+    network.check_span(t_end)
     mdl, pieces = model(network), _forcing(network)
     mass = network.masses[0]
     x0, u0 = mass.x0, mass.v0 - mdl.V
