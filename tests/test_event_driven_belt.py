@@ -160,3 +160,61 @@ def test_the_command_line_refuses_the_overflowing_belt_in_one_line(tmp_path) -> 
         assert result.returncode == 2 and result.stdout == ""
         assert result.stderr.count("\n") == 1 and "driver 'belt'" in result.stderr
         assert not (tmp_path / "o.csv").exists()
+
+
+# The one-mass route (solvers/event_driven.py), the twin: a Coulomb contact to the ground, the mass thrown at
+# ``v0`` fast against the band ``tau / k``.  Until its first stop, ``m x'' + k x = -tau``:
+# ``x = -(tau / k)(1 - cos w t) + (v0 / w) sin w t``, ``v = -(tau / k) w sin w t + v0 cos w t``, which stops at
+# ``tan(w t) = k v0 / (w tau)``; the test samples the slip up to 0.9 of that time.
+ONE_MASS = [(1.0, 1.0), (1.0, 1e6), (1.0, 1e12), (1e-15, 0.2), (1e-6, 1e-6), (1e3, 1e4)]
+
+
+@pytest.mark.parametrize(("tau", "v0"), ONE_MASS)
+def test_the_one_mass_route_meets_the_first_slip_of_a_thrown_mass(tau: float, v0: float) -> None:
+    from lumped.laws import BinghamDashpot, LinearSpring
+    from lumped.model.oscillator import Oscillator
+    from lumped.solvers.event_driven import solve_event_driven
+
+    m, k = 1.0, 1.0
+    w = math.sqrt(k / m)
+    t_stop = math.atan2(k * v0, w * tau) / w
+    sol = solve_event_driven(Oscillator(m, LinearSpring(k), BinghamDashpot(tau, math.inf)), t_stop, v0=v0)
+    t = np.linspace(0.0, 0.9 * t_stop, 61)  # the first slip
+    out = sol.evaluate(t)
+    x_ref = -(tau / k) * (1 - np.cos(w * t)) + v0 / w * np.sin(w * t)
+    v_ref = -(tau / k) * w * np.sin(w * t) + v0 * np.cos(w * t)
+    # global_bound's derivation, with the one-mass route's atol (1e-3 rtol times the smaller of the energy
+    # bound |v0| / w and the band tau / k, _motion_scale) and the same oscillator isometry
+    steps = len(sol.phases[0].motion.steps) - 1
+    scale = min(v0 / w, tau / k)
+    sc_x = _ATOL_FACTOR * DEFAULT_RTOL * scale + DEFAULT_RTOL * (v0 / w + 2 * tau / k)
+    sc_v = _ATOL_FACTOR * DEFAULT_RTOL * scale * w + DEFAULT_RTOL * (v0 + tau / math.sqrt(k * m))
+    norm = steps * math.sqrt(2) * math.hypot(math.sqrt(k) * sc_x, math.sqrt(m) * sc_v)
+    assert np.max(np.abs(out["x"] - x_ref)) <= norm / math.sqrt(k)
+    assert np.max(np.abs(out["v"] - v_ref)) <= norm / math.sqrt(m)
+
+
+def pulled_block(V: float) -> str:
+    """The pulled block: the spring to the driven point ``belt`` at ``V``, the contact (static 1, kinetic 0.5) to
+    the ground: the mass follows the point, ``x`` grows as ``V t``."""
+    text = belt_system(V, 1.0, 0.5).replace('between = ["ground", "m"]', 'between = ["belt", "m"]', 1)
+    return text.replace('between = ["belt", "m"]\nstatic', 'between = ["ground", "m"]\nstatic')
+
+
+@pytest.mark.parametrize("V", [1.0, 100.0, 1e4, 1e6])
+def test_a_block_pulled_fast_keeps_the_springs_elongation(V: float) -> None:
+    """The block starts with the point's speed ``v0 = V`` at ``x = 0``; in the spring's frame ``y = x - V t``,
+    ``m y'' + k y = -kinetic`` from rest: ``y = -(kinetic / k)(1 - cos w t)``, and ``v = V + y'`` stays above
+    ``V - kinetic / sqrt(k m) > 0``: pure slip.  Carried as ``(x, v)``, the error control's ``rtol |x|``,
+    ``rtol |v|`` (``rtol V t``, ``rtol V``) swamped ``y``: 6.0e-6 m off at 1e4 m/s over 100 s (1.1e-7 at 100 m/s).
+    The bound is :func:`global_bound`'s on the frame's motion (the forces' scale)."""
+    T = 100.0
+    net = parse_system(pulled_block(V).replace("v0 = 0.0", f"v0 = {V!r}"))
+    motion = solve_contact(net, T)
+    t = np.linspace(0.0, T, 401)
+    x, v = motion.state(t)
+    bound_y, bound_w = global_bound(motion, 1.0, 0.5, 1.0, 1.0, 1.0, 0.5)
+    # x - V t and v - V are formed here, in doubles: their own round-off is below eps (|x| + V t), eps (|v| + V)
+    eps = np.finfo(float).eps
+    assert np.max(np.abs((x - V * t) + 0.5 * (1 - np.cos(t)))) <= bound_y + 4 * eps * V * T
+    assert np.max(np.abs((v - V) + 0.5 * np.sin(t))) <= bound_w + 4 * eps * V

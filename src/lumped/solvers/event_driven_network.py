@@ -121,16 +121,27 @@ class Model:
         force = p.amplitude * math.sin(p.omega * t + p.phase) if p.amplitude else 0.0
         return force - self.K * x + self.A * t - self.C * u + self.gamma
 
-    def pushed(self, t: float, x: float, v: float, p: Piece) -> float:
-        """``S`` (N) from the mass's velocity ``v``: ``F(t) - K x + A t - C v + sum c_i V_i``, equal to
-        :meth:`smooth` at ``u = v - V`` but without ``u``, whose constant part ``-V`` would cancel in ``-C u + gamma``."""
+    def framed(self, t: float, y: float, w: float, p: Piece) -> float:
+        """``S`` (N) from the state relative to the springs' frame (:attr:`frame`, moving at ``W``): the position
+        ``y = x - W t`` and the velocity ``w = v - W``: ``F(t) - K y + (A - K W) t - C w + sum c_i (V_i - W)``.
+
+        It equals :meth:`smooth` at ``x = y + W t``, ``u = w + W - V``, without forming either: on a fast belt
+        ``u``'s constant part ``-V`` would cancel in ``-C u + gamma``, and with springs to fast points ``-K x``
+        would cancel against ``A t`` (``A - K W`` is zero for springs to one point, round-off otherwise)."""
         force = p.amplitude * math.sin(p.omega * t + p.phase) if p.amplitude else 0.0
-        return force - self.K * x + self.A * t - self.C * v + self.dashpot_push
+        W = self.frame
+        return force - self.K * y + (self.A - self.K * W) * t - self.C * w + self.dashpot_push
+
+    @cached_property
+    def frame(self) -> float:
+        """``W = A / K`` (m/s): the velocity of the springs' rest point ``A t / K``, about which the mass moves
+        (``0`` without springs, when no force depends on ``x``)."""
+        return self.A / self.K if self.K > 0 else 0.0
 
     @cached_property
     def dashpot_push(self) -> float:
-        """``sum c_i V_i`` (N): the dashpots' force on the mass at rest."""
-        return sum(d.coefficient * d.velocity for d in self.dashpots)
+        """``sum c_i (V_i - W)`` (N): the dashpots' force on the mass moving with the frame."""
+        return sum(d.coefficient * (d.velocity - self.frame) for d in self.dashpots)
 
     def held(self, t: float, start: float, x_start: float, p: Piece) -> float:
         """``S`` on the contact stuck since ``start`` at ``x_start``: the force it holds (N)."""
@@ -199,10 +210,13 @@ class ContactSlip(IntegratedSlip):
     """A slip phase of direction ``s`` from ``start = (t, x, u)``: :class:`IntegratedSlip` with this system's
     right-hand side, its stop the zero of ``u = v - V``.
 
-    DOP853 integrates the mass's own state ``(x, v)`` (:meth:`flow`), never ``(x, u)``: with a belt fast against
-    the mass, ``u`` is ``-V`` plus the motion, and carrying it would put the error control on the belt's scale
-    (``rtol |V|``, not the mass's velocity) and lose the motion's digits in ``x' = u + V``.  :meth:`state` and
-    :meth:`rhs` keep the interface in ``(x, u)``; :meth:`mass_state` gives ``(x, v)`` with all its digits.
+    DOP853 integrates the mass's own motion (:meth:`flow`) relative to the springs' rest point moving at ``W``
+    (:attr:`Model.frame`, ``0`` for springs to the ground): ``y = x - W t`` and ``w = v - W``, never ``u = v - V``
+    or ``x``.  With a belt fast against the mass, ``u`` is ``-V`` plus the motion, and carrying it would put the
+    error control on the belt's scale (``rtol |V|``, not the mass's velocity) and lose the motion's digits in
+    ``x' = u + V``; with springs to fast points, ``x`` and ``v`` grow as ``W t`` and ``W``, and errors ``rtol |x|``,
+    ``rtol |v|`` would swamp the springs' elongations.  The stop is ``w = V - W`` (:attr:`surface`).
+    :meth:`state` and :meth:`rhs` keep the interface in ``(x, u)``; :meth:`mass_state` gives ``(x, v)``.
     """
 
     def __init__(
@@ -216,29 +230,33 @@ class ContactSlip(IntegratedSlip):
     ):
         t0, x0, u0 = start
         v0 = u0 + mdl.V if velocity is None else velocity  # the mass's velocity, if known, with all its digits
-        super().__init__(mdl.m, mdl.K, s * mdl.contact.static, (p.amplitude, p.omega, p.phase), (t0, x0, v0), settings)
-        self.model, self.s, self.piece, self.surface = mdl, s, p, mdl.V
+        W = mdl.frame
+        start_ = (t0, x0 - W * t0, v0 - W)
+        super().__init__(mdl.m, mdl.K, s * mdl.contact.static, (p.amplitude, p.omega, p.phase), start_, settings)
+        self.model, self.s, self.piece, self.surface = mdl, s, p, mdl.V - W
 
     def flow(self, t: float, y: list[float]) -> tuple[float, float]:
-        """``(x', v')``: ``v`` and ``(S - s g(max(s (v - V), 0)))/m``, ``S`` from the velocity (:meth:`Model.pushed`)."""
-        x, v = y
+        """``(y', w')`` at ``(y, w)``: ``w`` and ``(S - s g(max(s u, 0)))/m``, ``u = w - surface`` (:meth:`Model.framed`)."""
+        y_, w = y
         mdl = self.model
-        return v, (mdl.pushed(t, x, v, self.piece) - mdl.contact.slip_force(self.s, v - mdl.V)) / mdl.m
+        return w, (mdl.framed(t, y_, w, self.piece) - mdl.contact.slip_force(self.s, w - self.surface)) / mdl.m
 
     def rhs(self, t: float, y: list[float]) -> tuple[float, float]:
         """``(x', u')``: ``u + V`` and ``(S - s g(max(s u, 0)))/m`` (:meth:`flow` in the contact's rate)."""
         x, u = y
-        v = u + self.model.V
-        return v, self.flow(t, [x, v])[1]
+        mdl = self.model
+        return u + mdl.V, self.flow(t, [x - mdl.frame * t, u + self.surface])[1]
 
     def state(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
-        """Displacement (m) and slip rate ``u = v - V`` (m/s) at times ``t`` in the integrated span."""
-        x, v = self.mass_state(t)
-        return x, v - self.model.V
+        """Displacement (m) and slip rate ``u = v - V = w - surface`` (m/s) at times ``t`` in the integrated span."""
+        y, w = super().state(t)
+        return y + self.model.frame * np.asarray(t, dtype=float), w - self.surface
 
     def mass_state(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
-        """Displacement (m) and velocity ``v`` (m/s) at times ``t``: the integrated state itself."""
-        return super().state(t)
+        """Displacement ``x = y + W t`` (m) and velocity ``v`` (m/s) at times ``t``, from the integrated state."""
+        y, w = super().state(t)
+        W = self.model.frame
+        return y + W * np.asarray(t, dtype=float), w + W
 
 
 def breakaway(mdl: Model, t0: float, t_lim: float, x0: float, p: Piece) -> tuple[float, int]:
