@@ -218,3 +218,28 @@ def test_a_block_pulled_fast_keeps_the_springs_elongation(V: float) -> None:
     eps = np.finfo(float).eps
     assert np.max(np.abs((x - V * t) + 0.5 * (1 - np.cos(t)))) <= bound_y + 4 * eps * V * T
     assert np.max(np.abs((v - V) + 0.5 * np.sin(t))) <= bound_w + 4 * eps * V
+
+
+@pytest.mark.parametrize("V", [1e3, 1e12])
+def test_pure_slip_keeps_its_velocity_through_the_loads_switch_off(V: float) -> None:
+    """A load ``0.1 sin(2 t)`` on until ``t_off = 3 s`` ends a slip phase; the next starts from the last one's
+    state.  Passed on as ``u = v - V``, the mass's velocity kept only ``eps |V|`` (1e-4 m/s at 1e12).  With
+    ``c = F_k / k = 0.5`` and ``P = 0.1``: ``x = c (1 - cos t) + P (sin 2t - 2 sin t) / (1 - 4)`` before ``t_off``,
+    the free oscillation about ``c`` from ``x(t_off), v(t_off)`` after; the bound is :func:`global_bound`'s."""
+    text = (
+        belt_system(V, 1.0, 0.5) + '\n[[force]]\non = "m"\nkind = "sine"\namplitude = 0.1\nomega = 2.0\nuntil = 3.0\n'
+    )
+    motion = solve_contact(parse_system(text), T_END)
+    c, P, t_off = 0.5, 0.1, 3.0
+    on = lambda t: c * (1 - np.cos(t)) + P * (np.sin(2 * t) - 2 * np.sin(t)) / -3.0
+    on_v = lambda t: c * np.sin(t) + P * (2 * np.cos(2 * t) - 2 * np.cos(t)) / -3.0
+    t = np.linspace(t_off, T_END, 71)
+    x_ref = c + (on(t_off) - c) * np.cos(t - t_off) + on_v(t_off) * np.sin(t - t_off)
+    x, _ = motion.state(t)
+    steps = sum(len(ph.motion.steps) - 1 for ph in motion.phases)
+    # atol: 1e-3 rtol times the forces' band (static + P) / k = 1.1 m (velocities: over sqrt(k m)); |x| <= 1.2 m,
+    # |v| <= 0.7 m/s; the error's flow is the free oscillator's isometry through the switch (m = k = 1)
+    atol = _ATOL_FACTOR * DEFAULT_RTOL * 1.1
+    norm = steps * math.sqrt(2) * math.hypot(atol + DEFAULT_RTOL * 1.2, atol + DEFAULT_RTOL * 0.7)
+    assert [e.kind for e in motion.events] == ["switch"]
+    assert np.max(np.abs(x - x_ref)) <= norm
