@@ -137,15 +137,17 @@ class IntegratedSlip:
     ``v - surface`` before ``t_lim`` (inside a step too: :meth:`_dip`), or ``None``; ``state`` then evaluates the
     dense output on ``[t0, end]``.
 
-    The state integrated is always the mass's ``(x, v)`` (:meth:`flow`), so the error control acts on the
-    motion's own scales; the stop is where ``v`` meets the velocity ``surface`` (m/s) of the point the
-    contact slides on (``0``: the ground; a belt's speed in a subclass).  The slip rate ``v - surface`` is formed
-    only where the slip force is evaluated and where the stop is searched, never carried: a belt's large constant
-    part then cannot swamp the mass's velocity, whose digits the integrator keeps.
+    The state integrated is the mass's own motion (:meth:`flow`): ``(x, v)`` here, the same relative to a moving
+    frame in a subclass (:class:`~lumped.solvers.event_driven_network.ContactSlip`), so the error control acts
+    on the motion's own scales; the stop is where the velocity meets ``surface`` (m/s), that of the point the
+    contact slides on (``0``: the ground; a belt's, relative to the frame, in the subclass).  The slip rate
+    ``v - surface`` is formed only where the slip force is evaluated and where the stop is searched, never
+    carried: a belt's large constant part then cannot swamp the mass's velocity, whose digits the integrator
+    keeps.
     """
 
     #: Velocity (m/s) of the point the contact slides on: the stop is ``v = surface``.
-    surface: ClassVar[float] = 0.0
+    surface: float = 0.0
 
     def __init__(
         self,

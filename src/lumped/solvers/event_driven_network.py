@@ -22,7 +22,10 @@ resisting the slip: ``T = sgn(u) g(|u|)`` off zero rate, any value in
   Brent's method: no sign change is missed, whatever the length of the stick;
 * **slip** with direction ``s = +-1``: ``m u' = S - s g(max(s u, 0))``
   integrated by DOP853 (:class:`lumped.solvers.event_driven.IntegratedSlip`,
-  the integrator of the one-mass method, on the state ``(x, u)``); the clipped
+  the integrator of the one-mass method) on the mass's motion relative to the
+  springs' rest point moving at ``W = A / K``, ``(y, w) = (x - W t, v - W)``
+  (:class:`ContactSlip`: never on ``u``, whose constant part ``-V`` a fast belt
+  makes huge against the motion, nor on ``x`` when springs pull it along); the clipped
   speed keeps the right-hand side continuous where the step passes the stop,
   whose time is found on the step's dense output by Brent's method (also a
   touch of ``u = 0`` shorter than a step, between two ends of one sign).  At the
