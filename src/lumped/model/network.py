@@ -6,6 +6,8 @@ unique, is :class:`Network`'s Notes.
 
 from __future__ import annotations
 
+import math
+import sys
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import NamedTuple
@@ -159,6 +161,23 @@ class Driver:
             return np.full(np.shape(t0), self.constant_velocity)
         h = self.history
         return (np.asarray(h.integral(t1)) - np.asarray(h.integral(t0))) / (t1 - t0)
+
+    def check_span(self, t_end: float) -> None:
+        """A one-line ``ValueError`` if the point's position leaves double precision by ``t_end`` (s).
+
+        A constant velocity moves the point by ``|velocity| t_end``, its largest excursion; a history is checked
+        at ``t_end``, where an overflow on the way would have left ``inf`` or ``nan``.  Past that, every method
+        would write ``inf`` for the point and for what it pulls (issue 41: a belt at 1e308 m/s).
+        """
+        V = self.constant_velocity
+        with np.errstate(over="ignore", invalid="ignore"):
+            reach = abs(V) * t_end if V is not None else abs(float(self.position(t_end)))
+        if not math.isfinite(reach):
+            moving = f"at {V:.6g} m/s" if V is not None else "along its history"
+            raise ValueError(
+                f"driver {self.name!r}: moving {moving}, its position passes the largest double "
+                f"({sys.float_info.max:.3g} m) before t_end = {t_end:.6g} s; lower its velocity or t_end"
+            )
 
     @property
     def initial_acceleration(self) -> float:
@@ -314,6 +333,22 @@ class Network:
                 if point in where:
                     out.append(Driven(e, where[point], sign))
         return tuple(out)
+
+    def check_span(self, t_end: float) -> None:
+        """A one-line ``ValueError`` if a driven point's position leaves double precision by ``t_end``
+        (:meth:`Driver.check_span`), or if a linear spring it pulls would carry more than the largest double
+        when the point is that far (``k |x_d(t_end)|``: every method forms it, and would write ``inf``)."""
+        for d in self.drivers:
+            d.check_span(t_end)
+        for link in self.driven():
+            el, d = self.elements[link.element], self.drivers[link.driver]
+            with np.errstate(over="ignore", invalid="ignore"):
+                pull = (el.linear_stiffness or 0.0) * abs(float(d.position(t_end)))
+            if not math.isfinite(pull):
+                raise ValueError(
+                    f"element {el.name!r}: its stiffness {el.linear_stiffness:.6g} N/m times the travel of driver "
+                    f"{d.name!r} by t_end = {t_end:.6g} s passes the largest double; lower them or t_end"
+                )
 
     def refuse_drivers(self, what: str) -> None:
         """A ``ValueError`` saying that ``what`` cannot run a system with driven points, if it has any."""

@@ -106,6 +106,7 @@ class Problem:
         if not isinstance(self.system, Network):
             raise ValueError(f"system must be a Network, got {type(self.system).__name__}")
         object.__setattr__(self, "t_end", validate.positive("t_end", self.t_end))
+        self.system.check_span(self.t_end)  # no driven point beyond double precision: no inf in any method's output
 
     @classmethod
     def oscillator(

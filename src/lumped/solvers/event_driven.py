@@ -134,9 +134,20 @@ class IntegratedSlip:
     """One slip phase integrated by DOP853 (:mod:`lumped.numerics.dop853`); the interface of :class:`~lumped.solvers.closed_form.SlipMotion`.
 
     ``first_stop`` integrates (once) from ``t0`` and returns the first zero of
-    ``v`` before ``t_lim`` (inside a step too: :meth:`_dip`), or ``None``; ``state`` then evaluates the dense
-    output on ``[t0, end]``.
+    ``v - surface`` before ``t_lim`` (inside a step too: :meth:`_dip`), or ``None``; ``state`` then evaluates the
+    dense output on ``[t0, end]``.
+
+    The state integrated is the mass's own motion (:meth:`flow`): ``(x, v)`` here, the same relative to a moving
+    frame in a subclass (:class:`~lumped.solvers.event_driven_network.ContactSlip`), so the error control acts
+    on the motion's own scales; the stop is where the velocity meets ``surface`` (m/s), that of the point the
+    contact slides on (``0``: the ground; a belt's, relative to the frame, in the subclass).  The slip rate
+    ``v - surface`` is formed only where the slip force is evaluated and where the stop is searched, never
+    carried: a belt's large constant part then cannot swamp the mass's velocity, whose digits the integrator
+    keeps.
     """
+
+    #: Velocity (m/s) of the point the contact slides on: the stop is ``v = surface``.
+    surface: float = 0.0
 
     def __init__(
         self,
@@ -159,6 +170,10 @@ class IntegratedSlip:
         force = self.P * math.sin(self.w * t + self.ph) if self.P else 0.0
         return v, (force - self.k * x - self.s_tau - self.settings.viscous(v)) / self.m
 
+    def flow(self, t: float, y: Sequence[float]) -> Sequence[float]:
+        """``(x', v')`` at the mass's state ``y = (x, v)``: what DOP853 integrates (here :meth:`rhs`)."""
+        return self.rhs(t, y)
+
     def state(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
         """Displacement (m) and velocity (m/s) at times ``t`` in the integrated span."""
         t = np.asarray(t, dtype=float)
@@ -174,11 +189,11 @@ class IntegratedSlip:
         return self._dense.ts if self._dense is not None else np.array([self.t0])
 
     def first_stop(self, t_lim: float, direction: int) -> float | None:
-        """First time in ``(t0, t_lim]`` at which ``v`` returns to zero, or ``None``."""
+        """First time in ``(t0, t_lim]`` at which ``v`` returns to ``surface``, or ``None``."""
         if t_lim <= self.t0:
             return None
         st = self.settings
-        solver = Dop853(self.rhs, self.t0, (self.x0, self.v0), t_lim, st.rtol, st.atol)
+        solver = Dop853(self.flow, self.t0, (self.x0, self.v0), t_lim, st.rtol, st.atol)
         times: list[float] = [self.t0]
         pieces: list[Piece] = []
         while solver.status == "running":
@@ -192,7 +207,9 @@ class IntegratedSlip:
                 )
             times.append(solver.t)
             pieces.append(solver.dense_output())
-            stop = self._stop_in(pieces[-1], times[-2], times[-1], direction, direction * solver.y[1] <= 0)
+            stop = self._stop_in(
+                pieces[-1], times[-2], times[-1], direction, direction * (solver.y[1] - self.surface) <= 0
+            )
             if stop is not None:
                 times[-1] = stop
                 break
@@ -205,9 +222,9 @@ class IntegratedSlip:
         return stop
 
     def _stop_in(self, piece: Piece, a: float, b: float, direction: int, ends_stopped: bool) -> float | None:
-        """The first zero of ``direction * v`` in ``(a, b]`` on one step's dense output, or ``None``.
+        """The first zero of ``direction * (v - surface)`` in ``(a, b]`` on one step's dense output, or ``None``.
 
-        ``ends_stopped`` says the step ends with ``direction * v <= 0``.  Otherwise the speed may still touch
+        ``ends_stopped`` says the step ends with ``direction * (v - surface) <= 0``.  Otherwise the speed may still touch
         zero inside the step and come back (a stop shorter than a step): :meth:`_dip` looks for it.
         """
         if ends_stopped:
@@ -218,7 +235,7 @@ class IntegratedSlip:
 
     def _dip(self, piece: Piece, a: float, b: float, direction: int, last: float | None) -> float | None:
         """The first extremum of the dense output in ``(a, b)`` at which ``g = direction * v <= 0`` and after
-        which ``g`` is positive again (at a later extremum or at ``b``); ``None`` if there is none.
+        which ``g`` is positive again (``g = direction * (v - surface)``) (at a later extremum or at ``b``); ``None`` if there is none.
 
         The speed's minimum is where its derivative, the acceleration, changes sign from - to +.  On one step
         the dense output is a polynomial of degree 7 (:mod:`lumped.numerics.dop853`), so its extrema are the
@@ -231,10 +248,11 @@ class IntegratedSlip:
         so that a single crossing keeps the bracket ``(a, b]``.  A step that starts at rest looks only
         where the motion is under way (:meth:`_under_way`).
         """
-        ends = direction * piece.y_old[1], direction * (piece.y_old[1] + piece.F[1][0])  # g(a), g(b): theta 0, 1
+        v_a, v_b = piece.y_old[1], piece.y_old[1] + piece.F[1][0]  # theta 0, 1
+        ends = direction * (v_a - self.surface), direction * (v_b - self.surface)  # g(a), g(b)
         if last is None and ends[0] > 0 and min(ends) > piece_spread(piece, 1):
             return None
-        g = lambda t: direction * piece_value(piece, t, 1)
+        g = self._rate(piece, direction)
         start = self._under_way(g, a, b)
         if start is None:
             return None
@@ -254,9 +272,14 @@ class IntegratedSlip:
             return a
         return next((p for p in (a + (b - a) * i / _SAMPLES for i in range(1, _SAMPLES)) if g(p) > 0), None)
 
+    def _rate(self, piece: Piece, direction: int) -> Callable[[float], float]:
+        """``g(t) = direction * (v(t) - surface)`` on one step's dense output: the slip rate in the phase's direction."""
+        surface = self.surface
+        return lambda t: direction * (piece_value(piece, t, 1) - surface)
+
     def _root(self, piece: Piece, a: float, b: float, direction: int) -> float:
-        """The zero of ``direction * v`` in ``(a, b]`` on one step's dense output, ``g(b) <= 0``."""
-        g = lambda t: direction * piece_value(piece, t, 1)
+        """The zero of ``g = direction * (v - surface)`` in ``(a, b]`` on one step's dense output, ``g(b) <= 0``."""
+        g = self._rate(piece, direction)
         if g(b) == 0:
             return b
         if not g(a) > 0:  # the step started at rest: find where the motion is under way

@@ -22,7 +22,10 @@ resisting the slip: ``T = sgn(u) g(|u|)`` off zero rate, any value in
   Brent's method: no sign change is missed, whatever the length of the stick;
 * **slip** with direction ``s = +-1``: ``m u' = S - s g(max(s u, 0))``
   integrated by DOP853 (:class:`lumped.solvers.event_driven.IntegratedSlip`,
-  the integrator of the one-mass method, on the state ``(x, u)``); the clipped
+  the integrator of the one-mass method) on the mass's motion relative to the
+  springs' rest point moving at ``W = A / K``, ``(y, w) = (x - W t, v - W)``
+  (:class:`ContactSlip`: never on ``u``, whose constant part ``-V`` a fast belt
+  makes huge against the motion, nor on ``x`` when springs pull it along); the clipped
   speed keeps the right-hand side continuous where the step passes the stop,
   whose time is found on the step's dense output by Brent's method (also a
   touch of ``u = 0`` shorter than a step, between two ends of one sign).  At the
@@ -40,6 +43,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
 from typing import NamedTuple
 
 import numpy as np
@@ -120,6 +124,28 @@ class Model:
         force = p.amplitude * math.sin(p.omega * t + p.phase) if p.amplitude else 0.0
         return force - self.K * x + self.A * t - self.C * u + self.gamma
 
+    def framed(self, t: float, y: float, w: float, p: Piece) -> float:
+        """``S`` (N) from the state relative to the springs' frame (:attr:`frame`, moving at ``W``): the position
+        ``y = x - W t`` and the velocity ``w = v - W``: ``F(t) - K y + (A - K W) t - C w + sum c_i (V_i - W)``.
+
+        It equals :meth:`smooth` at ``x = y + W t``, ``u = w + W - V``, without forming either: on a fast belt
+        ``u``'s constant part ``-V`` would cancel in ``-C u + gamma``, and with springs to fast points ``-K x``
+        would cancel against ``A t`` (``A - K W`` is zero for springs to one point, round-off otherwise)."""
+        force = p.amplitude * math.sin(p.omega * t + p.phase) if p.amplitude else 0.0
+        W = self.frame
+        return force - self.K * y + (self.A - self.K * W) * t - self.C * w + self.dashpot_push
+
+    @cached_property
+    def frame(self) -> float:
+        """``W = A / K`` (m/s): the velocity of the springs' rest point ``A t / K``, about which the mass moves
+        (``0`` without springs, when no force depends on ``x``)."""
+        return self.A / self.K if self.K > 0 else 0.0
+
+    @cached_property
+    def dashpot_push(self) -> float:
+        """``sum c_i (V_i - W)`` (N): the dashpots' force on the mass moving with the frame."""
+        return sum(d.coefficient * (d.velocity - self.frame) for d in self.dashpots)
+
     def held(self, t: float, start: float, x_start: float, p: Piece) -> float:
         """``S`` on the contact stuck since ``start`` at ``x_start``: the force it holds (N)."""
         return self.smooth(t, x_start + self.V * (t - start), 0.0, p)
@@ -184,18 +210,56 @@ def model(network: Network) -> Model:
 
 
 class ContactSlip(IntegratedSlip):
-    """A slip phase of direction ``s`` on the state ``(x, u)``: :class:`IntegratedSlip` with this system's
-    right-hand side (its stop is the zero of ``u``, the second component)."""
+    """A slip phase of direction ``s`` from ``start = (t, x, u)``: :class:`IntegratedSlip` with this system's
+    right-hand side, its stop the zero of ``u = v - V``.
 
-    def __init__(self, mdl: Model, s: int, p: Piece, start: tuple[float, float, float], settings: _Settings):
-        super().__init__(mdl.m, mdl.K, s * mdl.contact.static, (p.amplitude, p.omega, p.phase), start, settings)
-        self.model, self.s, self.piece = mdl, s, p
+    DOP853 integrates the mass's own motion (:meth:`flow`) relative to the springs' rest point moving at ``W``
+    (:attr:`Model.frame`, ``0`` for springs to the ground): ``y = x - W t`` and ``w = v - W``, never ``u = v - V``
+    or ``x``.  With a belt fast against the mass, ``u`` is ``-V`` plus the motion, and carrying it would put the
+    error control on the belt's scale (``rtol |V|``, not the mass's velocity) and lose the motion's digits in
+    ``x' = u + V``; with springs to fast points, ``x`` and ``v`` grow as ``W t`` and ``W``, and errors ``rtol |x|``,
+    ``rtol |v|`` would swamp the springs' elongations.  The stop is ``w = V - W`` (:attr:`surface`).
+    :meth:`state` and :meth:`rhs` keep the interface in ``(x, u)``; :meth:`mass_state` gives ``(x, v)``.
+    """
+
+    def __init__(
+        self,
+        mdl: Model,
+        s: int,
+        p: Piece,
+        start: tuple[float, float, float],
+        settings: _Settings,
+        velocity: float | None = None,
+    ):
+        t0, x0, u0 = start
+        v0 = u0 + mdl.V if velocity is None else velocity  # the mass's velocity, if known, with all its digits
+        W = mdl.frame
+        start_ = (t0, x0 - W * t0, v0 - W)
+        super().__init__(mdl.m, mdl.K, s * mdl.contact.static, (p.amplitude, p.omega, p.phase), start_, settings)
+        self.model, self.s, self.piece, self.surface = mdl, s, p, mdl.V - W
+
+    def flow(self, t: float, y: list[float]) -> tuple[float, float]:
+        """``(y', w')`` at ``(y, w)``: ``w`` and ``(S - s g(max(s u, 0)))/m``, ``u = w - surface`` (:meth:`Model.framed`)."""
+        y_, w = y
+        mdl = self.model
+        return w, (mdl.framed(t, y_, w, self.piece) - mdl.contact.slip_force(self.s, w - self.surface)) / mdl.m
 
     def rhs(self, t: float, y: list[float]) -> tuple[float, float]:
-        """``(x', u')``: ``u + V`` and ``(S - s g(max(s u, 0)))/m``."""
+        """``(x', u')``: ``u + V`` and ``(S - s g(max(s u, 0)))/m`` (:meth:`flow` in the contact's rate)."""
         x, u = y
         mdl = self.model
-        return u + mdl.V, (mdl.smooth(t, x, u, self.piece) - mdl.contact.slip_force(self.s, u)) / mdl.m
+        return u + mdl.V, self.flow(t, [x - mdl.frame * t, u + self.surface])[1]
+
+    def state(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+        """Displacement (m) and slip rate ``u = v - V = w - surface`` (m/s) at times ``t`` in the integrated span."""
+        y, w = super().state(t)
+        return y + self.model.frame * np.asarray(t, dtype=float), w - self.surface
+
+    def mass_state(self, t: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
+        """Displacement ``x = y + W t`` (m) and velocity ``v`` (m/s) at times ``t``, from the integrated state."""
+        y, w = super().state(t)
+        W = self.model.frame
+        return y + W * np.asarray(t, dtype=float), w + W
 
 
 def breakaway(mdl: Model, t0: float, t_lim: float, x0: float, p: Piece) -> tuple[float, int]:
@@ -241,12 +305,13 @@ class March:
     def __post_init__(self) -> None:
         self.phases: list[Phase] = []
         self.events: list[NetworkEvent] = []
+        self._carried: tuple[tuple[float, float, float], float] | None = None  # a slip's end (t, x, u) and its v
 
     def state(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """The mass's position (m) and velocity (m/s) at the times ``t`` (in ``[0, t_end]``)."""
         t = np.asarray(t, dtype=float)
-        x, u, _, _ = _sample(self, t)
-        return x, u + self.mdl.V
+        x, v, _, _ = _sample(self, t)
+        return x, v
 
     def piece(self, t: float) -> Piece:
         return next(p for p in self.pieces if t < p.end)
@@ -271,8 +336,11 @@ class March:
             return STICK
         return 1 if net > 0 else -1
 
-    def run(self, x: float, u: float) -> None:
+    def run(self, x: float, u: float, velocity: float | None = None) -> None:
+        """March from ``(x, u)`` at ``t = 0`` to ``t_end``; ``velocity``, the mass's ``v`` if given, starts a slip
+        with its digits (``u + V`` loses them to a fast belt's)."""
         t, nxt, stalled = 0.0, None, 0
+        self._carried = None if velocity is None else ((0.0, x, u), velocity)
         while t < self.t_end:
             p = self.piece(t)
             t_lim = min(p.end, self.t_end)
@@ -302,8 +370,13 @@ class March:
 
     def slip_motion(self, s: int, p: Piece, start: tuple[float, float, float]) -> ContactSlip:
         """The slip phase of direction ``s`` from ``start = (t, x, u)``: DOP853 (:class:`ContactSlip`).  A
-        subclass may return a closed form with the same interface (``first_stop``, ``state``, ``rhs``, ``s``)."""
-        return ContactSlip(self.mdl, s, p, start, self.settings)
+        subclass may return a closed form with the same interface (``first_stop``, ``state``, ``rhs``, ``s``).
+
+        A start where the last slip ended without a stop (the load's switch-off) takes that slip's ``v`` itself:
+        ``u + V`` would lose the mass's velocity to the belt's digits."""
+        carried = self._carried
+        v = carried[1] if carried is not None and carried[0] == start else None
+        return ContactSlip(self.mdl, s, p, start, self.settings, velocity=v)
 
     def slip(
         self, t: float, t_lim: float, x: float, u: float, s: int, p: Piece
@@ -311,7 +384,9 @@ class March:
         motion = self.slip_motion(s, p, (t, x, u))
         t_stop = motion.first_stop(t_lim, s)
         if t_stop is None:
-            x_end, u_end = (float(a) for a in motion.state(t_lim))
+            x_end, v_end = (float(a) for a in _mass_state(motion, np.array(t_lim), self.mdl.V))
+            u_end = v_end - self.mdl.V
+            self._carried = ((t_lim, x_end, u_end), v_end)
             self.phases.append(Phase(t, t_lim, "slip", x, motion))
             return t_lim, x_end, u_end, None
         x_stop = float(motion.state(t_stop)[0])
@@ -331,17 +406,22 @@ def _forcing(network: Network) -> tuple[Piece, ...]:
     return (on, OFF) if math.isfinite(sine.until) else (on,)
 
 
-def _scales(mdl: Model, pieces: tuple[Piece, ...], t_end: float, x0: float, u0: float) -> tuple[float, float]:
-    """Displacement (m) and speed (m/s) scales of the motion, for the absolute tolerance: the band of the
-    forces ``static + P`` over the stiffness (speeds: over ``sqrt(k m)``, and the belt's), or without a spring
-    the motion those forces give over ``t_end``; at least the initial state."""
+def _scales(mdl: Model, pieces: tuple[Piece, ...], t_end: float, x0: float, v0: float) -> tuple[float, float]:
+    """Displacement (m) and velocity (m/s) scales of the mass's motion, for the absolute tolerance: the band of
+    the forces ``static + P`` over the stiffness (velocities: over ``sqrt(k m)``), or without a spring the
+    motion those forces give over ``t_end``; at least the initial state.
+
+    The belt's speed is not a scale of the mass's motion: a mass that never reaches it (pure slip on a fast
+    belt) moves on the forces' scale, and one that rides it has ``|v| = |V|``, which the relative tolerance
+    ``rtol |v|`` already covers.  An absolute tolerance of the belt's size would let the error control ignore the
+    motion of a mass slower than the belt (issue 41: ``x = 0`` at every saved time on a belt at 1e12 m/s)."""
     force = mdl.contact.static + max(p.amplitude for p in pieces)
     if mdl.K > 0:
         x, v = force / mdl.K, force / math.sqrt(mdl.K * mdl.m)
     else:
         v = force * t_end / mdl.m
         x = v * t_end
-    return max(x, abs(x0)), max(v, abs(mdl.V), abs(u0))
+    return max(x, abs(x0)), max(v, abs(v0))
 
 
 def _options(options: dict[str, object]) -> tuple[float, int, int]:
@@ -404,42 +484,51 @@ def solve_contact(network: Network, t_end: float, **options: object) -> March:
 
 def _march(network: Network, t_end: float, rtol: float, max_events: int, max_steps: int) -> March:
     """The :class:`March` of an accepted network from its initial state to ``t_end``."""
+    network.check_span(t_end)
     mdl, pieces = model(network), _forcing(network)
     mass = network.masses[0]
     x0, u0 = mass.x0, mass.v0 - mdl.V
-    x_scale, v_scale = _scales(mdl, pieces, t_end, x0, u0)
+    x_scale, v_scale = _scales(mdl, pieces, t_end, x0, mass.v0)
     atol = (_ATOL_FACTOR * rtol * x_scale, _ATOL_FACTOR * rtol * v_scale)
     settings = _Settings(None, rtol, atol, _Budget(max_steps, max_steps))  # type: ignore[arg-type]
     name = network.elements[mdl.contact.link.element].name
     march = March(mdl, pieces, t_end, settings, max_events, (name, METHOD), len(network.elements))
-    march.run(x0, u0)
+    march.run(x0, u0, mass.v0)
     return march
 
 
 def _sample(march: March, times: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """``x``, ``u``, the contact's force on the mass ``T`` and the stick flags at ``times``."""
+    """``x``, ``v``, the contact's force on the mass ``T`` and the stick flags at ``times``."""
     mdl, phases = march.mdl, march.phases
     which = np.searchsorted([ph.start for ph in phases], times, side="right") - 1
-    x, u, T = (np.empty(times.size) for _ in range(3))
+    x, v, T = (np.empty(times.size) for _ in range(3))
     stuck = np.zeros(times.size, dtype=bool)
     for i, ph in enumerate(phases):
         at = np.flatnonzero(which == i)
         if not at.size:
             continue
         if ph.motion is None:
-            x[at], u[at], stuck[at] = ph.x_start + mdl.V * (times[at] - ph.start), 0.0, True
+            x[at], v[at], stuck[at] = ph.x_start + mdl.V * (times[at] - ph.start), mdl.V, True
             T[at] = [mdl.held(float(t), ph.start, ph.x_start, march.piece(float(t))) for t in times[at]]
             continue
-        x[at], u[at] = ph.motion.state(times[at])
-        T[at] = [mdl.contact.slip_force(ph.motion.s, float(w)) for w in u[at]]
-    return x, u, T, stuck
+        x[at], v[at] = _mass_state(ph.motion, times[at], mdl.V)
+        T[at] = [mdl.contact.slip_force(ph.motion.s, float(w) - mdl.V) for w in v[at]]
+    return x, v, T, stuck
+
+
+def _mass_state(motion: ContactSlip, times: np.ndarray, V: float) -> tuple[np.ndarray, np.ndarray]:
+    """A slip phase's ``(x, v)`` at ``times``: its :meth:`~ContactSlip.mass_state`, or ``u + V`` from a closed form
+    (a subclass's motion, :meth:`March.slip_motion`) that has only ``state``."""
+    if hasattr(motion, "mass_state"):
+        return motion.mass_state(times)
+    x, u = motion.state(times)
+    return x, u + V
 
 
 def _trajectory(network: Network, march: March, index: np.ndarray, dt: float, save_every: int) -> Trajectory:
     """The :class:`Trajectory`: positions, velocities, every element's tension, the events and the rest."""
     mdl, times = march.mdl, index * dt
-    x, u, T, stuck = _sample(march, times)
-    v = u + mdl.V
+    x, v, T, stuck = _sample(march, times)
     forces = np.zeros((times.size, len(network.elements)))
     for s in mdl.springs:
         forces[:, s.element] = s.coefficient * s.orientation * (x - s.velocity * times)
