@@ -189,6 +189,10 @@ def solve_step(
         out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound, clash)
         if out is not None:
             return _with_ranges(out, topo, ranges)
+    if not all(g.is_piecewise for g in graphs):  # a curve's fixed-point iteration failed: Newton finishes
+        out = _iterate(topo, inertia, rhs, [g.newton() for g in graphs], sigma, list(guess), bound, clash)
+        if out is not None:
+            return _with_ranges(out, topo, ranges)
     for sweeps in DUAL_SWEEPS:  # the guaranteed way in, then the exact finish
         guess = _dual_sweeps(topo, inertia, rhs, graphs, sweeps)
         out = _iterate(topo, inertia, rhs, graphs, sigma, guess, bound, clash)
@@ -280,7 +284,11 @@ def _iterate(
         clash[0] = lin.clash
         if lin.clash:
             return None  # rigid pieces whose rates disagree and none can give way
-        new = [g.next_mode(m, we, fe, s) for g, m, fe, we, s in zip(graphs, modes, f, w, sigma)]
+        rounding = None if piecewise else _rounding(v, w, f, inertia, rhs)
+        new = [
+            g.next_mode(m, we, fe, s) if g.is_piecewise else g.next_mode(m, we, fe, s, rounding)
+            for g, m, fe, we, s in zip(graphs, modes, f, w, sigma)
+        ]
         settled = all(g.same(a, b) for a, b, g in zip(modes, new, graphs))
         if settled:
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
@@ -314,15 +322,21 @@ def on_pieces(
     (sum |v_i| + sum |w_e|)``.  The solve then is the exact solution of the
     step with each piece's edges moved by at most ``df`` or ``dw``.
     """
-    n = inertia.size + len(pieces) + 1
-    df = n * _EPS * (np.abs(rhs).sum() + (inertia * np.abs(v)).sum() + np.abs(f).sum())
-    dw = n * _EPS * (np.abs(v).sum() + np.abs(w).sum())
+    df, dw = _rounding(v, w, f, inertia, rhs)
     for p, we, fe in zip(pieces, w, f):
         if p.rigid and not (p.lo - df <= fe <= p.hi + df and abs(we - p.a) <= dw):
             return False
         if not p.rigid and not p.lo - dw <= we <= p.hi + dw:
             return False
     return True
+
+
+def _rounding(v: np.ndarray, w: np.ndarray, f: np.ndarray, inertia: np.ndarray, rhs: np.ndarray) -> tuple[float, float]:
+    """The bounds ``(df, dw)`` on the rounding of one linear solve's forces and rates (:func:`on_pieces`)."""
+    n = inertia.size + f.size + 1
+    df = n * _EPS * (np.abs(rhs).sum() + (inertia * np.abs(v)).sum() + np.abs(f).sum())
+    dw = n * _EPS * (np.abs(v).sum() + np.abs(w).sum())
+    return float(df), float(dw)
 
 
 def _dual_sweeps(
