@@ -27,18 +27,18 @@ from lumped.laws.bingham import sticks
 from lumped.laws.contract import Dashpot
 
 __all__ = [
-    "Piece",
-    "StepGraph",
-    "Pieces",
-    "LawGraph",
-    "SlipGraph",
     "CurveSlipGraph",
+    "LawGraph",
+    "Piece",
+    "Pieces",
     "Shifted",
+    "SlipGraph",
+    "StepGraph",
     "as_step_graph",
-    "shifted",
+    "bingham_band",
     "free_piece",
     "rigid_piece",
-    "bingham_band",
+    "shifted",
 ]
 
 _INF = math.inf
@@ -241,7 +241,7 @@ class SlipGraph(StepGraph):
     contact's state at the step's start (``start``: the piece it is on).
     """
 
-    __slots__ = ("pieces", "static", "start")
+    __slots__ = ("pieces", "start", "static")
     is_piecewise: ClassVar[bool] = True
     monotone: ClassVar[bool] = False
 
@@ -255,7 +255,7 @@ class SlipGraph(StepGraph):
     def __len__(self) -> int:
         return 3
 
-    def __iter__(self):  # noqa: ANN204
+    def __iter__(self):
         return iter(self.pieces)
 
     def initial_mode(self) -> int:
@@ -403,7 +403,7 @@ class Shifted(StepGraph):
     ``w``; :func:`shifted` gives piecewise graphs as shifted :class:`Pieces`.
     """
 
-    __slots__ = ("inner", "delta")
+    __slots__ = ("delta", "inner")
 
     def __init__(self, inner: StepGraph, delta: float) -> None:
         self.inner, self.delta = inner, delta
@@ -422,7 +422,7 @@ class Shifted(StepGraph):
     def __len__(self) -> int:
         return len(self.inner)  # type: ignore[arg-type]
 
-    def __iter__(self):  # noqa: ANN204
+    def __iter__(self):
         return (_shift_piece(p, self.delta) for p in self.inner)  # type: ignore[attr-defined]
 
     def initial_mode(self) -> object:
