@@ -171,14 +171,14 @@ static int solve(net_t *q, int *iterations) {
         if (s && q->cv && q->cv->n) curve_keep(q->cv, 1);
         if (iterate(q, SCALES[s], iterations)) return 1;
         if (q->fallback) return 0;
-    }
-    if (q->cv && q->cv->n) { /* a curve's fixed-point iteration failed: Newton finishes (step.solve_step) */
-        memcpy(q->mode, q->guess, q->n_el * sizeof(int));
-        curve_keep(q->cv, 1);
-        q->cv->tangent = 1;
-        const int done = iterate(q, 1.0, iterations);
-        q->cv->tangent = 0;
-        if (done || q->fallback) return done;
+        if (s == 0 && q->cv && q->cv->n) { /* a curve's fixed-point iteration failed: Newton (step.solve_step) */
+            memcpy(q->mode, q->guess, q->n_el * sizeof(int));
+            curve_keep(q->cv, 1);
+            q->cv->tangent = 1;
+            const int done = iterate(q, 1.0, iterations);
+            q->cv->tangent = 0;
+            if (done || q->fallback) return done;
+        }
     }
     if (N_SWEEPS) sync_graphs(q);
     for (int s = 0; s < N_SWEEPS; s++) {

@@ -185,12 +185,11 @@ def solve_step(
     guess = [g.initial_mode() for g in graphs] if modes is None else list(modes)
     bound = default_bound(len(graphs)) if max_iterations is None else max_iterations
     clash: list[tuple[int, ...]] = [()]
-    for scale in SIGMA_SCALES:
+    finish = None if all(g.is_piecewise for g in graphs) else [g.newton() for g in graphs]
+    for k, scale in enumerate(SIGMA_SCALES):
         out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound, clash)
-        if out is not None:
-            return _with_ranges(out, topo, ranges)
-    if not all(g.is_piecewise for g in graphs):  # a curve's fixed-point iteration failed: Newton finishes
-        out = _iterate(topo, inertia, rhs, [g.newton() for g in graphs], sigma, list(guess), bound, clash)
+        if out is None and k == 0 and finish is not None:  # a curve's fixed-point iteration failed: Newton
+            out = _iterate(topo, inertia, rhs, finish, sigma, list(guess), bound, clash)
         if out is not None:
             return _with_ranges(out, topo, ranges)
     for sweeps in DUAL_SWEEPS:  # the guaranteed way in, then the exact finish
