@@ -93,12 +93,14 @@ Graph = Sequence[Piece] | StepGraph
 
 
 class StepError(ArithmeticError):
-    """The active-set iteration did not settle, or (``elements`` given) the rigid
-    elements ``elements`` close a loop whose rates disagree: the step has no solution."""
+    """The active-set iteration did not settle (``changing``: the elements whose modes still changed
+    in its last iteration), or (``elements`` given) the rigid elements ``elements`` close a loop whose
+    rates disagree: the step has no solution."""
 
-    def __init__(self, message: str, elements: Sequence[int] = ()) -> None:
+    def __init__(self, message: str, elements: Sequence[int] = (), changing: Sequence[int] = ()) -> None:
         super().__init__(message)
         self.elements = tuple(elements)
+        self.changing = tuple(changing)
 
 
 class StepSolution(NamedTuple):
@@ -184,7 +186,7 @@ def solve_step(
     topo = _Topology(list(first), list(second), inertia.size)
     guess = [g.initial_mode() for g in graphs] if modes is None else list(modes)
     bound = default_bound(len(graphs)) if max_iterations is None else max_iterations
-    clash: list[tuple[int, ...]] = [()]
+    clash: list[tuple[int, ...]] = [(), ()]  # a last loop whose rates disagree; the modes still changing
     finish = None if all(g.is_piecewise for g in graphs) else [g.newton() for g in graphs]
     for k, scale in enumerate(SIGMA_SCALES):
         out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound, clash)
@@ -199,7 +201,7 @@ def solve_step(
             return _with_ranges(out, topo, ranges)
     if clash[0]:
         raise StepError(DISAGREE, clash[0])
-    raise StepError(unsettled(bound))
+    raise StepError(unsettled(bound), changing=clash[1])
 
 
 def _solve_reduced(
@@ -218,7 +220,8 @@ def _solve_reduced(
         sol = solve_step(red.first, red.second, inertia, rhs, red.graphs, red.sigma, red.modes, max_iterations, ranges)
     except StepError as err:
         names = [k for e in err.elements for k in (red.groups[e].elements if red.groups[e] else (red.index[e],))]
-        raise StepError(str(err), sorted(names)) from None
+        moved = [k for e in err.changing for k in (red.groups[e].elements if red.groups[e] else (red.index[e],))]
+        raise StepError(str(err), sorted(names), sorted(moved)) from None
     low, high = (sol.low, sol.high) if sol.low is not None else (None, None)
     out = parallel.expand(
         red, len(graphs), graphs, first, second, inertia.size, (sol.modes, sol.w, sol.f, sol.rigid, low, high)
@@ -247,8 +250,14 @@ def _with_ranges(out: tuple[StepSolution, _Linear], topo: _Topology, ranges: boo
 
 
 def unsettled(bound: int) -> str:
-    """The message of a step whose iteration did not settle within ``bound`` per scale."""
-    return f"the active-set iteration did not settle (tried sigma scales {SIGMA_SCALES}, {bound} iterations each)"
+    """The message of a step whose iteration did not settle within ``bound`` per scale: below the
+    uniqueness bound (:mod:`lumped.solvers.uniqueness`, checked before every run) the step has one
+    solution, so this is a defect of the solver, said as such."""
+    return (
+        f"the active-set iteration did not settle (tried sigma scales {SIGMA_SCALES}, {bound} iterations each, "
+        "and Newton on the curves); the step has one solution below the uniqueness bound, so this is a bug "
+        "in the step solver: please report it"
+    )
 
 
 def default_bound(elements: int) -> int:
@@ -288,7 +297,9 @@ def _iterate(
             g.next_mode(m, we, fe, s) if g.is_piecewise else g.next_mode(m, we, fe, s, rounding)
             for g, m, fe, we, s in zip(graphs, modes, f, w, sigma)
         ]
-        settled = all(g.same(a, b) for a, b, g in zip(modes, new, graphs))
+        moved = tuple(e for e, (a, b, g) in enumerate(zip(modes, new, graphs)) if not g.same(a, b))
+        clash[1] = moved
+        settled = not moved
         if settled:
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
         key = tuple(m if g.is_piecewise else None for m, g in zip(new, graphs))
