@@ -125,3 +125,50 @@ def test_random_falling_networks_settle_agree_and_lie_on_their_laws() -> None:
 def test_a_thousand_random_falling_networks() -> None:
     for seed in range(MANY):
         _check(seed)
+
+
+def coupled(seed: int) -> tuple[Network, float]:
+    """Four masses in a row on floors (Coulomb or Stribeck, half each), joined by springs or contacts (most
+    with a Stribeck fall), each on a leaf spring to a plate: contacts coupled through stuck neighbours."""
+    rng = np.random.default_rng(seed)
+    names = [f"m{i}" for i in range(4)]
+    masses = [
+        Mass(n, float(rng.uniform(0.5, 2)), float(rng.uniform(-0.1, 0.1)), float(rng.uniform(-0.6, 0.6))) for n in names
+    ]
+    elements = []
+    for i, n in enumerate(names):
+        static = float(rng.uniform(0.5, 2))
+        if rng.random() < 0.5:
+            elements.append(
+                Friction(f"f{i}", ("ground", n), static=static, kinetic=static * float(rng.uniform(0.3, 0.9)))
+            )
+        else:
+            fall = {"stribeck_velocity": float(rng.uniform(0.1, 1.0)), "decay": str(rng.choice(list(DECAYS)))}
+            elements.append(
+                Friction(f"f{i}", ("ground", n), static=static, kinetic=static * float(rng.uniform(0.0, 0.9)), **fall)
+            )
+    for i in range(3):
+        if rng.random() < 0.5:
+            elements.append(Spring(f"k{i}", (names[i], names[i + 1]), float(rng.uniform(5, 50))))
+        else:
+            static = float(rng.uniform(0.3, 1.5))
+            kinetic = static * float(rng.uniform(0.0, 0.9))
+            v_s = float(rng.uniform(0.1, 1.0)) if rng.random() < 0.7 else None
+            elements.append(
+                Friction(f"c{i}", (names[i], names[i + 1]), static=static, kinetic=kinetic, stribeck_velocity=v_s)
+            )
+    drivers = [Driver("plate", float(rng.uniform(0.2, 1.0)))]
+    elements += [Spring(f"leaf{i}", ("plate", names[i]), float(rng.uniform(2, 20))) for i in range(4)]
+    net = Network(masses, elements, drivers=drivers)
+    return net, min(1e-3, 0.5 * uniqueness.largest_step(net, 1.0))
+
+
+@pytest.mark.parametrize(("seed", "steps"), [(15, 350), (23, 428)])
+def test_coupled_contacts_that_cycled_settle(seed: int, steps: int) -> None:
+    """Two floor contacts coupled through a stuck neighbour made the Newton finish cycle, one breaking
+    away while the other stopped, in turn (steps 348 and 426): the contacts' modes now follow the
+    resolvent of their convexified graphs, and once the modes repeat one changes at a time (Murty's rule)."""
+    net, dt = coupled(seed)
+    run = run_network(net, steps * dt, dt)
+    assert run.solver.startswith("compiled-banded")  # its rigid loops' steps in Python
+    _on_law(net, run, dt)

@@ -84,8 +84,22 @@ static int on_pieces(const net_t *q, const int *mode) {
  * vector (a collision, odds 2^-64, only costs a restart at the next scale);
  * it is gone round once, and its first iterate on its pieces up to rounding
  * (on_pieces: a corner) is the solution, its rigid forces clipped to their bands. */
+/* step._least_index: every change of mode after the first one undone (a curve keeps its point). */
+static void least_index(net_t *q) {
+    int changed = 0;
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        if (q->next[e] == q->mode[e]) continue;
+        if (changed) {
+            q->next[e] = q->mode[e];
+            const Py_ssize_t k = q->cv ? q->cv->ix[e] : -1;
+            if (k >= 0) q->cv->nw[k] = q->cv->pt[k].w, q->cv->nf[k] = q->cv->pt[k].f, q->cv->pt[k].near = 0;
+        }
+        changed = 1;
+    }
+}
+
 static int iterate(net_t *q, double scale, int *iterations) {
-    int seen = 0, cycling = 0, round = 0;
+    int seen = 0, cycling = 0, round = 0, single = 0;
     uint64_t first = 0;
     const int curves = q->cv && q->cv->n; /* a mode with a point: no cycle test (step._iterate's piecewise) */
     for (int it = 1; it <= q->bound; it++) {
@@ -103,6 +117,12 @@ static int iterate(net_t *q, double scale, int *iterations) {
         if (settled) {
             *iterations = it;
             return 1;
+        }
+        if (curves && q->cv->tangent) { /* step._iterate's one_at_a_time: the Newton finish */
+            const uint64_t h = hash_modes(q->next, q->n_el);
+            for (int j = 0; j < seen && !single; j++) single = q->seen[j] == h;
+            if (seen < q->bound) q->seen[seen++] = h;
+            if (single) least_index(q);
         }
         if (curves) {
             for (Py_ssize_t k = 0; k < q->cv->n; k++) curve_commit(q, q->cv->el[k]);

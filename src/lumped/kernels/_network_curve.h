@@ -73,6 +73,13 @@ static void curve_pieces(net_t *q, double scale) {
     }
 }
 
+/* StribeckLaw.fall: the steepest fall max(0, (static - kinetic)/v_s max(-d') - viscous), operation for operation. */
+static double curve_fall(const law_t *l) {
+    const double steepest = l->code == 2 ? sqrt(2.0 / M_E) : 1.0;
+    const double fall = (l->stat - l->kin) / l->vs * steepest - l->visc;
+    return fall > 0.0 ? fall : 0.0;
+}
+
 /* CurveSlipGraph.near: 1 if (w, f) (the true rate, direction w > 0) lies on the branch to the solve's
  * rounding, |f - direction g(|w|)| <= df + |g'| dw + 8 eps |g| (the bound derived there). */
 static int curve_near(const curve_t *c, Py_ssize_t k, double direction, double w, double f, double dw) {
@@ -94,17 +101,26 @@ static int curve_next(net_t *q, Py_ssize_t e, double sigma) {
         direction = copysign(1.0, f), z = f;
     } else {
         const double d = q->delta ? q->delta[e] : 0.0, w = d != 0.0 ? q->w[e] + d : q->w[e];
-        direction = q->mode[e] == SLIP_FORWARD ? 1.0 : -1.0;
-        if (direction * w <= 0) return STICK_PIECE;
+        const double old = q->mode[e] == SLIP_FORWARD ? 1.0 : -1.0;
         const double dw = d != 0.0 ? c->dw + DBL_EPSILON * fabs(w) : c->dw; /* Shifted.next_mode */
-        const int near = c->pt[k].near = curve_near(c, k, direction, w, f, dw);
-        if (c->tangent) {
-            double slope;
-            c->nw[k] = near ? c->pt[k].w : w;
-            c->nf[k] = near ? c->pt[k].f : direction * slip_curve(l, direction * w, &slope);
-            return q->mode[e];
+        c->pt[k].near = 0;
+        if (c->tangent) { /* CurveSlipGraph._convex_mode (a Stribeck graph is one: g(0+) = static) */
+            z = f + (curve_fall(l) + sigma) * w;
+            if (fabs(z) <= l->stat) return STICK_PIECE;
+            direction = copysign(1.0, z);
+            if (direction == old && direction * w > 0) { /* on: Newton's next point, or settled */
+                double slope;
+                const int near = c->pt[k].near = curve_near(c, k, direction, w, f, dw);
+                c->nw[k] = near ? c->pt[k].w : w;
+                c->nf[k] = near ? c->pt[k].f : direction * slip_curve(l, direction * w, &slope);
+                return q->mode[e];
+            } /* else the resolvent point of z on the branch `direction`, as from the stick */
+        } else {
+            direction = old;
+            if (direction * w <= 0) return STICK_PIECE;
+            c->pt[k].near = curve_near(c, k, direction, w, f, dw);
+            z = f + sigma * w, guess = fabs(c->pt[k].w);
         }
-        z = f + sigma * w, guess = fabs(c->pt[k].w);
     }
     if (direction * z <= l->stat) return STICK_PIECE; /* the slip limit of a falling law: static */
     double slope;

@@ -370,6 +370,8 @@ class CurveSlipGraph(StepGraph):
         if old == STICK:
             stays = _slip_rule(STICK, w, f, self.law.static) == STICK  # type: ignore[attr-defined]
             return STICK if stays else self._point(math.copysign(1.0, f), f, sigma)
+        if self.tangent and self.law.slip_limit >= self.law.static:  # type: ignore[attr-defined]
+            return self._convex_mode(old, w, f, sigma, rounding)
         direction = old[0]  # type: ignore[index]
         if direction * w <= 0:
             return STICK
@@ -379,6 +381,28 @@ class CurveSlipGraph(StepGraph):
         if near:
             return old  # settled: the solve lies on the branch
         return (direction, w, direction * float(self.law.slip(direction * w)), sigma, ())  # type: ignore[attr-defined]
+
+    def _convex_mode(self, old: object, w: float, f: float, sigma: float, rounding: tuple) -> object:
+        """The Newton finish's mode of a contact whose graph is one (``g(0+) = static``, a Stribeck fall).
+
+        With ``lambda`` the steepest fall, ``f + lambda w`` is a monotone graph (the
+        contact's potential plus ``lambda w^2/2``, convex: book/guide/systems.md), so
+        the mode is its resolvent's choice, the primal-dual active-set test of a
+        monotone graph: ``z = f + (lambda + sigma) w``, stuck if ``|z| <= static``,
+        else slipping the way of ``z``.  This replaces the contact's rule, which picks
+        among several solutions where a step has them; below the uniqueness bound
+        it has one, and the rule's stop-then-slip could send two coupled contacts
+        round a cycle (one breaking away while the other stops, in turn).
+        """
+        z = f + (self.law.fall + sigma) * w  # type: ignore[attr-defined]
+        if abs(z) <= self.law.static:  # type: ignore[attr-defined]
+            return STICK
+        direction = math.copysign(1.0, z)
+        if old != STICK and old[0] == direction and direction * w > 0:  # type: ignore[index]
+            if self.near(direction, w, f, sigma, rounding):
+                return old  # settled: the solve lies on the branch
+            return (direction, w, direction * float(self.law.slip(direction * w)), sigma, ())  # type: ignore[attr-defined]
+        return self._point(direction, z, sigma)
 
     def same(self, old: object, new: object) -> bool:
         if old == STICK or new == STICK:

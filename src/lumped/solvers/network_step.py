@@ -191,7 +191,7 @@ def solve_step(
     for k, scale in enumerate(SIGMA_SCALES):
         out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound, clash)
         if out is None and k == 0 and finish is not None:  # a curve's fixed-point iteration failed: Newton
-            out = _iterate(topo, inertia, rhs, finish, sigma, list(guess), bound, clash)
+            out = _iterate(topo, inertia, rhs, finish, sigma, list(guess), bound, clash, one_at_a_time=True)
         if out is not None:
             return _with_ranges(out, topo, ranges)
     for sweeps in DUAL_SWEEPS:  # the guaranteed way in, then the exact finish
@@ -274,14 +274,21 @@ def _iterate(
     modes: list,
     bound: int,
     clash: list[tuple[int, ...]],
+    one_at_a_time: bool = False,
 ) -> tuple[StepSolution, _Linear] | None:
     """The active-set loop at one scale; ``None`` if it cycles or hits the bound
     (``clash[0]``: the elements of a last loop whose rates disagree).
 
     A cycle is gone round once, and its first iterate whose ``(w, f)`` lies on
     its pieces up to the rounding of the linear solve (:func:`on_pieces`) is
-    the solution: a corner, see the module docstring.
+    the solution: a corner, see the module docstring.  With ``one_at_a_time``
+    (the Newton finish), once the elements' discrete modes (:func:`_discrete`)
+    repeat, each iteration changes the discrete mode of only the first element
+    that asks for a change (Murty's least-index rule, which ends for a linear
+    complementarity problem with a P-matrix, as the step's positive definite
+    matrix makes it), the curves' points moving on meanwhile.
     """
+    single, patterns = False, set()
     seen: set[tuple] = set()
     tried: set[tuple] = set()
     piecewise = all(g.is_piecewise for g in graphs)
@@ -302,6 +309,12 @@ def _iterate(
         settled = not moved
         if settled:
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
+        if one_at_a_time:
+            pattern = tuple(map(_discrete, new))
+            single = single or pattern in patterns
+            patterns.add(pattern)
+            if single:
+                new = _least_index(modes, new)
         key = tuple(m if g.is_piecewise else None for m, g in zip(new, graphs))
         if piecewise and (key in seen or tried):  # a cycle: go round it once
             if on_pieces(pieces, v, w, f, inertia, rhs):
@@ -314,6 +327,25 @@ def _iterate(
         seen.add(key)
         modes = new
     return None
+
+
+def _discrete(mode: object) -> object:
+    """A mode's discrete part: a piece's index, or a curve's stick or slip direction (``None``: a law's point)."""
+    if not isinstance(mode, tuple):
+        return mode
+    return ("slip", mode[0]) if len(mode) == 5 else None  # a direction +1.0 is not the stick mode 1
+
+
+def _least_index(old: list, new: list) -> list:
+    """``new`` with every discrete change after the first one undone (:func:`_iterate`'s ``one_at_a_time``)."""
+    out, changed = [], False
+    for a, b in zip(old, new):
+        if _discrete(a) != _discrete(b):
+            if changed:
+                b = a
+            changed = True
+        out.append(b)
+    return out
 
 
 def on_pieces(
