@@ -12,6 +12,9 @@
  * before (curve_same: CurveSlipGraph.same).  The iteration then holds no cycle test (a mode vector does
  * not come back: network_step._iterate's `piecewise`), and the dual sweeps leave such a contact at its
  * initial mode.  The warm start of a step is the last step's settled mode, its point and history.
+ * With tangent set (the Newton finish, CurveSlipGraph.newton) a slip mode's piece is the curve's tangent
+ * (curve_slope), its next point the curve at the solve's rate, its mode the convexified graph's
+ * resolvent (curve_fall), and it settles when the solve lies on the branch (curve_near).
  *
  * Included by _network_active_set.h, after _network_sparse.h (net_t, sparse_reread). */
 #ifndef LUMPED_NETWORK_CURVE_H

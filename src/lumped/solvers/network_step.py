@@ -47,6 +47,17 @@ are stepped as one element of the summed graph
 ``sigma = m/dt + k dt`` makes ``z`` the predictor ``F~`` of eq. 15b and the
 mode test Algorithm 1's ``|F~| <= mu_s N_f``.)
 
+Where some graph is linearised in each iteration (below) and the first
+scale does not settle, the step is finished by Newton's method: each graph's
+:meth:`~lumped.laws.step_graph.StepGraph.newton` form (a Stribeck contact's
+tangent lines, its mode the resolvent's choice on its convexified graph),
+one discrete mode changed at a time once the modes repeat (Murty's
+least-index rule, :func:`_least_index`); it settles when every slipping
+contact's force lies on its law to the solve's rounding (book/guide/systems.md
+derives the step as the minimiser of a strongly convex function below the
+uniqueness bound, whose Newton step this is).  ``_network_active_set.h``'s
+``solve`` is the same in C.
+
 A graph that is not piecewise linear (a
 :class:`~lumped.laws.step_graph.LawGraph`, the step graph of a
 :class:`~lumped.laws.dashpot_elements.Monotone` or Herschel-Bulkley element) is
