@@ -55,7 +55,8 @@ static uint64_t hash_modes(const int *m, Py_ssize_t n) {
 
 /* step.on_pieces: 1 if every element's (w, f) lies on its piece up to the
  * rounding of the linear solve (the bounds df, dw derived there). */
-static int on_pieces(const net_t *q, const int *mode) {
+/* step._rounding: the bounds df, dw on the rounding of the last linear solve's forces and rates. */
+static void rounding(const net_t *q, double *df, double *dw) {
     const double eps = 2.220446049250313e-16, n = (double)(q->n_mass + q->n_el + 1);
     double forces = 0.0, rates = 0.0;
     for (Py_ssize_t i = 0; i < q->n_mass; i++) {
@@ -63,7 +64,12 @@ static int on_pieces(const net_t *q, const int *mode) {
         rates += fabs(q->vall[i]);
     }
     for (Py_ssize_t e = 0; e < q->n_el; e++) forces += fabs(q->f[e]), rates += fabs(q->w[e]);
-    const double df = n * eps * forces, dw = n * eps * rates;
+    *df = n * eps * forces, *dw = n * eps * rates;
+}
+
+static int on_pieces(const net_t *q, const int *mode) {
+    double df, dw;
+    rounding(q, &df, &dw);
     for (Py_ssize_t e = 0; e < q->n_el; e++) {
         const piece *p = chosen(q, e, mode);
         if (p->rigid ? !(p->lo - df <= q->f[e] && q->f[e] <= p->hi + df && fabs(q->w[e] - p->a) <= dw)
@@ -78,8 +84,22 @@ static int on_pieces(const net_t *q, const int *mode) {
  * vector (a collision, odds 2^-64, only costs a restart at the next scale);
  * it is gone round once, and its first iterate on its pieces up to rounding
  * (on_pieces: a corner) is the solution, its rigid forces clipped to their bands. */
+/* step._least_index: every change of mode after the first one undone (a curve keeps its point). */
+static void least_index(net_t *q) {
+    int changed = 0;
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        if (q->next[e] == q->mode[e]) continue;
+        if (changed) {
+            q->next[e] = q->mode[e];
+            const Py_ssize_t k = q->cv ? q->cv->ix[e] : -1;
+            if (k >= 0) q->cv->nw[k] = q->cv->pt[k].w, q->cv->nf[k] = q->cv->pt[k].f, q->cv->pt[k].near = 0;
+        }
+        changed = 1;
+    }
+}
+
 static int iterate(net_t *q, double scale, int *iterations) {
-    int seen = 0, cycling = 0, round = 0;
+    int seen = 0, cycling = 0, round = 0, single = 0;
     uint64_t first = 0;
     const int curves = q->cv && q->cv->n; /* a mode with a point: no cycle test (step._iterate's piecewise) */
     for (int it = 1; it <= q->bound; it++) {
@@ -89,6 +109,7 @@ static int iterate(net_t *q, double scale, int *iterations) {
             return 0;
         }
         int settled = 1;
+        if (curves) rounding(q, &q->cv->df, &q->cv->dw);
         for (Py_ssize_t e = 0; e < q->n_el; e++) {
             q->next[e] = next_mode(q, e, q->sigma[e] * scale);
             settled &= curves && q->cv->ix[e] >= 0 ? curve_same(q, e, q->sigma[e] * scale) : q->next[e] == q->mode[e];
@@ -96,6 +117,12 @@ static int iterate(net_t *q, double scale, int *iterations) {
         if (settled) {
             *iterations = it;
             return 1;
+        }
+        if (curves && q->cv->tangent) { /* step._iterate's one_at_a_time: the Newton finish */
+            const uint64_t h = hash_modes(q->next, q->n_el);
+            for (int j = 0; j < seen && !single; j++) single = q->seen[j] == h;
+            if (seen < q->bound) q->seen[seen++] = h;
+            if (single) least_index(q);
         }
         if (curves) {
             for (Py_ssize_t k = 0; k < q->cv->n; k++) curve_commit(q, q->cv->el[k]);
@@ -164,6 +191,14 @@ static int solve(net_t *q, int *iterations) {
         if (s && q->cv && q->cv->n) curve_keep(q->cv, 1);
         if (iterate(q, SCALES[s], iterations)) return 1;
         if (q->fallback) return 0;
+        if (s == 0 && q->cv && q->cv->n) { /* a curve's fixed-point iteration failed: Newton (step.solve_step) */
+            memcpy(q->mode, q->guess, q->n_el * sizeof(int));
+            curve_keep(q->cv, 1);
+            q->cv->tangent = 1;
+            const int done = iterate(q, 1.0, iterations);
+            q->cv->tangent = 0;
+            if (done || q->fallback) return done;
+        }
     }
     if (N_SWEEPS) sync_graphs(q);
     for (int s = 0; s < N_SWEEPS; s++) {

@@ -27,18 +27,18 @@ from lumped.laws.bingham import sticks
 from lumped.laws.contract import Dashpot
 
 __all__ = [
-    "Piece",
-    "StepGraph",
-    "Pieces",
-    "LawGraph",
-    "SlipGraph",
     "CurveSlipGraph",
+    "LawGraph",
+    "Piece",
+    "Pieces",
     "Shifted",
+    "SlipGraph",
+    "StepGraph",
     "as_step_graph",
-    "shifted",
+    "bingham_band",
     "free_piece",
     "rigid_piece",
-    "bingham_band",
+    "shifted",
 ]
 
 _INF = math.inf
@@ -99,19 +99,29 @@ class StepGraph(ABC):
        its step is a convex problem and parallel graphs may be summed
        (:mod:`lumped.solvers.parallel_elements`); False for a friction contact
        whose tension falls (:class:`SlipGraph`), whose solution a rule picks.
-    7. ``next_mode(old, w, f, sigma)``: the new mode from the iteration's
-       rate and force in mode ``old``.  The default is :meth:`mode` of ``z = f +
-       sigma w``, the resolvent's choice, right for a monotone graph; a graph
-       that is not monotone states its rule here.
+    7. ``next_mode(old, w, f, sigma, rounding=(0, 0))``: the new mode from the
+       iteration's rate and force in mode ``old``; ``rounding = (df, dw)``
+       bounds the linear solve's rounding in force and rate
+       (:func:`lumped.solvers.network_step.on_pieces`).  The default is :meth:`mode`
+       of ``z = f + sigma w``, the resolvent's choice, right for a monotone
+       graph; a graph that is not monotone states its rule here.
+    8. ``newton()``: the graph the step's finishing iteration uses when the
+       iteration at every scale fails to settle (``network_step``): the
+       default is the graph itself; a curve linearised by a line of slope
+       ``sigma`` returns its tangent (Newton) form (:class:`CurveSlipGraph`).
     """
 
     __slots__ = ()
     is_piecewise: ClassVar[bool] = True
     monotone: ClassVar[bool] = True
 
-    def next_mode(self, old: object, w: float, f: float, sigma: float) -> object:
+    def next_mode(self, old: object, w: float, f: float, sigma: float, rounding: tuple = (0.0, 0.0)) -> object:
         """The mode after an iteration that gave ``(w, f)`` in mode ``old`` (point 7)."""
         return self.mode(f + sigma * w, sigma)
+
+    def newton(self) -> StepGraph:
+        """The graph of the finishing iteration (point 8): this one."""
+        return self
 
     @abstractmethod
     def initial_mode(self) -> object:
@@ -231,7 +241,7 @@ class SlipGraph(StepGraph):
     contact's state at the step's start (``start``: the piece it is on).
     """
 
-    __slots__ = ("pieces", "static", "start")
+    __slots__ = ("pieces", "start", "static")
     is_piecewise: ClassVar[bool] = True
     monotone: ClassVar[bool] = False
 
@@ -245,7 +255,7 @@ class SlipGraph(StepGraph):
     def __len__(self) -> int:
         return 3
 
-    def __iter__(self):  # noqa: ANN204
+    def __iter__(self):
         return iter(self.pieces)
 
     def initial_mode(self) -> int:
@@ -258,7 +268,7 @@ class SlipGraph(StepGraph):
         """The stuck contact's choice from ``z`` (used by the dual sweeps' first guess)."""
         return Pieces(self.pieces).mode(z, sigma)
 
-    def next_mode(self, old: object, w: float, f: float, sigma: float) -> int:
+    def next_mode(self, old: object, w: float, f: float, sigma: float, rounding: tuple = (0.0, 0.0)) -> int:
         return _slip_rule(old, w, f, self.static)  # type: ignore[arg-type]
 
     def same(self, old: object, new: object) -> bool:
@@ -289,24 +299,55 @@ class CurveSlipGraph(StepGraph):
     a cycle of points that the rounding of the step's rates keeps apart (on
     a belt it is ``eps sigma |belt velocity|`` wide, more than 8 ulps of
     ``f + sigma w`` near a stop; Leine's curve on a belt at ``dt = 2e-3``
-    cycles through three points 30 ulps of ``w`` apart).
+    cycles through three points 30 ulps of ``w`` apart).  A cycle is such
+    only while each solve's ``(w, f)`` lies on the branch to the solve's
+    rounding (:meth:`near`): a point reached from a solve off the branch
+    forgets the points before it, so that a true cycle of points (the
+    iteration is a fixed-point one, with no convergence proof) is never taken
+    for a settled step whose force is off its law.
+
+    ``tangent`` True is the finishing (Newton) form (point 8): the piece of a
+    slip mode is the branch's tangent at its point (slope ``g'(|w|)``; the
+    line of slope ``sigma`` at ``w = 0``), the next point the branch at the
+    solve's rate, and the mode settles when the solve's ``(w, f)`` lies on the
+    branch to the solve's rounding.  Given the modes, that is Newton's method
+    on a smooth strongly convex function (book/guide/systems.md), so it
+    converges quadratically from near the solution.
     """
 
-    __slots__ = ("law", "start")
+    __slots__ = ("law", "start", "tangent")
     is_piecewise: ClassVar[bool] = False
     monotone: ClassVar[bool] = False
 
-    def __init__(self, law: object, start: int) -> None:
-        self.law, self.start = law, start
+    def __init__(self, law: object, start: int, tangent: bool = False) -> None:
+        self.law, self.start, self.tangent = law, start, tangent
 
-    def _point(self, direction: float, z: float, sigma: float, old: object = None) -> object:
+    def newton(self) -> CurveSlipGraph:
+        return CurveSlipGraph(self.law, self.start, tangent=True)
+
+    def _point(self, direction: float, z: float, sigma: float, old: object = None, near: bool = True) -> object:
         """The point of the branch ``direction`` whose ``f + sigma w`` is ``z`` (reached from the point
-        ``old``, if any), or :data:`STICK`."""
+        ``old``, if any, by a solve on the branch if ``near``), or :data:`STICK`."""
         if direction * z <= self.law.slip_limit:  # type: ignore[attr-defined]
             return STICK
         s = self.law.slip_speed(direction * z, sigma)  # type: ignore[attr-defined]
-        before = () if old is None else (old[4] + (old[1:3],))[-_CYCLE:]  # type: ignore[index,operator]
+        before = () if old is None or not near else (old[4] + (old[1:3],))[-_CYCLE:]  # type: ignore[index,operator]
         return (direction, direction * s, direction * float(self.law.slip(s)), sigma, before)  # type: ignore[attr-defined]
+
+    def near(self, direction: float, w: float, f: float, sigma: float, rounding: tuple) -> bool:
+        """True if ``(w, f)`` (the true rate, ``direction w > 0``) lies on the branch to the solve's rounding.
+
+        The solve is exact for a problem whose rates and forces are moved by at
+        most ``dw`` and ``df`` (``rounding``, :func:`lumped.solvers.network_step.on_pieces`);
+        moving the rate by ``dw`` moves the branch's force by ``|g'(|w|)| dw``,
+        and ``g`` itself is evaluated to a few ulps (8 taken): so the gap
+        ``|f - s g(|w|)|`` of a solution is at most ``df + |g'| dw + 8 eps |g|``.
+        """
+        df, dw = rounding
+        s = direction * w
+        g = float(self.law.slip(s))  # type: ignore[attr-defined]
+        slope = abs(self.law.slope(s).value)  # type: ignore[attr-defined]
+        return abs(f - direction * g) <= df + slope * dw + 8 * _EPS * abs(g)
 
     def initial_mode(self) -> object:
         if self.start == STICK:
@@ -318,26 +359,58 @@ class CurveSlipGraph(StepGraph):
         if mode == STICK:
             return rigid_piece(0.0, -self.law.static, self.law.static)  # type: ignore[attr-defined]
         _, w0, f0, _, _ = mode  # type: ignore[misc]
-        return Piece(False, f0 - sigma * w0, sigma, -_INF, _INF)
+        slope = self.law.slope(abs(w0)).value if self.tangent and w0 else sigma  # type: ignore[attr-defined]
+        return Piece(False, f0 - slope * w0, slope, -_INF, _INF)
 
     def mode(self, z: float, sigma: float) -> object:
         static = self.law.static  # type: ignore[attr-defined]
         return STICK if abs(z) <= static else self._point(math.copysign(1.0, z), z, sigma)
 
-    def next_mode(self, old: object, w: float, f: float, sigma: float) -> object:
+    def next_mode(self, old: object, w: float, f: float, sigma: float, rounding: tuple = (0.0, 0.0)) -> object:
         if old == STICK:
-            static = self.law.static  # type: ignore[attr-defined]
-            return STICK if abs(f) <= static else self._point(math.copysign(1.0, f), f, sigma)
+            stays = _slip_rule(STICK, w, f, self.law.static) == STICK  # type: ignore[attr-defined]
+            return STICK if stays else self._point(math.copysign(1.0, f), f, sigma)
+        if self.tangent and self.law.slip_limit >= self.law.static:  # type: ignore[attr-defined]
+            return self._convex_mode(old, w, f, sigma, rounding)
         direction = old[0]  # type: ignore[index]
         if direction * w <= 0:
             return STICK
-        return self._point(direction, f + sigma * w, sigma, old)
+        near = self.near(direction, w, f, sigma, rounding)
+        if not self.tangent:
+            return self._point(direction, f + sigma * w, sigma, old, near)
+        if near:
+            return old  # settled: the solve lies on the branch
+        return (direction, w, direction * float(self.law.slip(direction * w)), sigma, ())  # type: ignore[attr-defined]
+
+    def _convex_mode(self, old: object, w: float, f: float, sigma: float, rounding: tuple) -> object:
+        """The Newton finish's mode of a contact whose graph is one (``g(0+) = static``, a Stribeck fall).
+
+        With ``lambda`` the steepest fall, ``f + lambda w`` is a monotone graph (the
+        contact's potential plus ``lambda w^2/2``, convex: book/guide/systems.md), so
+        the mode is its resolvent's choice, the primal-dual active-set test of a
+        monotone graph: ``z = f + (lambda + sigma) w``, stuck if ``|z| <= static``,
+        else slipping the way of ``z``.  This replaces the contact's rule, which picks
+        among several solutions where a step has them; below the uniqueness bound
+        it has one, and the rule's stop-then-slip could send two coupled contacts
+        round a cycle (one breaking away while the other stops, in turn).
+        """
+        z = f + (self.law.fall + sigma) * w  # type: ignore[attr-defined]
+        if abs(z) <= self.law.static:  # type: ignore[attr-defined]
+            return STICK
+        direction = math.copysign(1.0, z)
+        if old != STICK and old[0] == direction and direction * w > 0:  # type: ignore[index]
+            if self.near(direction, w, f, sigma, rounding):
+                return old  # settled: the solve lies on the branch
+            return (direction, w, direction * float(self.law.slip(direction * w)), sigma, ())  # type: ignore[attr-defined]
+        return self._point(direction, z, sigma)
 
     def same(self, old: object, new: object) -> bool:
         if old == STICK or new == STICK:
             return old == new
         if old[0] != new[0]:  # type: ignore[index]
             return False
+        if self.tangent:
+            return old is new
         (_, w0, f0, _, _), (_, w1, f1, sigma, before) = old, new  # type: ignore[misc]
         scale = abs(f1) + abs(f0) + sigma * (abs(w1) + abs(w0)) + 1e-300
         return abs(f1 - f0) + sigma * abs(w1 - w0) <= 8 * _EPS * scale or (w1, f1) in before
@@ -354,7 +427,7 @@ class Shifted(StepGraph):
     ``w``; :func:`shifted` gives piecewise graphs as shifted :class:`Pieces`.
     """
 
-    __slots__ = ("inner", "delta")
+    __slots__ = ("delta", "inner")
 
     def __init__(self, inner: StepGraph, delta: float) -> None:
         self.inner, self.delta = inner, delta
@@ -373,7 +446,7 @@ class Shifted(StepGraph):
     def __len__(self) -> int:
         return len(self.inner)  # type: ignore[arg-type]
 
-    def __iter__(self):  # noqa: ANN204
+    def __iter__(self):
         return (_shift_piece(p, self.delta) for p in self.inner)  # type: ignore[attr-defined]
 
     def initial_mode(self) -> object:
@@ -385,8 +458,12 @@ class Shifted(StepGraph):
     def mode(self, z: float, sigma: float) -> object:
         return self.inner.mode(z + sigma * self.delta, sigma)
 
-    def next_mode(self, old: object, w: float, f: float, sigma: float) -> object:
-        return self.inner.next_mode(old, w + self.delta, f, sigma)
+    def next_mode(self, old: object, w: float, f: float, sigma: float, rounding: tuple = (0.0, 0.0)) -> object:
+        df, dw = rounding  # the true rate w + delta rounds once more
+        return self.inner.next_mode(old, w + self.delta, f, sigma, (df, dw + _EPS * abs(w + self.delta)))
+
+    def newton(self) -> StepGraph:
+        return Shifted(self.inner.newton(), self.delta)
 
     def same(self, old: object, new: object) -> bool:
         return self.inner.same(old, new)

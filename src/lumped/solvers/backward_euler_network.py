@@ -215,13 +215,18 @@ def march(net: Network, dt: float, n_steps: int, save_every: int, rows: int, pat
 def _unsettled(n: int, dt: float, elements: int) -> ValueError:
     """The message of a step whose iteration did not settle: the step solver's failure, named as
     such (the step problem has a solution, unique in its velocities, at every ``dt``)."""
-    return ValueError(f"the step solver failed at the step to t = {n * dt:.6g} s: {unsettled(default_bound(elements))}")
+    return ValueError(
+        f"the step solver failed at the step to t = {n * dt:.6g} s (step {n}): {unsettled(default_bound(elements))}"
+    )
 
 
 def _failed(net: Network, n: int, dt: float, err: StepError) -> ValueError:
     """The message of a Python step that failed: unsettled, or a loop of rigid pieces whose rates disagree."""
     if not err.elements:
-        return _unsettled(n, dt, len(net.elements))
+        base = _unsettled(n, dt, len(net.elements))
+        if not err.changing:
+            return base
+        return ValueError(f"{base}; elements still changing: {listed([net.elements[e].name for e in err.changing])}")
     names = listed([net.elements[e].name for e in err.elements])
     return ValueError(f"elements {names} {err} at the step to t = {n * dt:.6g} s")
 

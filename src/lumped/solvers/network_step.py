@@ -47,6 +47,17 @@ are stepped as one element of the summed graph
 ``sigma = m/dt + k dt`` makes ``z`` the predictor ``F~`` of eq. 15b and the
 mode test Algorithm 1's ``|F~| <= mu_s N_f``.)
 
+Where some graph is linearised in each iteration (below) and the first
+scale does not settle, the step is finished by Newton's method: each graph's
+:meth:`~lumped.laws.step_graph.StepGraph.newton` form (a Stribeck contact's
+tangent lines, its mode the resolvent's choice on its convexified graph),
+one discrete mode changed at a time once the modes repeat (Murty's
+least-index rule, :func:`_least_index`); it settles when every slipping
+contact's force lies on its law to the solve's rounding (book/guide/systems.md
+derives the step as the minimiser of a strongly convex function below the
+uniqueness bound, whose Newton step this is).  ``_network_active_set.h``'s
+``solve`` is the same in C.
+
 A graph that is not piecewise linear (a
 :class:`~lumped.laws.step_graph.LawGraph`, the step graph of a
 :class:`~lumped.laws.dashpot_elements.Monotone` or Herschel-Bulkley element) is
@@ -93,12 +104,14 @@ Graph = Sequence[Piece] | StepGraph
 
 
 class StepError(ArithmeticError):
-    """The active-set iteration did not settle, or (``elements`` given) the rigid
-    elements ``elements`` close a loop whose rates disagree: the step has no solution."""
+    """The active-set iteration did not settle (``changing``: the elements whose modes still changed
+    in its last iteration), or (``elements`` given) the rigid elements ``elements`` close a loop whose
+    rates disagree: the step has no solution."""
 
-    def __init__(self, message: str, elements: Sequence[int] = ()) -> None:
+    def __init__(self, message: str, elements: Sequence[int] = (), changing: Sequence[int] = ()) -> None:
         super().__init__(message)
         self.elements = tuple(elements)
+        self.changing = tuple(changing)
 
 
 class StepSolution(NamedTuple):
@@ -184,9 +197,12 @@ def solve_step(
     topo = _Topology(list(first), list(second), inertia.size)
     guess = [g.initial_mode() for g in graphs] if modes is None else list(modes)
     bound = default_bound(len(graphs)) if max_iterations is None else max_iterations
-    clash: list[tuple[int, ...]] = [()]
-    for scale in SIGMA_SCALES:
+    clash: list[tuple[int, ...]] = [(), ()]  # a last loop whose rates disagree; the modes still changing
+    finish = None if all(g.is_piecewise for g in graphs) else [g.newton() for g in graphs]
+    for k, scale in enumerate(SIGMA_SCALES):
         out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound, clash)
+        if out is None and k == 0 and finish is not None:  # a curve's fixed-point iteration failed: Newton
+            out = _iterate(topo, inertia, rhs, finish, sigma, list(guess), bound, clash, one_at_a_time=True)
         if out is not None:
             return _with_ranges(out, topo, ranges)
     for sweeps in DUAL_SWEEPS:  # the guaranteed way in, then the exact finish
@@ -196,7 +212,7 @@ def solve_step(
             return _with_ranges(out, topo, ranges)
     if clash[0]:
         raise StepError(DISAGREE, clash[0])
-    raise StepError(unsettled(bound))
+    raise StepError(unsettled(bound), changing=clash[1])
 
 
 def _solve_reduced(
@@ -215,7 +231,8 @@ def _solve_reduced(
         sol = solve_step(red.first, red.second, inertia, rhs, red.graphs, red.sigma, red.modes, max_iterations, ranges)
     except StepError as err:
         names = [k for e in err.elements for k in (red.groups[e].elements if red.groups[e] else (red.index[e],))]
-        raise StepError(str(err), sorted(names)) from None
+        moved = [k for e in err.changing for k in (red.groups[e].elements if red.groups[e] else (red.index[e],))]
+        raise StepError(str(err), sorted(names), sorted(moved)) from None
     low, high = (sol.low, sol.high) if sol.low is not None else (None, None)
     out = parallel.expand(
         red, len(graphs), graphs, first, second, inertia.size, (sol.modes, sol.w, sol.f, sol.rigid, low, high)
@@ -244,8 +261,14 @@ def _with_ranges(out: tuple[StepSolution, _Linear], topo: _Topology, ranges: boo
 
 
 def unsettled(bound: int) -> str:
-    """The message of a step whose iteration did not settle within ``bound`` per scale."""
-    return f"the active-set iteration did not settle (tried sigma scales {SIGMA_SCALES}, {bound} iterations each)"
+    """The message of a step whose iteration did not settle within ``bound`` per scale: below the
+    uniqueness bound (:mod:`lumped.solvers.uniqueness`, checked before every run) the step has one
+    solution, so this is a defect of the solver, said as such."""
+    return (
+        f"the active-set iteration did not settle (tried sigma scales {SIGMA_SCALES}, {bound} iterations each, "
+        "and Newton on the curves); the step has one solution below the uniqueness bound, so this is a bug "
+        "in the step solver: please report it"
+    )
 
 
 def default_bound(elements: int) -> int:
@@ -262,14 +285,21 @@ def _iterate(
     modes: list,
     bound: int,
     clash: list[tuple[int, ...]],
+    one_at_a_time: bool = False,
 ) -> tuple[StepSolution, _Linear] | None:
     """The active-set loop at one scale; ``None`` if it cycles or hits the bound
     (``clash[0]``: the elements of a last loop whose rates disagree).
 
     A cycle is gone round once, and its first iterate whose ``(w, f)`` lies on
     its pieces up to the rounding of the linear solve (:func:`on_pieces`) is
-    the solution: a corner, see the module docstring.
+    the solution: a corner, see the module docstring.  With ``one_at_a_time``
+    (the Newton finish), once the elements' discrete modes (:func:`_discrete`)
+    repeat, each iteration changes the discrete mode of only the first element
+    that asks for a change (Murty's least-index rule, which ends for a linear
+    complementarity problem with a P-matrix, as the step's positive definite
+    matrix makes it), the curves' points moving on meanwhile.
     """
+    single, patterns = False, set()
     seen: set[tuple] = set()
     tried: set[tuple] = set()
     piecewise = all(g.is_piecewise for g in graphs)
@@ -280,10 +310,22 @@ def _iterate(
         clash[0] = lin.clash
         if lin.clash:
             return None  # rigid pieces whose rates disagree and none can give way
-        new = [g.next_mode(m, we, fe, s) for g, m, fe, we, s in zip(graphs, modes, f, w, sigma)]
-        settled = all(g.same(a, b) for a, b, g in zip(modes, new, graphs))
+        rounding = None if piecewise else _rounding(v, w, f, inertia, rhs)
+        new = [
+            g.next_mode(m, we, fe, s) if g.is_piecewise else g.next_mode(m, we, fe, s, rounding)
+            for g, m, fe, we, s in zip(graphs, modes, f, w, sigma)
+        ]
+        moved = tuple(e for e, (a, b, g) in enumerate(zip(modes, new, graphs)) if not g.same(a, b))
+        clash[1] = moved
+        settled = not moved
         if settled:
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
+        if one_at_a_time:
+            pattern = tuple(map(_discrete, new))
+            single = single or pattern in patterns
+            patterns.add(pattern)
+            if single:
+                new = _least_index(modes, new)
         key = tuple(m if g.is_piecewise else None for m, g in zip(new, graphs))
         if piecewise and (key in seen or tried):  # a cycle: go round it once
             if on_pieces(pieces, v, w, f, inertia, rhs):
@@ -296,6 +338,25 @@ def _iterate(
         seen.add(key)
         modes = new
     return None
+
+
+def _discrete(mode: object) -> object:
+    """A mode's discrete part: a piece's index, or a curve's stick or slip direction (``None``: a law's point)."""
+    if not isinstance(mode, tuple):
+        return mode
+    return ("slip", mode[0]) if len(mode) == 5 else None  # a direction +1.0 is not the stick mode 1
+
+
+def _least_index(old: list, new: list) -> list:
+    """``new`` with every discrete change after the first one undone (:func:`_iterate`'s ``one_at_a_time``)."""
+    out, changed = [], False
+    for a, b in zip(old, new):
+        if _discrete(a) != _discrete(b):
+            if changed:
+                b = a
+            changed = True
+        out.append(b)
+    return out
 
 
 def on_pieces(
@@ -314,15 +375,21 @@ def on_pieces(
     (sum |v_i| + sum |w_e|)``.  The solve then is the exact solution of the
     step with each piece's edges moved by at most ``df`` or ``dw``.
     """
-    n = inertia.size + len(pieces) + 1
-    df = n * _EPS * (np.abs(rhs).sum() + (inertia * np.abs(v)).sum() + np.abs(f).sum())
-    dw = n * _EPS * (np.abs(v).sum() + np.abs(w).sum())
+    df, dw = _rounding(v, w, f, inertia, rhs)
     for p, we, fe in zip(pieces, w, f):
         if p.rigid and not (p.lo - df <= fe <= p.hi + df and abs(we - p.a) <= dw):
             return False
         if not p.rigid and not p.lo - dw <= we <= p.hi + dw:
             return False
     return True
+
+
+def _rounding(v: np.ndarray, w: np.ndarray, f: np.ndarray, inertia: np.ndarray, rhs: np.ndarray) -> tuple[float, float]:
+    """The bounds ``(df, dw)`` on the rounding of one linear solve's forces and rates (:func:`on_pieces`)."""
+    n = inertia.size + f.size + 1
+    df = n * _EPS * (np.abs(rhs).sum() + (inertia * np.abs(v)).sum() + np.abs(f).sum())
+    dw = n * _EPS * (np.abs(v).sum() + np.abs(w).sum())
+    return float(df), float(dw)
 
 
 def _dual_sweeps(

@@ -1,0 +1,180 @@
+"""Property: below the uniqueness bound every step of a network with falling contacts settles (issue 41 A).
+
+Seeded random networks: 2 to 5 masses, Stribeck contacts (every decay) and
+Coulomb contacts (static above kinetic) to the floor, between masses and to a driven plate, springs between masses and to
+the plate, ``dt`` half the largest the uniqueness bound admits (or 1e-3 s).
+At every step of a short run: the step settles (no ``ValueError``), the
+compiled sparse step and the Python step agree (positions to 1e-12 of the
+run's largest, the same active sets), and every slipping contact's force lies
+on its law to the settling test's rounding (``test_step_selection._on_law``,
+derived there, with each contact's own ``sigma``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from lumped.drivers.network import run_network
+from lumped.laws.spring_elements import Spring
+from lumped.laws.stribeck import DECAYS, Friction
+from lumped.model.network import Driver, Mass, Network
+from lumped.solvers import uniqueness
+from lumped.solvers.backward_euler_network import _sigma
+
+EPS = float(np.finfo(float).eps)
+#: Networks of the default run (a few seconds); the slow test runs :data:`MANY`.
+FEW, MANY = 12, 1000
+STEPS = 6
+
+
+def _contact(rng: np.random.Generator, name: str, between: tuple[str, str]) -> Friction:
+    """A friction contact: static above kinetic, with a Stribeck fall (every decay) or, one in four, without
+    (a Coulomb drop from static to kinetic, piecewise linear)."""
+    static = float(rng.uniform(0.2, 2.0))
+    falls = rng.random() < 0.75
+    return Friction(
+        name,
+        between,
+        static=static,
+        kinetic=static * float(rng.uniform(0.0, 0.9)),
+        stribeck_velocity=float(rng.uniform(0.05, 0.5)) if falls else None,
+        decay=str(rng.choice(list(DECAYS))),
+        viscous=float(rng.choice([0.0, 0.2])),
+    )
+
+
+def network(seed: int) -> tuple[Network, float]:
+    """The random network of ``seed`` and its step (within the bound)."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(2, 6))
+    names = [f"m{i}" for i in range(n)]
+    masses = [Mass(names[i], float(rng.uniform(0.5, 2.0)), 0.0, float(rng.uniform(-0.5, 0.5))) for i in range(n)]
+    elements = [_contact(rng, f"floor{i}", ("ground", names[i])) for i in range(n) if rng.random() < 0.6]
+    for k in range(int(rng.integers(1, 2 * n))):
+        i, j = (int(a) for a in rng.choice(n, 2, replace=False))
+        if rng.random() < 0.5:
+            elements.append(_contact(rng, f"c{k}", (names[i], names[j])))
+        else:
+            elements.append(Spring(f"k{k}", (names[i], names[j]), float(rng.uniform(1.0, 50.0))))
+    drivers = []
+    if rng.random() < 0.5:
+        drivers.append(Driver("plate", float(rng.uniform(-0.5, 0.5))))
+        for i in rng.choice(n, int(rng.integers(1, n + 1)), replace=False):
+            make = _contact if rng.random() < 0.6 else None
+            name = f"p{i}"
+            elements.append(make(rng, name, ("plate", names[i])) if make else Spring(name, ("plate", names[i]), 20.0))
+    net = Network(masses, elements, drivers=drivers)
+    dt = min(1e-3, 0.5 * uniqueness.largest_step(net, 1.0))
+    return net, dt
+
+
+def _on_law(net: Network, run: object, dt: float) -> None:
+    """``test_step_selection._on_law``'s bound, each contact with its own ``sigma`` and ``n``."""
+    first, second = net.incidence()
+    inertia = np.array([m.mass / dt for m in net.masses])
+    sigma = _sigma(net, inertia, dt)
+    n = len(net.masses) + len(net.elements) + 1
+    momenta = (inertia * np.abs(run.velocities)).sum(axis=1)  # type: ignore[attr-defined]
+    df = 2 * n * EPS * (np.r_[0.0, momenta[:-1]] + momenta + np.abs(run.forces).sum(axis=1))  # type: ignore[attr-defined]
+    df += n * EPS * np.abs(run.applied).sum(axis=1)  # type: ignore[attr-defined]
+    shift = {d.element: d for d in net.driven()}
+    for e, el in enumerate(net.elements):
+        if not isinstance(el, Friction):
+            continue
+        w = _rate(net, run, e, first, second, shift)
+        slipping = np.flatnonzero((w != 0) & ~run.rigid[:, e])  # type: ignore[attr-defined]
+        slipping = slipping[slipping > 0]  # row 0: the initial forces, no step
+        s, f = np.abs(w[slipping]), run.forces[slipping, e]  # type: ignore[attr-defined]
+        g = el.law.slip(s)
+        slope = np.array([abs(el.law.slope(float(x)).value) for x in s])
+        sg = sigma[e]
+        bound = 8 * EPS * ((1 + slope / sg) * (np.abs(f) + sg * s) + np.abs(g)) + df[slipping]
+        assert np.all(np.abs(f - np.sign(w[slipping]) * g) <= bound), el.name
+
+
+def _rate(net: Network, run: object, e: int, first: np.ndarray, second: np.ndarray, shift: dict) -> np.ndarray:
+    """Element ``e``'s true rate at each saved step (a driven point moves at the plate's velocity)."""
+    v = np.c_[run.velocities, np.zeros(len(run.t))]  # type: ignore[attr-defined]
+    n = len(net.masses)
+    a = v[:, min(first[e], n)]
+    b = v[:, min(second[e], n)]
+    w = b - a
+    if e in shift:
+        w = w + shift[e].sign * net.drivers[shift[e].driver].velocity_at(0.0)
+    return w
+
+
+def _check(seed: int) -> None:
+    net, dt = network(seed)
+    python = run_network(net, STEPS * dt, dt, solver="python")
+    compiled = run_network(net, STEPS * dt, dt)
+    scale = max(np.abs(python.positions).max(), 1e-300)
+    np.testing.assert_allclose(compiled.positions, python.positions, rtol=1e-12, atol=1e-12 * scale, err_msg=str(seed))
+    np.testing.assert_array_equal(compiled.rigid, python.rigid, err_msg=str(seed))
+    for run in (python, compiled):
+        _on_law(net, run, dt)
+
+
+def test_random_falling_networks_settle_agree_and_lie_on_their_laws() -> None:
+    for seed in range(FEW):
+        _check(seed)
+
+
+@pytest.mark.slow
+@pytest.mark.xfail(
+    strict=True,
+    reason="issue 41 A is not finished: 5 of the 1000 (seeds 329, 493, 495, 529, 974) cycle at their first step "
+    "even in the Newton finish with the least-index rule (not a bound: 400 iterations do not settle them); "
+    "a line search on the step's strongly convex function (book/guide/systems.md) is the missing piece",
+)
+def test_a_thousand_random_falling_networks() -> None:
+    for seed in range(MANY):
+        _check(seed)
+
+
+def coupled(seed: int) -> tuple[Network, float]:
+    """Four masses in a row on floors (Coulomb or Stribeck, half each), joined by springs or contacts (most
+    with a Stribeck fall), each on a leaf spring to a plate: contacts coupled through stuck neighbours."""
+    rng = np.random.default_rng(seed)
+    names = [f"m{i}" for i in range(4)]
+    masses = [
+        Mass(n, float(rng.uniform(0.5, 2)), float(rng.uniform(-0.1, 0.1)), float(rng.uniform(-0.6, 0.6))) for n in names
+    ]
+    elements = []
+    for i, n in enumerate(names):
+        static = float(rng.uniform(0.5, 2))
+        if rng.random() < 0.5:
+            elements.append(
+                Friction(f"f{i}", ("ground", n), static=static, kinetic=static * float(rng.uniform(0.3, 0.9)))
+            )
+        else:
+            fall = {"stribeck_velocity": float(rng.uniform(0.1, 1.0)), "decay": str(rng.choice(list(DECAYS)))}
+            elements.append(
+                Friction(f"f{i}", ("ground", n), static=static, kinetic=static * float(rng.uniform(0.0, 0.9)), **fall)
+            )
+    for i in range(3):
+        if rng.random() < 0.5:
+            elements.append(Spring(f"k{i}", (names[i], names[i + 1]), float(rng.uniform(5, 50))))
+        else:
+            static = float(rng.uniform(0.3, 1.5))
+            kinetic = static * float(rng.uniform(0.0, 0.9))
+            v_s = float(rng.uniform(0.1, 1.0)) if rng.random() < 0.7 else None
+            elements.append(
+                Friction(f"c{i}", (names[i], names[i + 1]), static=static, kinetic=kinetic, stribeck_velocity=v_s)
+            )
+    drivers = [Driver("plate", float(rng.uniform(0.2, 1.0)))]
+    elements += [Spring(f"leaf{i}", ("plate", names[i]), float(rng.uniform(2, 20))) for i in range(4)]
+    net = Network(masses, elements, drivers=drivers)
+    return net, min(1e-3, 0.5 * uniqueness.largest_step(net, 1.0))
+
+
+@pytest.mark.parametrize(("seed", "steps"), [(15, 350), (23, 428)])
+def test_coupled_contacts_that_cycled_settle(seed: int, steps: int) -> None:
+    """Two floor contacts coupled through a stuck neighbour made the Newton finish cycle, one breaking
+    away while the other stopped, in turn (steps 348 and 426): the contacts' modes now follow the
+    resolvent of their convexified graphs, and once the modes repeat one changes at a time (Murty's rule)."""
+    net, dt = coupled(seed)
+    run = run_network(net, steps * dt, dt)
+    assert run.solver.startswith("compiled-banded")  # its rigid loops' steps in Python
+    _on_law(net, run, dt)
