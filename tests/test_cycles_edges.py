@@ -178,12 +178,14 @@ def test_an_overdamped_belt_has_no_cycle_of_the_integrators_noise(tmp_path):
 def test_a_stick_slip_cycle_beside_the_grazing_orbit_is_its_own_row(tmp_path):
     """``static - kinetic = 1e-6 K``: the stick-slip cycle (stuck 2e-6/0.2 = 1e-5 s a period) crosses the section
     at ``V`` and the grazing harmonic orbit of the centre just below: within 1e-8 of each other, so they were one
-    row and the stick-slip cycle was dropped.  Both are rows; the stick-slip one is ``belt_cycle``'s."""
+    row and the stick-slip cycle was dropped.  The stick-slip cycle is a row, ``belt_cycle``'s.  The grazing orbit
+    is one member of the centre's family of harmonic orbits (multiplier 1), listed only when a start happens to land
+    on it (at ``kinetic = 0.5`` none does), so its row is not asserted; if it is there, it is a row of its own."""
     path = with_text(tmp_path, BELT, "kinetic = 0.5 ", "kinetic = 0.999999 ")
     rows = cycle_rows(lumped.cycles(load_system(path)))
     ref = belt_cycle(mass=1.0, stiffness=1.0, static=1.0, kinetic=0.999999, velocity=0.2)
     stuck = np.flatnonzero(rows["stick_time"] > 0)
-    assert stuck.size == 1 and rows["period"].size == 2
+    assert stuck.size == 1 and rows["period"].size in (1, 2)
     got = tuple(rows[c][stuck[0]] for c in ("period", "max_m", "min_m", "stick_time"))
     assert got == pytest.approx((ref.period, ref.x_max, ref.x_min, ref.stick_time), rel=0, abs=CLOSED_FORM_ABS)
 
@@ -248,9 +250,16 @@ def test_the_gaussian_belt_answers_within_its_stated_bound_with_progress(tmp_pat
 
 def test_vary_given_twice_is_refused_in_one_line(tmp_path):
     run = run_lumped(
-        "cycles", "--system", BELT, "--vary", "belt.velocity=0.1:0.2", "--vary", "fric.static=1:2",
-        "--output", tmp_path / "c.csv",
-    )  # fmt: skip
+        "cycles",
+        "--system",
+        BELT,
+        "--vary",
+        "belt.velocity=0.1:0.2",
+        "--vary",
+        "fric.static=1:2",
+        "--output",
+        tmp_path / "c.csv",
+    )
     assert run.returncode == 2
     assert run.stderr == "lumped cycles: error: --vary is given more than once: cycles continues in one parameter\n"
     assert list(tmp_path.iterdir()) == []
