@@ -75,7 +75,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.laws.step_graph import Piece, StepGraph, as_step_graph
+from lumped.laws.step_graph import STICK, Piece, StepGraph, as_step_graph
 from lumped.solvers import parallel_elements as parallel
 from lumped.solvers.loop_forces import CoreForces, core_forces
 from lumped.solvers.merged_system import assemble, solve_merged
@@ -89,6 +89,7 @@ __all__ = [
     "default_bound",
     "on_pieces",
     "solve_step",
+    "step_function",
     "unsettled",
 ]
 
@@ -108,10 +109,13 @@ class StepError(ArithmeticError):
     in its last iteration), or (``elements`` given) the rigid elements ``elements`` close a loop whose
     rates disagree: the step has no solution."""
 
-    def __init__(self, message: str, elements: Sequence[int] = (), changing: Sequence[int] = ()) -> None:
+    def __init__(
+        self, message: str, elements: Sequence[int] = (), changing: Sequence[int] = (), phi: float | None = None
+    ) -> None:
         super().__init__(message)
         self.elements = tuple(elements)
         self.changing = tuple(changing)
+        self.phi = phi  # the step's function at the last iterate (step_function), if it did not settle
 
 
 class StepSolution(NamedTuple):
@@ -197,7 +201,7 @@ def solve_step(
     topo = _Topology(list(first), list(second), inertia.size)
     guess = [g.initial_mode() for g in graphs] if modes is None else list(modes)
     bound = default_bound(len(graphs)) if max_iterations is None else max_iterations
-    clash: list[tuple[int, ...]] = [(), ()]  # a last loop whose rates disagree; the modes still changing
+    clash: list = [(), (), None]  # a last loop whose rates disagree; the modes still changing; the last v
     finish = None if all(g.is_piecewise for g in graphs) else [g.newton() for g in graphs]
     for k, scale in enumerate(SIGMA_SCALES):
         out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound, clash)
@@ -212,7 +216,32 @@ def solve_step(
             return _with_ranges(out, topo, ranges)
     if clash[0]:
         raise StepError(DISAGREE, clash[0])
-    raise StepError(unsettled(bound), changing=clash[1])
+    last = clash[2] if clash[2] is not None else np.zeros(inertia.size)
+    phi = step_function(first, second, inertia, rhs, graphs, last)
+    raise StepError(unsettled(bound), changing=clash[1], phi=phi)
+
+
+def step_function(
+    first: Sequence[int],
+    second: Sequence[int],
+    inertia: np.ndarray,
+    rhs: np.ndarray,
+    graphs: Sequence[StepGraph],
+    v: np.ndarray,
+) -> float:
+    """The step's function ``Phi(v) = sum_i d_i v_i^2/2 - r . v + sum_e psi_e(w_e)``, ``w = B v``.
+
+    Below the uniqueness bound, with each contact's graph chosen, it is strongly convex and the step's
+    solution is its minimiser (book/guide/systems.md); ``psi_e`` is each graph's potential
+    (:meth:`~lumped.laws.step_graph.StepGraph.potential`, 0 at rate 0).  A step that did not settle
+    reports its value at the last iterate.
+    """
+    points = np.r_[v, 0.0]
+    n = inertia.size
+    value = float(0.5 * (inertia * v * v).sum() - (rhs * v).sum())
+    for a, b, g in zip(first, second, graphs):
+        value += g.potential(float(points[min(b, n)] - points[min(a, n)]))
+    return value
 
 
 def _solve_reduced(
@@ -232,7 +261,7 @@ def _solve_reduced(
     except StepError as err:
         names = [k for e in err.elements for k in (red.groups[e].elements if red.groups[e] else (red.index[e],))]
         moved = [k for e in err.changing for k in (red.groups[e].elements if red.groups[e] else (red.index[e],))]
-        raise StepError(str(err), sorted(names), sorted(moved)) from None
+        raise StepError(str(err), sorted(names), sorted(moved), err.phi) from None
     low, high = (sol.low, sol.high) if sol.low is not None else (None, None)
     out = parallel.expand(
         red, len(graphs), graphs, first, second, inertia.size, (sol.modes, sol.w, sol.f, sol.rigid, low, high)
@@ -307,7 +336,7 @@ def _iterate(
         pieces = [g.piece(m, s) for g, m, s in zip(graphs, modes, sigma)]
         lin = _linear(topo, inertia, rhs, pieces)
         v, w, f = lin.v, lin.w, lin.f
-        clash[0] = lin.clash
+        clash[0], clash[2] = lin.clash, v
         if lin.clash:
             return None  # rigid pieces whose rates disagree and none can give way
         rounding = None if piecewise else _rounding(v, w, f, inertia, rhs)
@@ -321,6 +350,10 @@ def _iterate(
         if settled:
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
         if one_at_a_time:
+            new = _parallel_rule(topo, graphs, modes, new, pieces, f, sigma)
+            moved = tuple(e for e, (a, b, g) in enumerate(zip(modes, new, graphs)) if not g.same(a, b))
+            if not moved:
+                return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
             pattern = tuple(map(_discrete, new))
             single = single or pattern in patterns
             patterns.add(pattern)
@@ -338,6 +371,48 @@ def _iterate(
         seen.add(key)
         modes = new
     return None
+
+
+def _parallel_rule(
+    topo: _Topology,
+    graphs: Sequence[StepGraph],
+    modes: list,
+    new: list,
+    pieces: Sequence[Piece],
+    f: np.ndarray,
+    sigma: np.ndarray,
+) -> list:
+    """The Newton finish's modes of friction contacts in parallel, one of them stuck: the group's rule.
+
+    Contacts between the same two points share one rate, so together they are one element whose graph
+    is the sum of theirs (its band at rest the sum of their ``static`` bands).  While one of them is
+    stuck it holds the rate at 0, and each one's own rule then sends a contact that slips back to rest
+    (its rate is 0) while the stuck one breaks away: the two swap, a cycle of the modes for ever (issue
+    41: a Stribeck contact beside a Coulomb one, five of 1000 random networks).  So with a member stuck
+    the group decides as one: it stays stuck, every member, while its total force lies in the summed
+    band, and otherwise every member breaks away the way of that force, as a stuck contact carrying its
+    share of it (the force times its ``static`` over the group's, beyond its own ``static``) would.
+    """
+    groups: dict[tuple, list[int]] = {}
+    for e, g in enumerate(graphs):
+        if not g.monotone:  # a friction contact; in parallel: the same points and the same true rate
+            a, b, delta = topo.first[e], topo.second[e], getattr(g, "delta", 0.0)
+            groups.setdefault((a, b, delta) if a < b else (b, a, -delta), []).append(e)
+    out = list(new)
+    for members in groups.values():
+        if len(members) < 2 or not any(pieces[e].rigid for e in members):
+            continue
+        head = members[0]
+        signs = {e: 1.0 if topo.first[e] == topo.first[head] else -1.0 for e in members}
+        static = {e: graphs[e].piece(STICK, sigma[e]).hi for e in members}
+        total, band = sum(signs[e] * f[e] for e in members), sum(static.values())
+        for e in members:
+            if abs(total) <= band:
+                out[e] = STICK
+            else:
+                share = signs[e] * total * static[e] / band
+                out[e] = graphs[e].next_mode(STICK, 0.0, share, sigma[e])
+    return out
 
 
 def _discrete(mode: object) -> object:
