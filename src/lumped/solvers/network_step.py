@@ -52,11 +52,22 @@ scale does not settle, the step is finished by Newton's method: each graph's
 :meth:`~lumped.laws.step_graph.StepGraph.newton` form (a Stribeck contact's
 tangent lines, its mode the resolvent's choice on its convexified graph),
 one discrete mode changed at a time once the modes repeat (Murty's
-least-index rule, :func:`_least_index`); it settles when every slipping
+least-index rule, :func:`_least_index`), friction contacts in parallel with
+one of them stuck deciding as one element of their summed graph
+(:func:`_parallel_rule`); it settles when every slipping
 contact's force lies on its law to the solve's rounding (book/guide/systems.md
-derives the step as the minimiser of a strongly convex function below the
-uniqueness bound, whose Newton step this is).  ``_network_active_set.h``'s
-``solve`` is the same in C.
+derives the step as the minimiser of a strongly convex function ``Phi``
+below the uniqueness bound, whose Newton step this is).  Why the answer is
+the solution: a settled iterate has every ``(w, f)`` on its graph (on its
+law, to the solve's rounding), so it solves the step's equations, and below
+the bound they have one solution.  Why the iteration ends has no proof yet:
+the rules above end every case the property tests draw (1000 random falling
+networks), the bound on iterations ends the rest, and a step that reaches it
+raises a ``StepError`` that calls itself a bug and carries ``Phi`` at its
+last iterate (:func:`step_function`); a line search on ``Phi``, which would
+make it a proof, is not done.  ``_network_active_set.h``'s ``solve`` is the
+same in C (the compiled steps refuse parallel elements that can be rigid,
+so :func:`_parallel_rule` has no C twin).
 
 A graph that is not piecewise linear (a
 :class:`~lumped.laws.step_graph.LawGraph`, the step graph of a
