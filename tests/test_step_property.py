@@ -247,3 +247,23 @@ def test_an_unsettled_step_says_it_is_a_bug_and_names_the_step_elements_and_phi(
     message = str(err.value)
     assert "this is a bug" in message and "(step 1)" in message
     assert "elements still changing:" in message and "Phi = " in message
+
+
+def test_a_slipping_contact_held_at_rest_by_stuck_ones_keeps_slipping_while_one_breaks_away() -> None:
+    """``coupled(12)`` from its state after 366 steps (positions in the plate's frame): ``f0`` slips but its
+    rate is held at 0 by stuck contacts (``c0``, ``c1`` and the floor ``f2``: one rigid cluster with the
+    ground), so its rule stopped it, and stuck it held more than ``static``; ``f2`` asked to break away,
+    but the least-index rule let only ``f0`` change: the Newton finish cycled for ever (the one failure
+    of 40 ``coupled`` networks, at step 367).  A pinned slipping contact now keeps slipping while a stuck
+    contact of its cluster breaks away (``network_step._pinned_rule``)."""
+    net, dt = coupled(12)
+    x = [-0.07535650928039406, -0.17903447464722777, -0.13312333037000854, -0.15409637489830924]
+    v = [0.0, 0.0, 0.0, 0.2615544894845551]
+    masses = [Mass(m.name, m.mass, xi, vi) for m, xi, vi in zip(net.masses, x, v)]
+    net = Network(masses, net.elements, drivers=net.drivers)
+    python = run_network(net, 2 * dt, dt, solver="python")
+    compiled = run_network(net, 2 * dt, dt)
+    np.testing.assert_allclose(compiled.positions, python.positions, rtol=1e-12, atol=1e-12 * np.abs(x).max())
+    np.testing.assert_array_equal(compiled.rigid, python.rigid)
+    for run in (python, compiled):
+        _on_law(net, run, dt)

@@ -54,7 +54,8 @@ tangent lines, its mode the resolvent's choice on its convexified graph),
 one discrete mode changed at a time once the modes repeat (Murty's
 least-index rule, :func:`_least_index`), friction contacts in parallel with
 one of them stuck deciding as one element of their summed graph
-(:func:`_parallel_rule`); it settles when every slipping
+(:func:`_parallel_rule`), a slipping contact held at rest by a loop of stuck
+ones kept slipping while one of them breaks away (:func:`_pinned_rule`); it settles when every slipping
 contact's force lies on its law to the solve's rounding (book/guide/systems.md
 derives the step as the minimiser of a strongly convex function ``Phi``
 below the uniqueness bound, whose Newton step this is).  Why the answer is
@@ -67,7 +68,9 @@ raises a ``StepError`` that calls itself a bug and carries ``Phi`` at its
 last iterate (:func:`step_function`); a line search on ``Phi``, which would
 make it a proof, is not done.  ``_network_active_set.h``'s ``solve`` is the
 same in C (the compiled steps refuse parallel elements that can be rigid,
-so :func:`_parallel_rule` has no C twin).
+so :func:`_parallel_rule` has no C twin, and a contact held at rest by
+stuck ones that stops closes a rigid loop, a step both compiled steps hand
+to this one, so neither has :func:`_pinned_rule`).
 
 A graph that is not piecewise linear (a
 :class:`~lumped.laws.step_graph.LawGraph`, the step graph of a
@@ -362,6 +365,7 @@ def _iterate(
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
         if one_at_a_time:
             new = _parallel_rule(topo, graphs, modes, new, pieces, f, sigma)
+            new = _pinned_rule(topo, graphs, modes, new, pieces)
             moved = tuple(e for e, (a, b, g) in enumerate(zip(modes, new, graphs)) if not g.same(a, b))
             if not moved:
                 return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
@@ -423,6 +427,32 @@ def _parallel_rule(
             else:
                 share = signs[e] * total * static[e] / band
                 out[e] = graphs[e].next_mode(STICK, 0.0, share, sigma[e])
+    return out
+
+
+def _pinned_rule(topo: _Topology, graphs: Sequence[StepGraph], modes: list, new: list, pieces: Sequence[Piece]) -> list:
+    """The Newton finish's mode of a slipping contact held at rest by stuck ones: it keeps slipping while
+    one of them breaks away.
+
+    A slipping contact whose two points lie in one cluster of rigid pieces (its rate fixed at 0 by the
+    contacts stuck around a loop through it) has rate 0 only because they hold it; its rule would stop
+    it, and stuck it may carry more than ``static`` and ask to slip again, while a stuck contact of that
+    loop asks to break away and the least-index rule lets only one of them change: the modes cycle
+    (issue 41, ``coupled(12)`` of ``tests/test_step_property.py`` at step 367).  So while a stuck contact
+    of its cluster asks to break away, the held one keeps its mode and the stuck one's change goes first.
+    (:func:`_parallel_rule` is the case of contacts in parallel.)
+    """
+    root = _clusters(topo, pieces).clusters.root
+    breaking = {
+        root[topo.first[e]]
+        for e, g in enumerate(graphs)
+        if not g.monotone and pieces[e].rigid and _discrete(new[e]) != _discrete(modes[e])
+    }
+    out = list(new)
+    for e, g in enumerate(graphs):
+        pinned = root[topo.first[e]] == root[topo.second[e]] and not pieces[e].rigid
+        if not g.monotone and pinned and new[e] == STICK and root[topo.first[e]] in breaking:
+            out[e] = modes[e]
     return out
 
 
