@@ -131,8 +131,8 @@ def test_a_thousand_random_falling_networks() -> None:
 def test_parallel_contacts_that_cycled_settle(seed: int) -> None:
     """A Stribeck contact beside a Coulomb one between the same points: in the Newton finish the stuck one
     held their common rate at 0 and the slipping one, at rate 0, stopped while the stuck one broke away, in
-    turn, for ever (the 1000-network test's five failures, all at step 1); now a stuck member makes the
-    group decide as one (``network_step._parallel_rule``)."""
+    turn, for ever (the 1000-network test's five failures, all at step 1); now the held one keeps slipping
+    while the stuck one breaks away (``network_step._pinned_rule``)."""
     _check(seed)
 
 

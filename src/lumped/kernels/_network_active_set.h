@@ -118,9 +118,9 @@ static int iterate(net_t *q, double scale, int *iterations) {
             *iterations = it;
             return 1;
         }
-        /* step._iterate's one_at_a_time: the Newton finish.  step._parallel_rule and _pinned_rule have no
-         * twin here: both compiled steps refuse parallel elements that can be rigid (ineligible), and a
-         * contact held at rest by stuck ones that stops closes a rigid loop, which linear() hands to Python. */
+        /* step._iterate's one_at_a_time: the Newton finish.  step._pinned_rule has no twin here: a contact
+         * held at rest by stuck ones that stops closes a rigid loop, which linear() hands to Python (and both
+         * compiled steps refuse parallel elements that can be rigid: ineligible). */
         if (curves && q->cv->tangent) {
             const uint64_t h = hash_modes(q->next, q->n_el);
             for (int j = 0; j < seen && !single; j++) single = q->seen[j] == h;

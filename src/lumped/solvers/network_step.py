@@ -52,10 +52,9 @@ scale does not settle, the step is finished by Newton's method: each graph's
 :meth:`~lumped.laws.step_graph.StepGraph.newton` form (a Stribeck contact's
 tangent lines, its mode the resolvent's choice on its convexified graph),
 one discrete mode changed at a time once the modes repeat (Murty's
-least-index rule, :func:`_least_index`), friction contacts in parallel with
-one of them stuck deciding as one element of their summed graph
-(:func:`_parallel_rule`), a slipping contact held at rest by a loop of stuck
-ones kept slipping while one of them breaks away (:func:`_pinned_rule`); it settles when every slipping
+least-index rule, :func:`_least_index`), a slipping contact held at rest by
+stuck ones (in parallel, or round a loop) kept slipping while one of them
+breaks away (:func:`_pinned_rule`); it settles when every slipping
 contact's force lies on its law to the solve's rounding (book/guide/systems.md
 derives the step as the minimiser of a strongly convex function ``Phi``
 below the uniqueness bound, whose Newton step this is).  Why the answer is
@@ -67,10 +66,9 @@ networks), the bound on iterations ends the rest, and a step that reaches it
 raises a ``StepError`` that calls itself a bug and carries ``Phi`` at its
 last iterate (:func:`step_function`); a line search on ``Phi``, which would
 make it a proof, is not done.  ``_network_active_set.h``'s ``solve`` is the
-same in C (the compiled steps refuse parallel elements that can be rigid,
-so :func:`_parallel_rule` has no C twin, and a contact held at rest by
-stuck ones that stops closes a rigid loop, a step both compiled steps hand
-to this one, so neither has :func:`_pinned_rule`).
+same in C but for :func:`_pinned_rule`: a contact held at rest by stuck
+ones that stops closes a rigid loop, a step both compiled steps hand to
+this one (and both refuse parallel elements that can be rigid).
 
 A graph that is not piecewise linear (a
 :class:`~lumped.laws.step_graph.LawGraph`, the step graph of a
@@ -364,11 +362,7 @@ def _iterate(
         if settled:
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
         if one_at_a_time:
-            new = _parallel_rule(topo, graphs, modes, new, pieces, f, sigma)
             new = _pinned_rule(topo, graphs, modes, new, pieces)
-            moved = tuple(e for e, (a, b, g) in enumerate(zip(modes, new, graphs)) if not g.same(a, b))
-            if not moved:
-                return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
             pattern = tuple(map(_discrete, new))
             single = single or pattern in patterns
             patterns.add(pattern)
@@ -388,48 +382,6 @@ def _iterate(
     return None
 
 
-def _parallel_rule(
-    topo: _Topology,
-    graphs: Sequence[StepGraph],
-    modes: list,
-    new: list,
-    pieces: Sequence[Piece],
-    f: np.ndarray,
-    sigma: np.ndarray,
-) -> list:
-    """The Newton finish's modes of friction contacts in parallel, one of them stuck: the group's rule.
-
-    Contacts between the same two points share one rate, so together they are one element whose graph
-    is the sum of theirs (its band at rest the sum of their ``static`` bands).  While one of them is
-    stuck it holds the rate at 0, and each one's own rule then sends a contact that slips back to rest
-    (its rate is 0) while the stuck one breaks away: the two swap, a cycle of the modes for ever (issue
-    41: a Stribeck contact beside a Coulomb one, five of 1000 random networks).  So with a member stuck
-    the group decides as one: it stays stuck, every member, while its total force lies in the summed
-    band, and otherwise every member breaks away the way of that force, as a stuck contact carrying its
-    share of it (the force times its ``static`` over the group's, beyond its own ``static``) would.
-    """
-    groups: dict[tuple, list[int]] = {}
-    for e, g in enumerate(graphs):
-        if not g.monotone:  # a friction contact; in parallel: the same points and the same true rate
-            a, b, delta = topo.first[e], topo.second[e], getattr(g, "delta", 0.0)
-            groups.setdefault((a, b, delta) if a < b else (b, a, -delta), []).append(e)
-    out = list(new)
-    for members in groups.values():
-        if len(members) < 2 or not any(pieces[e].rigid for e in members):
-            continue
-        head = members[0]
-        signs = {e: 1.0 if topo.first[e] == topo.first[head] else -1.0 for e in members}
-        static = {e: graphs[e].piece(STICK, sigma[e]).hi for e in members}
-        total, band = sum(signs[e] * f[e] for e in members), sum(static.values())
-        for e in members:
-            if abs(total) <= band:
-                out[e] = STICK
-            else:
-                share = signs[e] * total * static[e] / band
-                out[e] = graphs[e].next_mode(STICK, 0.0, share, sigma[e])
-    return out
-
-
 def _pinned_rule(topo: _Topology, graphs: Sequence[StepGraph], modes: list, new: list, pieces: Sequence[Piece]) -> list:
     """The Newton finish's mode of a slipping contact held at rest by stuck ones: it keeps slipping while
     one of them breaks away.
@@ -440,7 +392,8 @@ def _pinned_rule(topo: _Topology, graphs: Sequence[StepGraph], modes: list, new:
     loop asks to break away and the least-index rule lets only one of them change: the modes cycle
     (issue 41, ``coupled(12)`` of ``tests/test_step_property.py`` at step 367).  So while a stuck contact
     of its cluster asks to break away, the held one keeps its mode and the stuck one's change goes first.
-    (:func:`_parallel_rule` is the case of contacts in parallel.)
+    Contacts in parallel are the shortest such loop: a Stribeck contact beside a Coulomb one swapped
+    stick and slip for ever (five of the 1000 random falling networks, at their first step).
     """
     root = _clusters(topo, pieces).clusters.root
     breaking = {
