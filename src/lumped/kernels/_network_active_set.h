@@ -118,7 +118,10 @@ static int iterate(net_t *q, double scale, int *iterations) {
             *iterations = it;
             return 1;
         }
-        if (curves && q->cv->tangent) { /* step._iterate's one_at_a_time: the Newton finish */
+        /* step._iterate's one_at_a_time: the Newton finish.  step._pinned_rule has no twin here: a contact
+         * held at rest by stuck ones that stops closes a rigid loop, which linear() hands to Python (and both
+         * compiled steps refuse parallel elements that can be rigid: ineligible). */
+        if (curves && q->cv->tangent) {
             const uint64_t h = hash_modes(q->next, q->n_el);
             for (int j = 0; j < seen && !single; j++) single = q->seen[j] == h;
             if (seen < q->bound) q->seen[seen++] = h;

@@ -109,6 +109,11 @@ class StepGraph(ABC):
        iteration at every scale fails to settle (``network_step``): the
        default is the graph itself; a curve linearised by a line of slope
        ``sigma`` returns its tangent (Newton) form (:class:`CurveSlipGraph`).
+    9. ``potential(w)``: the step potential ``psi(w)``, the integral from 0 to
+       ``w`` of the graph's force (``+inf`` where the graph has no rate ``w``),
+       whose sum with the masses' terms is the step's function ``Phi``
+       (book/guide/systems.md; the value a failed step reports).  The default
+       integrates the free pieces exactly; a curve integrates its law.
     """
 
     __slots__ = ()
@@ -122,6 +127,20 @@ class StepGraph(ABC):
     def newton(self) -> StepGraph:
         """The graph of the finishing iteration (point 8): this one."""
         return self
+
+    def potential(self, w: float) -> float:
+        """``psi(w)`` (point 9) of a piecewise graph: each free piece's ``a s + b s^2/2`` over its part
+        of ``[0, w]`` (a rigid piece is one rate, of no length), ``+inf`` off every piece."""
+        pieces = list(self)  # type: ignore[call-overload]
+        if not any(p.lo <= w <= p.hi if not p.rigid else w == p.a for p in pieces):
+            return _INF
+        low, high, sign = (0.0, w, 1.0) if w >= 0 else (w, 0.0, -1.0)
+        total = 0.0
+        for p in pieces:
+            a, b = max(p.lo, low), min(p.hi, high)
+            if not p.rigid and a < b:
+                total += p.a * (b - a) + p.b * (b * b - a * a) / 2
+        return sign * total
 
     @abstractmethod
     def initial_mode(self) -> object:
@@ -203,6 +222,10 @@ class LawGraph(StepGraph):
     def mode(self, z: float, sigma: float) -> tuple[float, float]:
         f = self.law._resolvent_impl(z, sigma).force
         return ((z - f) / sigma, f)
+
+    def potential(self, w: float) -> float:
+        """``psi(w)`` (point 9): the law's force integrated (:func:`_integral`)."""
+        return _integral(self.law, w)
 
     def same(self, old: object, new: object) -> bool:
         if not isinstance(old, tuple):
@@ -324,6 +347,10 @@ class CurveSlipGraph(StepGraph):
 
     def newton(self) -> CurveSlipGraph:
         return CurveSlipGraph(self.law, self.start, tangent=True)
+
+    def potential(self, w: float) -> float:
+        """``psi(w)`` (point 9): the slip curve integrated (:func:`_integral`), the kinetic graph's."""
+        return _integral(self.law, w)
 
     def _point(self, direction: float, z: float, sigma: float, old: object = None, near: bool = True) -> object:
         """The point of the branch ``direction`` whose ``f + sigma w`` is ``z`` (reached from the point
@@ -465,8 +492,20 @@ class Shifted(StepGraph):
     def newton(self) -> StepGraph:
         return Shifted(self.inner.newton(), self.delta)
 
+    def potential(self, w: float) -> float:
+        return self.inner.potential(w + self.delta) - self.inner.potential(self.delta)
+
     def same(self, old: object, new: object) -> bool:
         return self.inner.same(old, new)
+
+
+def _integral(law: object, w: float) -> float:
+    """The integral from 0 to ``|w|`` of a law's slip force ``g`` (odd in the rate: an even potential),
+    by adaptive quadrature (SciPy's ``quad``, to its default 1.5e-8 relative): only a failed step's
+    message reports it."""
+    from scipy.integrate import quad
+
+    return float(quad(lambda s: float(law.slip(s)), 0.0, abs(w))[0]) if w else 0.0  # type: ignore[attr-defined]
 
 
 def _shift_piece(p: Piece, delta: float) -> Piece:

@@ -223,10 +223,12 @@ def _unsettled(n: int, dt: float, elements: int) -> ValueError:
 def _failed(net: Network, n: int, dt: float, err: StepError) -> ValueError:
     """The message of a Python step that failed: unsettled, or a loop of rigid pieces whose rates disagree."""
     if not err.elements:
-        base = _unsettled(n, dt, len(net.elements))
-        if not err.changing:
-            return base
-        return ValueError(f"{base}; elements still changing: {listed([net.elements[e].name for e in err.changing])}")
+        base = str(_unsettled(n, dt, len(net.elements)))
+        if err.changing:
+            base += f"; elements still changing: {listed([net.elements[e].name for e in err.changing])}"
+        if err.phi is not None:
+            base += f"; the step's function Phi = {err.phi:.9g} W at the last iterate"
+        return ValueError(base)
     names = listed([net.elements[e].name for e in err.elements])
     return ValueError(f"elements {names} {err} at the step to t = {n * dt:.6g} s")
 

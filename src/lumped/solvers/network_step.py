@@ -52,11 +52,23 @@ scale does not settle, the step is finished by Newton's method: each graph's
 :meth:`~lumped.laws.step_graph.StepGraph.newton` form (a Stribeck contact's
 tangent lines, its mode the resolvent's choice on its convexified graph),
 one discrete mode changed at a time once the modes repeat (Murty's
-least-index rule, :func:`_least_index`); it settles when every slipping
+least-index rule, :func:`_least_index`), a slipping contact held at rest by
+stuck ones (in parallel, or round a loop) kept slipping while one of them
+breaks away (:func:`_pinned_rule`); it settles when every slipping
 contact's force lies on its law to the solve's rounding (book/guide/systems.md
-derives the step as the minimiser of a strongly convex function below the
-uniqueness bound, whose Newton step this is).  ``_network_active_set.h``'s
-``solve`` is the same in C.
+derives the step as the minimiser of a strongly convex function ``Phi``
+below the uniqueness bound, whose Newton step this is).  Why the answer is
+the solution: a settled iterate has every ``(w, f)`` on its graph (on its
+law, to the solve's rounding), so it solves the step's equations, and below
+the bound they have one solution.  Why the iteration ends has no proof yet:
+the rules above end every case the property tests draw (1000 random falling
+networks), the bound on iterations ends the rest, and a step that reaches it
+raises a ``StepError`` that calls itself a bug and carries ``Phi`` at its
+last iterate (:func:`step_function`); a line search on ``Phi``, which would
+make it a proof, is not done.  ``_network_active_set.h``'s ``solve`` is the
+same in C but for :func:`_pinned_rule`: a contact held at rest by stuck
+ones that stops closes a rigid loop, a step both compiled steps hand to
+this one (and both refuse parallel elements that can be rigid).
 
 A graph that is not piecewise linear (a
 :class:`~lumped.laws.step_graph.LawGraph`, the step graph of a
@@ -75,7 +87,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from lumped.laws.step_graph import Piece, StepGraph, as_step_graph
+from lumped.laws.step_graph import STICK, Piece, StepGraph, as_step_graph
 from lumped.solvers import parallel_elements as parallel
 from lumped.solvers.loop_forces import CoreForces, core_forces
 from lumped.solvers.merged_system import assemble, solve_merged
@@ -89,6 +101,7 @@ __all__ = [
     "default_bound",
     "on_pieces",
     "solve_step",
+    "step_function",
     "unsettled",
 ]
 
@@ -108,10 +121,13 @@ class StepError(ArithmeticError):
     in its last iteration), or (``elements`` given) the rigid elements ``elements`` close a loop whose
     rates disagree: the step has no solution."""
 
-    def __init__(self, message: str, elements: Sequence[int] = (), changing: Sequence[int] = ()) -> None:
+    def __init__(
+        self, message: str, elements: Sequence[int] = (), changing: Sequence[int] = (), phi: float | None = None
+    ) -> None:
         super().__init__(message)
         self.elements = tuple(elements)
         self.changing = tuple(changing)
+        self.phi = phi  # the step's function at the last iterate (step_function), if it did not settle
 
 
 class StepSolution(NamedTuple):
@@ -197,7 +213,7 @@ def solve_step(
     topo = _Topology(list(first), list(second), inertia.size)
     guess = [g.initial_mode() for g in graphs] if modes is None else list(modes)
     bound = default_bound(len(graphs)) if max_iterations is None else max_iterations
-    clash: list[tuple[int, ...]] = [(), ()]  # a last loop whose rates disagree; the modes still changing
+    clash: list = [(), (), None]  # a last loop whose rates disagree; the modes still changing; the last v
     finish = None if all(g.is_piecewise for g in graphs) else [g.newton() for g in graphs]
     for k, scale in enumerate(SIGMA_SCALES):
         out = _iterate(topo, inertia, rhs, graphs, sigma * scale, list(guess), bound, clash)
@@ -212,7 +228,32 @@ def solve_step(
             return _with_ranges(out, topo, ranges)
     if clash[0]:
         raise StepError(DISAGREE, clash[0])
-    raise StepError(unsettled(bound), changing=clash[1])
+    last = clash[2] if clash[2] is not None else np.zeros(inertia.size)
+    phi = step_function(first, second, inertia, rhs, graphs, last)
+    raise StepError(unsettled(bound), changing=clash[1], phi=phi)
+
+
+def step_function(
+    first: Sequence[int],
+    second: Sequence[int],
+    inertia: np.ndarray,
+    rhs: np.ndarray,
+    graphs: Sequence[StepGraph],
+    v: np.ndarray,
+) -> float:
+    """The step's function ``Phi(v) = sum_i d_i v_i^2/2 - r . v + sum_e psi_e(w_e)``, ``w = B v``.
+
+    Below the uniqueness bound, with each contact's graph chosen, it is strongly convex and the step's
+    solution is its minimiser (book/guide/systems.md); ``psi_e`` is each graph's potential
+    (:meth:`~lumped.laws.step_graph.StepGraph.potential`, 0 at rate 0).  A step that did not settle
+    reports its value at the last iterate.
+    """
+    points = np.r_[v, 0.0]
+    n = inertia.size
+    value = float(0.5 * (inertia * v * v).sum() - (rhs * v).sum())
+    for a, b, g in zip(first, second, graphs):
+        value += g.potential(float(points[min(b, n)] - points[min(a, n)]))
+    return value
 
 
 def _solve_reduced(
@@ -232,7 +273,7 @@ def _solve_reduced(
     except StepError as err:
         names = [k for e in err.elements for k in (red.groups[e].elements if red.groups[e] else (red.index[e],))]
         moved = [k for e in err.changing for k in (red.groups[e].elements if red.groups[e] else (red.index[e],))]
-        raise StepError(str(err), sorted(names), sorted(moved)) from None
+        raise StepError(str(err), sorted(names), sorted(moved), err.phi) from None
     low, high = (sol.low, sol.high) if sol.low is not None else (None, None)
     out = parallel.expand(
         red, len(graphs), graphs, first, second, inertia.size, (sol.modes, sol.w, sol.f, sol.rigid, low, high)
@@ -307,7 +348,7 @@ def _iterate(
         pieces = [g.piece(m, s) for g, m, s in zip(graphs, modes, sigma)]
         lin = _linear(topo, inertia, rhs, pieces)
         v, w, f = lin.v, lin.w, lin.f
-        clash[0] = lin.clash
+        clash[0], clash[2] = lin.clash, v
         if lin.clash:
             return None  # rigid pieces whose rates disagree and none can give way
         rounding = None if piecewise else _rounding(v, w, f, inertia, rhs)
@@ -321,6 +362,7 @@ def _iterate(
         if settled:
             return StepSolution(v, w, f, modes, [p.rigid for p in pieces], it), lin
         if one_at_a_time:
+            new = _pinned_rule(topo, graphs, modes, new, pieces)
             pattern = tuple(map(_discrete, new))
             single = single or pattern in patterns
             patterns.add(pattern)
@@ -338,6 +380,33 @@ def _iterate(
         seen.add(key)
         modes = new
     return None
+
+
+def _pinned_rule(topo: _Topology, graphs: Sequence[StepGraph], modes: list, new: list, pieces: Sequence[Piece]) -> list:
+    """The Newton finish's mode of a slipping contact held at rest by stuck ones: it keeps slipping while
+    one of them breaks away.
+
+    A slipping contact whose two points lie in one cluster of rigid pieces (its rate fixed at 0 by the
+    contacts stuck around a loop through it) has rate 0 only because they hold it; its rule would stop
+    it, and stuck it may carry more than ``static`` and ask to slip again, while a stuck contact of that
+    loop asks to break away and the least-index rule lets only one of them change: the modes cycle
+    (issue 41, ``coupled(12)`` of ``tests/test_step_property.py`` at step 367).  So while a stuck contact
+    of its cluster asks to break away, the held one keeps its mode and the stuck one's change goes first.
+    Contacts in parallel are the shortest such loop: a Stribeck contact beside a Coulomb one swapped
+    stick and slip for ever (five of the 1000 random falling networks, at their first step).
+    """
+    root = _clusters(topo, pieces).clusters.root
+    breaking = {
+        root[topo.first[e]]
+        for e, g in enumerate(graphs)
+        if not g.monotone and pieces[e].rigid and _discrete(new[e]) != _discrete(modes[e])
+    }
+    out = list(new)
+    for e, g in enumerate(graphs):
+        pinned = root[topo.first[e]] == root[topo.second[e]] and not pieces[e].rigid
+        if not g.monotone and pinned and new[e] == STICK and root[topo.first[e]] in breaking:
+            out[e] = modes[e]
+    return out
 
 
 def _discrete(mode: object) -> object:
