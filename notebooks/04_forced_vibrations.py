@@ -84,7 +84,7 @@ f = run.force
 print(f"P = {f.amplitude} N: predicted breakaway arcsin(mu_s N_f/P)/(5 pi) = "
       f"{np.arcsin(osc.threshold / f.amplitude) / f.omega:.5f} s")
 for e in exact.events:
-    print(f"  {e.kind:<12s} t = {e.time:.5f} s   x = {e.x:+.6f} m")
+    print(f"  {e.kind:<12s} t = {e.time:.5f} s   x = {e.x[0]:+.6f} m")
 kinds = [e.kind for e in exact.events]
 n_slip = sum(p.kind == "slip" for p in exact.phases)
 print(f"{kinds.count('reversal')} reversals, {kinds.count('stop')} stop(s); "
@@ -94,7 +94,7 @@ print(f"{kinds.count('reversal')} reversals, {kinds.count('stop')} stop(s); "
 # The solver names five kinds of event. A *breakaway* ends a stick phase (the
 # net force leaves the band), a *reversal* ends a slip phase with the net force
 # outside the band (the mass turns round) and a *stop* ends one with the net
-# force inside it (the mass sticks). *forcing-off* marks $t = 1$ s, where
+# force inside it (the mass sticks). A *switch* marks $t = 1$ s, where
 # eq. (17) switches $F$ off. A stop is not necessarily final: while $F$ is on,
 # the net force $F - kx$ can leave the band again and cause a breakaway. A
 # *rest* is the stop that is final: the mass sticks and the force is zero
@@ -105,7 +105,7 @@ print(f"{kinds.count('reversal')} reversals, {kinds.count('stop')} stop(s); "
 # %%
 for e in exact.events:
     if e.kind in ("stop", "rest"):
-        net = f(e.time) - osc.stiffness * e.x
+        net = f(e.time) - osc.stiffness * e.x[0]
         print(f"  {e.kind:<5s} t = {e.time:.5f} s: force off (t > {f.until} s): "
               f"{e.time > f.until}, |net force| = |F - kx| = {abs(net):.4f} N")
 print(f"rest time (from then on at rest for ever): {exact.rest_time:.5f} s")
@@ -165,7 +165,7 @@ print(f"sticking: max |F_d - exact| {diff['F_d'][stick_far].max(initial=0.0):.3e
 fig = P.time_history(strong, exact, "x")
 _ = P.save_figure(fig, "fig06_forced_large_x")
 after = [e for e in exact.events if e.kind == "reversal" and e.time > f.until]
-print(f"|x| at the reversals after t = {f.until} s (m):", [round(abs(e.x), 6) for e in after])
+print(f"|x| at the reversals after t = {f.until} s (m):", [round(abs(e.x[0]), 6) for e in after])
 x_end = exact.evaluate(np.array([t_end]))["x"][0]
 print(f"at t_end = {t_end} s: x = {x_end:+.6f} m, at rest: {exact.rest_time <= t_end}")
 

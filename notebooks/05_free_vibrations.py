@@ -80,7 +80,7 @@ _ = P.save_figure(fig, "fig10_free_small")
 run = runs["free_large"]
 large, exact, x0, t_end = run.algorithm1(), run.exact(), run.x0, run.t_end
 for e in exact.events:
-    print(f"  {e.kind:<9s} t = {e.time:.5f} s   x = {e.x:+.6f} m   |kx| = {abs(k * e.x):.4f} N")
+    print(f"  {e.kind:<9s} t = {e.time:.5f} s   x = {e.x[0]:+.6f} m   |kx| = {abs(k * e.x[0]):.4f} N")
 
 # %% [markdown]
 # ### Counting stick and slip phases
@@ -165,7 +165,7 @@ print(f"zeta = {zeta:.4f}, r = {r:.4f}: threshold loss {(1 + r) * band:.4f} m pe
 fig = P.time_history(large, exact, "x")
 _ = P.rest_inset(fig.axes[0], large, exact, band)  # the stretched rest, which the 0.4 m axis hides
 _ = P.save_figure(fig, "fig11_free_large_x")
-turns = np.abs([e.x for e in exact.events if e.kind == "reversal"])
+turns = np.abs([e.x[0] for e in exact.events if e.kind == "reversal"])
 start = np.r_[abs(x0), turns[:-1]]  # |x| at the start of each half-swing ending in a reversal
 loss = start - turns
 print("exact turning points |x| (m):", np.array2string(turns, precision=4))

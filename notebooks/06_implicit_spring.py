@@ -195,7 +195,7 @@ osc = L.Oscillator.bingham(m, k, tau, gamma)
 after = L.solve_exact(osc, t_end - t_hit, x0=length)
 without = L.solve_exact(osc, t_end, x0=x0)
 for name, sol in (("with the string", after), ("without it", without)):
-    turns = [f"{e.x:+.4f}" for e in sol.events if e.kind == "reversal"]
+    turns = [f"{e.x[0]:+.4f}" for e in sol.events if e.kind == "reversal"]
     print(f"exact, {name}: turning points {turns} m, rest at x = {sol.rest_position:+.5f} m")
 
 # %% [markdown]

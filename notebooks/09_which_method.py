@@ -113,7 +113,7 @@ for r in study.select("free-decay", "event-driven")[-2:]:
 be = next(r for r in study.select("forced-17b", "backward-euler") if r.resolution == 1e-4)  # the original's step
 print(f"Algorithm 1 at dt = {be.resolution:.0e} s on eq. (17b): event errors")
 for kind, err in sorted(be.event_errors.items()):
-    print(f"  {A.KINDS[kind]:22s} {err:.2e} {'m' if kind == 'forcing-off' else 's'}")
+    print(f"  {A.KINDS[kind]:22s} {err:.2e} {'m' if kind == 'switch' else 's'}")
 
 # %% [markdown]
 # ## Convergence: observed orders per event type

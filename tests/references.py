@@ -309,9 +309,11 @@ class StickSlipSystem(NamedTuple):
 
 
 class StickSlipEvent(NamedTuple):
-    """A mode change: ``kind`` is ``"stop"`` (a slipping element's rate reached 0),
-    ``"breakaway"`` (a sticking element's force reached its threshold) or
-    ``"switch"`` (a load switched off); ``mode`` is the mode chosen after it."""
+    """A mode change: ``kind`` is ``"stop"`` (a slipping element's rate reached 0 and it sticks),
+    ``"reversal"`` (... and it slips back at once), ``"breakaway"`` (a sticking element's force
+    reached its threshold), ``"switch"`` (a load switched off) or ``"rest"`` (every mass held to the
+    ground with every load off: from the latest of the masses' rest times on, nothing moves);
+    ``mode`` is the mode chosen after it (the package's :data:`lumped.solvers.events.KINDS`)."""
 
     time: float
     kind: str
@@ -537,6 +539,10 @@ def stick_slip_motion(
         t, y = float(sol.t[-1]), sol.y[:, -1].copy()
         if sol.status == 0 and t >= t_end:
             rest_time, rest_x = _rest(starts, grounded, y[:n])
+            if all(grounded[-1]) and not any(o and load[1][0] != 0 for o, load in zip(on, system.loads)):
+                events = sorted(
+                    [*events, StickSlipEvent(float(np.max(rest_time)), "rest", (), modes[-1])], key=lambda e: e.time
+                )
             return StickSlipMotion(
                 np.array(starts), np.array(ends), tuple(dense), tuple(modes), tuple(events), rest_time, rest_x
             )
@@ -546,6 +552,8 @@ def stick_slip_motion(
             on = tuple(t < u for _, (_, _, _, u) in system.loads)
             y[n:] = net.project(y[n:], _zero_set(net, y[n:], mode, []))
             mode = net.select(t, y, mode, _zero_set(net, y[n:], mode, []), on)
+        if kind == "stop" and mode[fired[0]] != 0:
+            kind = "reversal"
         events.append(StickSlipEvent(t, kind, tuple(fired), tuple(int(m) for m in mode)))
     raise ArithmeticError(f"more than max_events = {max_events} segments before t_end = {t_end}")
 

@@ -61,7 +61,7 @@ def test_direct_sign_change_is_a_reversal_at_the_interpolated_zero():
     t, x, v = np.array([0.0, 1.0, 2.0, 3.0]), np.array([0.0, 1.0, 2.0, 3.0]), np.array([1.0, 3.0, -1.0, -2.0])
     (ev,) = A.grid_events(t, x, v)
     # v goes from 3 to -1 between t = 1 and 2: the line's zero is at 1 + 3/4.
-    assert (ev.kind, ev.time, ev.x) == ("reversal", 1.75, 1.75)
+    assert (ev.kind, ev.time, ev.x) == ("reversal", 1.75, (1.75,))
 
 
 def test_one_zero_between_opposite_signs_is_a_reversal_not_a_stick():
@@ -69,7 +69,7 @@ def test_one_zero_between_opposite_signs_is_a_reversal_not_a_stick():
     v = np.array([1.0, 1.0, 0.0, -3.0, -1.0])
     (ev,) = A.grid_events(t, x, v)
     # the line through (1, 1) and (3, -3) is zero at t = 1.5; x there 0.5 + 0.25 * 0 = 0.5
-    assert (ev.kind, ev.time, ev.x) == ("reversal", 1.5, 0.5)
+    assert (ev.kind, ev.time, ev.x) == ("reversal", 1.5, (0.5,))
 
 
 def test_stick_runs_give_stop_and_breakaway_at_their_ends():
@@ -94,19 +94,19 @@ def test_a_lone_zero_between_the_same_sign_is_a_momentary_stick():
 
 def test_forcing_off_is_interpolated():
     t, x, v = np.array([0.0, 1.0, 2.0]), np.array([0.0, 2.0, 4.0]), np.ones(3)
-    assert A.grid_events(t, x, v, t_off=1.5) == (Event(1.5, "forcing-off", 3.0),)
+    assert A.grid_events(t, x, v, t_off=1.5) == (Event(1.5, "switch", (3.0,)),)
     assert A.grid_events(t, x, v, t_off=5.0) == ()
 
 
 def test_match_events_pairs_in_order_and_refuses_unequal_counts():
-    wanted = (Event(1.0, "reversal", 0.1), Event(2.0, "reversal", -0.1), Event(2.5, "forcing-off", 0.3))
-    found = (Event(1.1, "reversal", 0.0), Event(1.95, "reversal", 0.0), Event(2.5, "forcing-off", 0.25))
+    wanted = (Event(1.0, "reversal", (0.1,)), Event(2.0, "reversal", (-0.1,)), Event(2.5, "switch", (0.3,)))
+    found = (Event(1.1, "reversal", (0.0,)), Event(1.95, "reversal", (0.0,)), Event(2.5, "switch", (0.25,)))
     got = A.match_events(found, wanted)
     assert got["reversal"] == pytest.approx(0.1, abs=1e-15)  # max(|1.1 - 1|, |1.95 - 2|)
-    assert got["forcing-off"] == pytest.approx(0.05, abs=1e-15)  # in x: its time is given
+    assert got["switch"] == pytest.approx(0.05, abs=1e-15)  # in x: its time is given
     assert "stop" not in got  # not in the reference
     lost = A.match_events(found[:1] + found[2:], wanted)  # a reversal missing: no kind is paired
-    assert math.isnan(lost["reversal"]) and math.isnan(lost["forcing-off"])
+    assert math.isnan(lost["reversal"]) and math.isnan(lost["switch"])
 
 
 # ---------------------------------------------------------------- the references
@@ -225,7 +225,7 @@ def test_pooled_order_is_the_least_squares_slope_with_its_standard_error():
 def test_event_locating_is_second_order_per_event_type(forced_fits):
     # Trapezoidal within modes, switches located to O(h^3) locally: O(dt^2)
     # for the state, the rest and every located event (event_capturing's Notes).
-    for q in ("position", "max_x", "stop", "reversal", "forcing-off"):
+    for q in ("position", "max_x", "stop", "reversal", "switch"):
         fit = forced_fits["event-locating"][q]
         width = band(fit, FORCED_RATE, ORDER_STEPS[0])
         assert abs(fit.slope - 2) <= width < 0.5, q  # two, and the band excludes one
@@ -236,7 +236,7 @@ def test_algorithm1_is_first_order(forced_fits):
     # Backward Euler: O(dt) for the state, and each switch is seen at the next grid
     # point, an error between 0 and dt whose factor jumps with where the switch falls:
     # the spread of those slopes is in their standard errors, and so in the band.
-    for q in ("max_x", "stop", "reversal", "forcing-off"):
+    for q in ("max_x", "stop", "reversal", "switch"):
         fit = forced_fits["backward-euler"][q]
         width = band(fit, FORCED_RATE, ORDER_STEPS[0])
         assert abs(fit.slope - 1) <= width < 0.5, q  # one, and the band excludes two and zero
@@ -258,7 +258,7 @@ def test_moreau_jean_events_pair_at_every_step(forced_fits):
     # to the scheme's own switches: errors of 0.1 to 1.5 steps here, not below one step as the
     # nested steps of the old table suggested.)
     o = forced_fits["moreau-jean"]
-    assert all(o[q].points == len(ORDER_STEPS) for q in ("breakaway", "stop", "reversal", "forcing-off"))
+    assert all(o[q].points == len(ORDER_STEPS) for q in ("breakaway", "stop", "reversal", "switch"))
 
 
 def test_moreau_jean_breakaway_order_is_not_the_artefact_of_nested_grids():
@@ -325,7 +325,7 @@ def test_full_study_order_table():
     def fit(row: dict) -> A.Fit:
         return A.Fit(row["slope"], row["stderr"], row["points"], row["cases"])
 
-    for k in ("stop", "reversal", "forcing-off"):
+    for k in ("stop", "reversal", "switch"):
         f = fit(table["event-locating"][k])
         assert abs(f.slope - 2) <= band(f, rate, A.STEPS[0]) < 0.5, k
     for method in ("backward-euler", "moreau-jean"):

@@ -179,7 +179,7 @@ def test_an_event_method_holds_the_mass_released_on_the_edge(method: str, start:
     force = None if HOLDING[holding] is None else L.SwitchedSine(-math.copysign(0.5, -x0), math.pi, 0.0, T_OFF)
     assert force is None or force.amplitude * x0 > 0  # pushes inwards, so |F - k x0| <= tau while on
     events, tr = located(method, oscillator(math.inf), x0, force)
-    expected = [("rest", 0.0, x0)] + ([] if force is None else [("forcing-off", T_OFF, x0)])
+    expected = [("rest", 0.0, (x0,))] + ([] if force is None else [("switch", T_OFF, (x0,))])
     assert [(e.kind, e.time, e.x) for e in events] == expected
     assert np.all(tr.x == x0) and np.all(tr.v == 0) and tr.rest_time == 0.0 and tr.rest_position == x0
 
@@ -205,7 +205,7 @@ def test_a_stop_exactly_on_the_edge_is_a_stop(start: str) -> None:
     assert np.cos(math.pi) == -1.0 and math.sqrt(K / M) == 2.0
     events, tr = located("exact", oscillator(math.inf), x0, None)
     edge = -math.copysign(EDGE, x0)
-    assert [(e.kind, e.x) for e in events] == [("stop", edge), ("rest", edge)]
+    assert [(e.kind, e.x) for e in events] == [("stop", (edge,)), ("rest", (edge,))]
     assert events[0].time == events[1].time == math.pi / 2
     assert tr.x[-1] == edge and tr.v[-1] == 0 and tr.rest_position == edge
 
@@ -217,4 +217,4 @@ def test_a_stop_one_ulp_beyond_the_edge_reverses(start: str) -> None:
     2^-51 > tau``: the mass reverses."""
     x0 = math.nextafter(STOPS[start], math.copysign(math.inf, STOPS[start]))
     events, _ = located("exact", oscillator(math.inf), x0, None)
-    assert events[0].kind == "reversal" and K * abs(events[0].x) == TAU + 2.0**-51
+    assert events[0].kind == "reversal" and K * abs(events[0].x[0]) == TAU + 2.0**-51

@@ -119,7 +119,7 @@ def test_coulomb_oscillators_under_a_constant_load_rest_at_the_closed_form(dt: f
     omega = math.sqrt(k / m)
     np.testing.assert_allclose(tr.final_rest[1], 2 * (p - tau) / k, rtol=0, atol=1e-12)
     assert np.all(np.abs(tr.final_rest[0] - (np.array([0.0, 0.25]) + math.pi / omega)) <= _rest_bound(omega, dt))
-    assert [e.kind for e in tr.events] == ["switch", "stop", "stop"]
+    assert [e.kind for e in tr.events] == ["switch", "stop", "stop"]  # a constant load stays on: no rest
 
 
 def test_a_constant_ground_acceleration_from_a_system_file_rests_at_the_closed_form(tmp_path) -> None:  # noqa: ANN001

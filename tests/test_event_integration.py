@@ -101,7 +101,7 @@ def test_free_decay_turning_points_for_exponent_one_follow_the_closed_form(m, k,
     turning = [e for e in sol.events if e.kind in ("reversal", "stop")]
     assert len(turning) == len(ref.times)
     bound = _bound(sol, abs(x0))
-    np.testing.assert_allclose([e.x for e in turning], ref.positions, rtol=0, atol=bound)
+    np.testing.assert_allclose([e.x[0] for e in turning], ref.positions, rtol=0, atol=bound)
     np.testing.assert_allclose([e.time for e in turning], ref.times, rtol=0, atol=10 * math.sqrt(bound))
 
 
@@ -123,7 +123,7 @@ def test_first_half_cycle_agrees_with_an_independent_radau_integration(n):
     # Radau at rtol 1e-11 over ~200 steps: a global error below 1e-8 of the scale
     # (its bound as in _bound); the event-driven run is 100 times tighter
     assert first.time == pytest.approx(ref.t_events[0][0], rel=1e-8)
-    assert first.x == pytest.approx(ref.y_events[0][0][0], abs=1e-8 * 0.5)
+    assert first.x[0] == pytest.approx(ref.y_events[0][0][0], abs=1e-8 * 0.5)
 
 
 @pytest.mark.parametrize("n", [0.5, 2.0])
@@ -141,7 +141,7 @@ def test_energy_balance_between_turning_points(n):
         t = (0.5 * (edges[:-1] + edges[1:]))[:, None] + half * nodes
         cols = sol.evaluate(t.ravel())
         work = float(np.sum((half * weights).ravel() * cols["F_d"] * cols["v"]))
-        assert 50 * (a.x**2 - b.x**2) == pytest.approx(work, rel=1e-8)
+        assert 50 * (a.x[0] ** 2 - b.x[0] ** 2) == pytest.approx(work, rel=1e-8)
 
 
 def test_stick_band_is_exact():

@@ -241,7 +241,7 @@ def test_overdamped_forced_first_stop_matches_dop853():
     assert ref.status == 1
     assert len(ref.t) < 1000
     assert stop.time == pytest.approx(ref.t_events[0][0], abs=1e-9)
-    assert stop.x == pytest.approx(ref.y_events[0][0][0], rel=1e-9)
+    assert stop.x[0] == pytest.approx(ref.y_events[0][0][0], rel=1e-9)
 
 
 # Free decays of references.FREE_DECAY, and stiff ones with many half-cycles.

@@ -135,6 +135,6 @@ def test_exact_free_decay_follows_recurrence(m, k, tau, zeta, x0):
     if len(ref_t):
         # 1e-12 relative on times, per test_exact's reasoning (<= 200 events)
         np.testing.assert_allclose([e.time for e in turning], ref_t, rtol=1e-12, atol=0)
-        np.testing.assert_allclose([e.x for e in turning], ref_x, rtol=0, atol=1e-12 * abs(x0))
+        np.testing.assert_allclose([e.x[0] for e in turning], ref_x, rtol=0, atol=1e-12 * abs(x0))
     else:
         assert sol.rest_time == 0.0 and sol.rest_position == x0

@@ -51,7 +51,7 @@ def _solve(p: dict):
 def _values(sol, t: np.ndarray) -> tuple[np.ndarray, list[str]]:
     """``x`` at the times ``t``, then every event time and position and the rest; the event kinds."""
     events = [e for e in sol.events if e.kind != "rest"]
-    out = [sol.evaluate(t)["x"], [e.time for e in events], [e.x for e in events], [sol.rest_time, sol.rest_position]]
+    out = [sol.evaluate(t)["x"], [e.time for e in events], [e.x[0] for e in events], [sol.rest_time, sol.rest_position]]
     return np.concatenate([np.asarray(a, dtype=float) for a in out]), [e.kind for e in events]
 
 

@@ -236,7 +236,7 @@ def test_exact_rows_against_solve_exact():
         start, where = sol.rest_through(4.0)
         assert np.array_equal([rows["rest_time"][j], rows["rest_position"][j]], [start, where], equal_nan=True)
         assert rows["stops"][j] == len(sol.event_times("stop"))  # a "rest" event repeats its stop
-        extrema = [abs(e.x) for e in sol.events if e.kind in ("stop", "reversal", "rest")]
+        extrema = [abs(e.x[0]) for e in sol.events if e.kind in ("stop", "reversal", "rest")]
         assert rows["max_abs_x"][j] == pytest.approx(max([abs(x), *extrema]), abs=1e-9)
 
 

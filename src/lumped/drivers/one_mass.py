@@ -16,6 +16,7 @@ from lumped.laws.element import GROUND, Element
 from lumped.model.network import Network
 from lumped.model.problem import OneMass
 from lumped.model.trajectory import Trajectory
+from lumped.solvers.events import Event
 
 __all__ = ["network_trajectory"]
 
@@ -43,4 +44,16 @@ def network_trajectory(net: Network, form: OneMass, tr: Trajectory, solver: str)
     ]
     force, state, rigid = (np.column_stack([c[i] for c in columns]) for i in range(3))
     rest = (np.array([tr.rest_time]), np.array([tr.rest_position]))
-    return replace(tr, forces=force, network=net, states=state, rigid=rigid, final_rest=rest, solver=solver)
+    events = tuple(_on_network(e, net, form) for e in tr.events)
+    return replace(
+        tr, forces=force, network=net, states=state, rigid=rigid, final_rest=rest, solver=solver, events=events
+    )
+
+
+def _on_network(event: object, net: Network, form: OneMass) -> object:
+    """An :class:`~lumped.solvers.events.Event` of the one-mass run named on ``net``: its dashpot's name and
+    mode (the dashpot's slip direction in that element's own orientation); a ``Jump`` as it is."""
+    if not isinstance(event, Event):
+        return event
+    mode = tuple(int(_orientation(e) * event.mode[-1]) if e is form.dashpot else 0 for e in net.elements)
+    return replace(event, elements=tuple(form.dashpot.name for _ in event.elements), mode=mode)

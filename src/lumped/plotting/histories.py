@@ -47,7 +47,10 @@ LABELS = {
 SYMBOLS = {"x": ("x", "m"), "v": ("v", "m/s"), "F_s": ("F_s", "N"), "F_d": ("F_d", "N"), "F": ("F", "N")}
 
 #: Marker of each event kind of the exact solution.
-EVENT_MARKERS = {"stop": "o", "reversal": "D", "breakaway": "^", "forcing-off": "x", "rest": "s"}
+EVENT_MARKERS = {"stop": "o", "reversal": "D", "breakaway": "^", "switch": "x", "rest": "s"}
+#: The legend's name of a kind, where it is not the kind itself: the one switch of the paper's figures is
+#: its sine going off.
+EVENT_LABELS = {"switch": "forcing-off"}
 
 #: Size (inches) of a time history with its difference panel, and without one.
 #: The article prints figures at the size they are drawn (``fig()`` in paper.typ).
@@ -191,7 +194,7 @@ def _mark_events(ax: Axes, solution: ExactSolution, column: str) -> None:
         if kind == "rest" or times.size == 0:
             continue
         values = solution.evaluate(times)[column]
-        ax.plot(times, values, ls="none", marker=marker, ms=5, mfc="none", mec="k", label=kind)
+        ax.plot(times, values, ls="none", marker=marker, ms=5, mfc="none", mec="k", label=EVENT_LABELS.get(kind, kind))
     rest = solution.rest_time
     if np.isfinite(rest) and 0.0 < rest <= solution.t_end:
         ax.axvline(rest, color="0.4", lw=0.8, ls=":", label="final rest")

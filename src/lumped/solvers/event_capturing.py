@@ -72,7 +72,7 @@ class CapturedRun(NamedTuple):
 
     ``events`` are :class:`~lumped.solvers.events.Event` with the kinds of the
     exact solver: ``"stop"``, ``"reversal"``, ``"breakaway"``,
-    ``"forcing-off"`` and ``"rest"`` (a stop after which the force stays zero,
+    ``"switch"`` and ``"rest"`` (a stop after which the force stays zero,
     dated back to the start of that stick).
     """
 
@@ -142,7 +142,7 @@ class _Capture(EventMarch):
     def breakaway(self, st: _State, s: int, kind: str = "breakaway") -> _State:
         """Slip from rest in direction ``s``; ``kind=""`` records no event (as the exact solver at ``t_off``)."""
         if kind:
-            self.event(st.t, kind, st.x)
+            self.event(st.t, kind, st.x, s)
         self.stick_since = math.nan
         return _State(st.t, st.x, 0.0, s * self.tau, s)
 
@@ -202,13 +202,14 @@ class _Capture(EventMarch):
 
     def switch_forcing(self, st: _State) -> _State:
         """At ``t = t_off``: record the event; a sticking mass may break away under the new force."""
-        if self.force.is_zero or any(e.kind == "forcing-off" for e in self.events):
-            return st
-        self.event(st.t, "forcing-off", st.x)
-        if st.mode != STICK:
+        if self.force.is_zero or any(e.kind == "switch" for e in self.events):
             return st
         net = self.net(st.t, st.x)
-        if abs(net) > self.tau:  # the forcing-off event is the switch, as in the exact solver
+        breaks = st.mode == STICK and abs(net) > self.tau
+        self.event(st.t, "switch", st.x, (1 if net > 0 else -1) if breaks else st.mode)
+        if st.mode != STICK:
+            return st
+        if breaks:  # the switch is the event, as in the exact solver
             return self.breakaway(st, 1 if net > 0 else -1, kind="")
         self.check_rest(st)
         return st._replace(f_d=net)

@@ -45,9 +45,10 @@ from lumped.model.forcing import jumps
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
 from lumped.numerics.roots import brentq
+from lumped.solvers.events import Event
 from lumped.solvers.network_modes import (
-    NetworkEvent,
     crossed,
+    event_after,
     event_rows,
     grid_rows,
     initial_mode,
@@ -83,7 +84,7 @@ class _March:
         x, v = (a[:-1] for a in net.initial_positions())
         mode, zero = initial_mode(p, v)
         self.t = 0.0
-        self.events: list[NetworkEvent] = []
+        self.events: list[Event] = []
         self.phases: list[Phase] = []
         self._enter(select(p, 0.0, x, v, mode, zero, {}, self.after(0.0)))
 
@@ -175,10 +176,7 @@ class _March:
         forced = {e: int(np.sign(f[e])) for e, kind in fired if kind == "breakaway"}
         zero = zero_set(self.p, ph, v, elements)
         self._enter(select(self.p, t, x, v, ph.mode, zero, forced, load))
-        kind = fired[0][1] if fired else "switch"
-        names = self.net.element_names
-        after = tuple(int(s) for s in self.mode.ph.mode)
-        self.events.append(NetworkEvent(t, kind, tuple(names[e] for e in dict.fromkeys(elements)), after))
+        self.events.append(event_after(t, fired, x, self.mode.ph.mode, self.net.element_names))
 
     def sample(self) -> tuple[np.ndarray, ...]:
         """Positions, velocities, forces (under the load at this time) and the sticking flags now."""

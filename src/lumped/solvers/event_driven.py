@@ -1,7 +1,7 @@
 """Event-driven integration for one mass, a linear spring and any monotone dashpot law.
 
 The motion is the same sequence of phases as in :mod:`lumped.solvers.exact`
-(slip, stick, and the events stop, reversal, breakaway, forcing-off, rest),
+(slip, stick, and the events stop, reversal, breakaway, switch, rest),
 and the same march (:class:`~lumped.solvers.events.PhaseMarch`) decides
 between them; only the slip phases differ.
 There is no closed form for a general law, so a slip phase with direction

@@ -34,8 +34,8 @@ resisting the slip: ``T = sgn(u) g(|u|)`` off zero rate, any value in
   static]``, else it slips the other way (a *reversal*).
 
 The load's switch-off ends a phase too (a *switch*).  Every event is a
-:class:`~lumped.solvers.network_modes.NetworkEvent` naming the contact, with
-the mode after it (the contact's ``0`` or ``+-1`` in its own orientation).
+:class:`~lumped.solvers.events.Event` naming the contact, with the mass's
+position and the mode after it (the contact's ``0`` or ``+-1`` in its own orientation).
 """
 
 from __future__ import annotations
@@ -62,8 +62,8 @@ from lumped.solvers.event_driven import (
     _Settings,
     validate_rtol,
 )
-from lumped.solvers.events import OFF, STICK, Phase, Piece
-from lumped.solvers.network_modes import NetworkEvent, grid_index
+from lumped.solvers.events import OFF, STICK, Event, Phase, Piece
+from lumped.solvers.network_modes import grid_index
 
 __all__ = ["TAKES", "March", "classify", "model", "refusal", "solve_contact", "solve_event_driven_network"]
 
@@ -304,7 +304,7 @@ class March:
 
     def __post_init__(self) -> None:
         self.phases: list[Phase] = []
-        self.events: list[NetworkEvent] = []
+        self.events: list[Event] = []
         self._carried: tuple[tuple[float, float, float], float] | None = None  # a slip's end (t, x, u) and its v
 
     def state(self, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -316,11 +316,11 @@ class March:
     def piece(self, t: float) -> Piece:
         return next(p for p in self.pieces if t < p.end)
 
-    def event(self, t: float, kind: str, mode: int) -> None:
+    def event(self, t: float, kind: str, x: float, mode: int) -> None:
         link = self.mdl.contact.link
         modes = [0] * self.n_elements
         modes[link.element] = int(mode * link.orientation)
-        self.events.append(NetworkEvent(t, kind, (self.names[0],) if kind != "switch" else (), tuple(modes)))
+        self.events.append(Event(t, kind, (x,), (self.names[0],) if kind != "switch" else (), tuple(modes)))
         if len(self.events) > self.max_events:
             raise ValueError(
                 f"t_end: more than the {self.max_events} events a run may have before t_end = {self.t_end:g} s; "
@@ -353,7 +353,7 @@ class March:
                 t, x, u, nxt = self.slip(t, t_lim, x, u, nxt, p)
             if t < self.t_end and t == p.end:  # the load goes off: the mode after it, from the state
                 nxt = self.mode(t, x, u) if nxt is None else nxt
-                self.event(t, "switch", nxt)
+                self.event(t, "switch", x, nxt)
             stalled = stalled + 1 if t == t_before else 0
             if stalled > 8:
                 raise ValueError(
@@ -365,7 +365,7 @@ class March:
         t_b, direction = breakaway(self.mdl, t, t_lim, x, p)
         self.phases.append(Phase(t, t_b, "stick", x))
         if direction:
-            self.event(t_b, "breakaway", direction)
+            self.event(t_b, "breakaway", x + self.mdl.V * (t_b - t), direction)
         return t_b, direction or None
 
     def slip_motion(self, s: int, p: Piece, start: tuple[float, float, float]) -> ContactSlip:
@@ -393,7 +393,7 @@ class March:
         self.phases.append(Phase(t, t_stop, "slip", x, motion))
         net = self.mdl.smooth(t_stop, x_stop, 0.0, p)
         reverses = -s * net > self.mdl.contact.static
-        self.event(t_stop, "reversal" if reverses else "stop", -s if reverses else 0)
+        self.event(t_stop, "reversal" if reverses else "stop", x_stop, -s if reverses else 0)
         return t_stop, x_stop, 0.0, -s if reverses else STICK
 
 
@@ -536,6 +536,7 @@ def _trajectory(network: Network, march: March, index: np.ndarray, dt: float, sa
         forces[:, d.element] = d.coefficient * d.orientation * (v - d.velocity)
     link = mdl.contact.link
     forces[:, link.element] = link.orientation * T
+    rest = _final_rest(march, float(x[-1]))
     rigid = np.zeros_like(forces, dtype=bool)
     rigid[:, link.element] = stuck
     rigid[0] = False
@@ -554,10 +555,21 @@ def _trajectory(network: Network, march: March, index: np.ndarray, dt: float, sa
         save_every=save_every,
         states=states,
         rigid=rigid,
-        final_rest=_final_rest(march, float(x[-1])),
+        final_rest=rest,
         solver=METHOD,
-        events=tuple(march.events),
+        events=_with_rest(march, rest),
     )
+
+
+def _with_rest(march: March, rest: tuple[np.ndarray, np.ndarray]) -> tuple[Event, ...]:
+    """The events and the *rest* (:data:`~lumped.solvers.events.KINDS`, the one-mass march's rule): a last stick
+    on a contact at rest with no spring or dashpot driven, once the load is off for ever."""
+    mdl, start = march.mdl, float(rest[0][0])
+    if math.isnan(start) or mdl.A != 0 or mdl.gamma != 0 or not march.piece(march.phases[-1].start).zero_for_ever:
+        return tuple(march.events)
+    modes = (0,) * march.n_elements
+    event = Event(start, "rest", (float(march.phases[-1].x_start),), (), modes)
+    return tuple(sorted([*march.events, event], key=lambda e: e.time))
 
 
 def _final_rest(march: March, x_end: float) -> tuple[np.ndarray, np.ndarray]:

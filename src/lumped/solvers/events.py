@@ -2,16 +2,20 @@
 
 A motion of one mass is a sequence of *phases*: **slip** with direction
 ``s = +-1`` and **stick** (``v = 0``, ``x`` constant, ``F_d = F(t) - k x``,
-eq. 11c, valid while ``|F(t) - k x| <= mu_s N_f``).  *Events* end them:
+eq. 11c, valid while ``|F(t) - k x| <= mu_s N_f``).  *Events* end them, with
+the kinds :data:`KINDS` that every method reports for one mass or many:
 *stop* (``v`` reaches zero and the net force lies in the static band),
 *reversal* (``v`` reaches zero outside it), *breakaway* (the net force on a
-sticking mass leaves the band), *forcing-off* (``t = t_off``) and *rest* (a
-stop after which the force stays zero, so the mass never moves again; it is
-dated back to the start of that stick).
+sticking mass leaves the band), *switch* (a load comes on or goes off: here
+the sine at ``t = t_off``) and *rest* (a stop after which the force stays
+zero, so the mass never moves again; it is dated back to the start of that
+stick).
 
 Every method that locates events uses this module:
 
-* :class:`Event` and :class:`Phase`, the records;
+* :class:`Event`, the one event record of every method and every network
+  (the network marches of :mod:`lumped.solvers.network_modes` and
+  :mod:`lumped.solvers.event_driven_network` make it too), and :class:`Phase`;
 * :class:`Piece`, the forcing on one smooth segment (the switched sine is
   two: on until ``t_off``, then off for ever);
 * :class:`EventMarch`, the bookkeeping: which forcing piece holds, the net
@@ -40,21 +44,47 @@ import numpy as np
 from lumped.laws import sticks
 from lumped.model.forcing import SwitchedSine
 from lumped.model.oscillator import Oscillator
+from lumped.model.problem import DASHPOT
 from lumped.numerics import sine
 
-__all__ = ["Event", "EventMarch", "Phase", "PhaseMarch", "Piece", "SlipFactory", "SlipPhase", "STICK"]
+__all__ = ["Event", "EventMarch", "KINDS", "Phase", "PhaseMarch", "Piece", "SlipFactory", "SlipPhase", "STICK"]
 
 #: The mode of a sticking mass; a slipping one's is its direction ``+-1``.
 STICK = 0
+#: The kinds of :class:`Event`, the same for every method and any number of masses.
+KINDS = ("stop", "reversal", "breakaway", "switch", "rest")
 
 
 @dataclass(frozen=True)
 class Event:
-    """A switch between phases at ``time`` (s), with the state ``x`` (m) there."""
+    """An event of a motion followed phase by phase: the one event record of every method, for any network.
+
+    Attributes
+    ----------
+    time : float, s
+    kind : str
+        One of :data:`KINDS`: ``"stop"`` (an element's rate reaches zero and
+        it sticks), ``"reversal"`` (it reaches zero and slips back at once),
+        ``"breakaway"`` (a sticking element's force leaves its static band),
+        ``"switch"`` (a load comes on or goes off) or ``"rest"`` (no mass moves
+        again: dated back to the start of the stick that lasts for ever).
+    x : tuple of float, m
+        Each mass's position at the event, in the network's order.
+    elements : tuple of str
+        The elements that fired (their names); none for a switch or a rest.
+    mode : tuple of int
+        Each element's mode from the event on: ``0`` sticking (or an element
+        that cannot stick), ``+-1`` slipping with its elongation rate's sign.
+        For one mass run as an :class:`~lumped.model.oscillator.Oscillator`
+        the elements are :func:`~lumped.model.problem.oscillator_network`'s,
+        the spring's and the dashpot's.
+    """
 
     time: float
     kind: str
-    x: float
+    x: tuple[float, ...]
+    elements: tuple[str, ...] = ()
+    mode: tuple[int, ...] = ()
 
 
 class SlipPhase(Protocol):
@@ -140,9 +170,11 @@ class EventMarch:
         """``F(t) - k x`` (N): the net force on a mass held at ``x``, with the piece holding just after ``t``."""
         return self.force_at(self.piece(t), t) - self.k * x
 
-    def event(self, t: float, kind: str, x: float) -> None:
-        """Record an event at ``t`` (s) with the displacement ``x`` (m); refuse one past ``max_events``."""
-        self.events.append(Event(t, kind, x))
+    def event(self, t: float, kind: str, x: float, mode: int) -> None:
+        """Record an event at ``t`` (s) with the displacement ``x`` (m) and the mass's ``mode`` after it (its
+        dashpot's: :data:`STICK` or the slip direction); refuse one past ``max_events``."""
+        fired = () if kind in ("switch", "rest") else (DASHPOT,)
+        self.events.append(Event(t, kind, (x,), fired, (0, mode)))
         if self.max_events is not None and len(self.events) > self.max_events:
             raise ValueError(
                 f"t_end: more than the {self.max_events} events a run may have before t_end; "
@@ -165,14 +197,15 @@ class EventMarch:
         beyond ``-s tau``; otherwise the mass sticks.
         """
         reverses = -direction * net > self.tau
-        self.event(t, "reversal" if reverses else "stop", x)
-        return -direction if reverses else STICK
+        mode = -direction if reverses else STICK
+        self.event(t, "reversal" if reverses else "stop", x, mode)
+        return mode
 
     def record_rest(self, start: float, x: float) -> None:
         """Record the rest (once) of a mass sticking at ``x`` since ``start`` under a force zero for ever."""
         if not any(e.kind == "rest" and e.time == start for e in self.events):
             self.rest = (start, x)
-            self.event(start, "rest", x)
+            self.event(start, "rest", x, STICK)
 
 
 #: A slip phase's motion from ``(t, x, v)`` in direction ``s`` under the
@@ -238,9 +271,9 @@ class PhaseMarch(EventMarch):
         t_b, direction = self.breakaway(t, t_lim, x, p)
         self.phases.append(Phase(t, t_b, "stick", x))
         if direction != 0:
-            self.event(t_b, "breakaway", x)
-        elif t_b == p.end and t_b < self.t_end:
-            self.event(t_b, "forcing-off", x)
+            self.event(t_b, "breakaway", x, direction)
+        elif t_b == p.end and t_b < self.t_end:  # the mode after it: as run() chooses it next
+            self.event(t_b, "switch", x, self.mode(0.0, self.net(t_b, x)))
         return t_b, direction
 
     def breakaway(self, t0: float, t_lim: float, x: float, p: Piece) -> tuple[float, int]:
@@ -270,8 +303,8 @@ class PhaseMarch(EventMarch):
         if t_stop is None:
             x_end, v_end = (float(a) for a in motion.state(t_lim))
             self.phases.append(Phase(t, t_lim, "slip", x, motion))
-            if t_lim == p.end and t_lim < self.t_end:
-                self.event(t_lim, "forcing-off", x_end)
+            if t_lim == p.end and t_lim < self.t_end:  # the mode after it: as run() chooses it next
+                self.event(t_lim, "switch", x_end, self.mode(v_end, self.net(t_lim, x_end)))
             return t_lim, x_end, v_end, None
         x_stop = float(motion.state(t_stop)[0])
         self.phases.append(Phase(t, t_stop, "slip", x, motion))

@@ -1,7 +1,7 @@
 """The ``exact`` method: the exact piecewise solution for a linear spring and a Bingham or Coulomb dashpot.
 
 The motion is a sequence of phases, slip and stick, ended by events (stop,
-reversal, breakaway, forcing-off, rest), marched by
+reversal, breakaway, switch (the force going off), rest), marched by
 :class:`~lumped.solvers.events.PhaseMarch`.  Slip phases are solved in closed
 form (:class:`~lumped.solvers.closed_form.SlipMotion`: a linear ODE with
 constant coefficients, its stops found in closed form or refined with Brent's

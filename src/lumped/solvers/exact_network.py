@@ -41,9 +41,10 @@ from lumped.model.trajectory import Trajectory
 from lumped.numerics.expm import expm
 from lumped.numerics.roots import brentq
 from lumped.numerics.sine import MAX_ARGUMENT
+from lumped.solvers.events import Event
 from lumped.solvers.network_modes import (
-    NetworkEvent,
     crossed,
+    event_after,
     event_rows,
     grid_rows,
     initial_mode,
@@ -53,7 +54,7 @@ from lumped.solvers.network_modes import (
 )
 from lumped.solvers.network_phase import Parts, Phase, parts, switch_times
 
-__all__ = ["MAX_EVENTS", "MAX_SUBSTEPS", "NetworkEvent", "check_span", "march", "sample", "solve_exact_network"]
+__all__ = ["MAX_EVENTS", "MAX_SUBSTEPS", "check_span", "march", "sample", "solve_exact_network"]
 
 #: Most phases of one run before it is refused (each costs a few matrix exponentials).
 MAX_EVENTS = 20_000
@@ -127,12 +128,12 @@ def _locate(ph, rows, what, fired, t0, z, t1, g0) -> tuple[float, list[tuple[int
 
 def march(
     p: Parts, x: np.ndarray, v: np.ndarray, t_end: float, names: list[str], max_events: int = MAX_EVENTS
-) -> tuple[list[Phase], list[NetworkEvent]]:
+) -> tuple[list[Phase], list[Event]]:
     """The phases from the state ``(x, v)`` (m, m/s; (n,) each) at ``t = 0`` to ``t_end`` and the events
     between them (``names`` the elements', for the events)."""
     mode, zero = initial_mode(p, v)
     phases = [select(p, 0.0, x, v, mode, zero, {})]
-    events: list[NetworkEvent] = []
+    events: list[Event] = []
     breaks = switch_times(p, t_end) + [t_end]
     while True:
         ph = phases[-1]
@@ -145,9 +146,7 @@ def march(
         forced = {e: int(np.sign(f[e])) for e, kind in fired if kind == "breakaway"}
         zero = zero_set(p, ph, v, elements)
         phases.append(select(p, t, x, v, ph.mode, zero, forced))
-        kind = fired[0][1] if fired else "switch"
-        mode_after = tuple(int(s) for s in phases[-1].mode)
-        events.append(NetworkEvent(t, kind, tuple(names[e] for e in dict.fromkeys(elements)), mode_after))
+        events.append(event_after(t, fired, x, phases[-1].mode, names))
         if len(events) > max_events:
             raise ValueError(f"t_end: more than the {max_events} events a run may have before t_end = {t_end:g} s")
 

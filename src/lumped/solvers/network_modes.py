@@ -19,45 +19,35 @@ module holds what both methods do at the boundaries of phases:
 * :func:`zero_set`, the elements whose mode is to be chosen after an event;
 * :func:`final_rest`, each mass's rest: the start of its last run of phases
   in which a path of sticking elements holds it to the ground;
-* :class:`NetworkEvent`, an event as the trajectory reports it.
+* :func:`event_after`, an event as the trajectory reports it (the one
+  :class:`~lumped.solvers.events.Event` of every method).
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import numpy as np
 from lumped.laws import sticks
 from lumped.model.network import Network
 from lumped.model.trajectory import Trajectory
 from lumped.numerics import validate
+from lumped.solvers.events import Event
 from lumped.solvers.network_phase import Parts, Phase, generator_one, phase, refusal
 
 __all__ = [
-    "NetworkEvent",
     "crossed",
+    "event_after",
     "event_rows",
     "final_rest",
     "grid_index",
     "grid_rows",
     "initial_mode",
+    "rest_event",
     "select",
     "trajectory",
     "zero_set",
 ]
-
-
-@dataclass(frozen=True)
-class NetworkEvent:
-    """An event at ``time`` (s): ``kind`` ``"stop"``, ``"breakaway"`` or ``"switch"``, the ``elements`` it
-    concerns (names; none for a switch) and the ``mode`` chosen after it (per element: 0 stick, +-1 slip,
-    0 for an element that cannot stick)."""
-
-    time: float
-    kind: str
-    elements: tuple[str, ...]
-    mode: tuple[int, ...]
 
 
 def rates(p: Parts, v: np.ndarray) -> np.ndarray:
@@ -157,6 +147,35 @@ def zero_set(p: Parts, ph: Phase, v: np.ndarray, fired: list[int]) -> list[int]:
     return [int(e) for e in np.flatnonzero(p.friction) if ph.mode[e] == 0 or e in fired or abs(w[e]) <= tol]
 
 
+def event_after(t: float, fired: list[tuple[int, str]], x: np.ndarray, mode: np.ndarray, names: list[str]) -> Event:
+    """The event at ``t`` of the elements ``fired`` (``(element, kind)``; none for a load's switch), with the
+    positions ``x`` there and the ``mode`` chosen after it: a stop after which its element slips is a
+    reversal (:data:`~lumped.solvers.events.KINDS`)."""
+    if not fired:
+        return Event(t, "switch", tuple(float(a) for a in x), (), tuple(int(s) for s in mode))
+    first, kind = fired[0]
+    if kind == "stop" and mode[first] != 0:
+        kind = "reversal"
+    elements = tuple(names[e] for e in dict.fromkeys(e for e, _ in fired))
+    return Event(t, kind, tuple(float(a) for a in x), elements, tuple(int(s) for s in mode))
+
+
+def rest_event(network: Network, p: Parts, phases: list[Phase]) -> Event | None:
+    """The network's *rest* (:data:`~lumped.solvers.events.KINDS`), the one-mass march's rule: ``None`` unless
+    the last phase holds every mass to the ground, no point is driven and every load is off for ever (a sine
+    or a constant past its ``until``); then no mass moves again, from the start of the last run of phases
+    that hold every mass (the latest of :func:`final_rest`'s starts)."""
+    last = phases[-1]
+    driven = p.drive is not None and bool(np.any(p.drive != 0))
+    forms = [load.force.closed_form() for load in network.loads]
+    loaded = any(f is None or (f.amplitude != 0 and last.start < f.until) for f in forms)
+    if driven or loaded or not last.grounded.all():
+        return None
+    x = last.values(last.z0)[0]
+    start = float(np.max(final_rest(phases, x)[0]))
+    return Event(start, "rest", tuple(float(a) for a in x), (), tuple(int(s) for s in last.mode))
+
+
 def final_rest(phases: list[Phase], x_end: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Start of each mass's last run of grounded phases (``nan`` if it moves at the end), and its position."""
     rest = np.full(x_end.size, math.nan)
@@ -198,13 +217,15 @@ def trajectory(
     save_every: int,
     rows: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray],
     phases: list[Phase],
-    events: list[NetworkEvent],
+    events: list[Event],
     method: str,
 ) -> Trajectory:
     """The :class:`Trajectory` of a run by phases: ``rows`` are positions, velocities, forces and the
     sticking flags at the saved times (springs' states are their forces; no element is rigid at t = 0)."""
     x, v, f, rigid = rows
     times = index * dt
+    rest = rest_event(network, p, phases)
+    events = sorted(events + ([rest] if rest else []), key=lambda e: e.time)  # a rest is dated back
     rigid = rigid & p.friction[None, :]
     rigid[0] = False
     return Trajectory(

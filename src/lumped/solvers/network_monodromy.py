@@ -56,7 +56,8 @@ from lumped.numerics.expm import expm
 from lumped.numerics.roots import brentq
 from lumped.solvers.exact_network import march, step_for
 from lumped.solvers.monodromy import RESOLUTION, held_slip
-from lumped.solvers.network_modes import NetworkEvent, event_rows
+from lumped.solvers.events import Event
+from lumped.solvers.network_modes import event_rows
 from lumped.solvers.network_phase import Parts, Phase, groups
 
 __all__ = ["ModeFlow", "NetworkPeriodMap", "event_gradient", "forced_parts", "mode_flow", "network_period_map"]
@@ -117,7 +118,7 @@ class NetworkPeriodMap:
     end: np.ndarray
     monodromy: np.ndarray
     phases: tuple[Phase, ...]
-    events: tuple[NetworkEvent, ...]
+    events: tuple[Event, ...]
     parts: Parts
     t_end: float
 
@@ -291,9 +292,7 @@ def _field(ph: Phase, z: np.ndarray) -> np.ndarray:
     return np.concatenate([v, acc])
 
 
-def _through(
-    p: Parts, ph: Phase, d: np.ndarray, event: NetworkEvent | None, names: list[str], t_end: float
-) -> np.ndarray:
+def _through(p: Parts, ph: Phase, d: np.ndarray, event: Event | None, names: list[str], t_end: float) -> np.ndarray:
     """``D`` at the end of the phase ``ph`` (at its event, or at ``t_end``) from ``D`` at its start (module Notes)."""
     flow = mode_flow(p, ph.mode)
     end = t_end if event is None else event.time
@@ -307,7 +306,7 @@ def _through(
 
 
 def event_gradient(
-    p: Parts, ph: Phase, flow: ModeFlow, event: NetworkEvent, names: list[str], z: np.ndarray
+    p: Parts, ph: Phase, flow: ModeFlow, event: Event, names: list[str], z: np.ndarray
 ) -> tuple[int, float, np.ndarray, float]:
     """The element ``e`` of ``event`` (its first), the sign ``s``, the event function's gradient ``r`` on the
     masses' state ``y`` (2n,) and its rate ``g'`` along the flow of ``ph`` at its state ``z`` (module Notes):
@@ -315,7 +314,7 @@ def event_gradient(
     e = names.index(event.elements[0])
     rows, _, what = event_rows(p, ph)
     n = p.m.size
-    if event.kind == "stop":
+    if event.kind in ("stop", "reversal"):  # the slip's rate reached zero: a stop row
         s = float(ph.mode[e])
         r = np.concatenate([np.zeros(n), ph.mode[e] * p.b[:, e]])
         row = rows[what.index((e, "stop"))]

@@ -73,7 +73,7 @@ import numpy as np
 from lumped.model.forcing import SineForm
 from lumped.numerics.expm import expm
 from lumped.solvers.exact_network import march, sample
-from lumped.solvers.network_modes import NetworkEvent
+from lumped.solvers.events import Event
 from lumped.solvers.network_monodromy import ModeFlow, event_gradient, mode_flow
 from lumped.solvers.network_phase import Parts, Phase, load_matrix, load_on, phase
 from lumped.solvers.sensitivity_chain import flow
@@ -106,7 +106,7 @@ class NetworkEventSensitivity:
     ``margin`` from a change of the event sequence (module Notes) and the index of its (first) ``element``
     (-1 for a switch)."""
 
-    event: NetworkEvent
+    event: Event
     time: np.ndarray
     x: np.ndarray
     margin: float
@@ -118,7 +118,7 @@ class NetworkMotion:
     """The exact motion of a network: its ``phases`` and ``events`` (:func:`~lumped.solvers.exact_network.march`)."""
 
     phases: tuple[Phase, ...]
-    events: tuple[NetworkEvent, ...]
+    events: tuple[Event, ...]
 
     def evaluate(self, t: np.ndarray | Sequence[float]) -> dict[str, np.ndarray]:
         """Positions ``"x"`` and velocities ``"v"`` (T, n) at the increasing times ``t`` (s) of the run."""
@@ -204,7 +204,7 @@ def network_sensitivities(
 def along(
     p: Parts,
     phases: Sequence[Phase],
-    events: Sequence[NetworkEvent],
+    events: Sequence[Event],
     t: np.ndarray | Sequence[float],
     parameters: Sequence[Parameter],
     names: list[str],
@@ -234,7 +234,7 @@ class _Carry:
     """``D = d(t, Y)/dp`` carried through the phases (module Notes): its value at each phase's start, each
     phase's block matrix and initial vector (for :meth:`sample`), and each event's derivatives."""
 
-    def __init__(self, p: Parts, phases: list[Phase], events: list[NetworkEvent], params: tuple, names: list) -> None:
+    def __init__(self, p: Parts, phases: list[Phase], events: list[Event], params: tuple, names: list) -> None:
         self.p, self.params, self.names = p, params, names
         n, width = p.m.size, len(params)
         self.gens = 1 + 2 * len(p.omegas)
@@ -257,7 +257,7 @@ class _Carry:
         x, v = ph.values(z)[:2]
         return np.concatenate([x, v, z[-self.gens :]])
 
-    def _phase(self, ph: Phase, D: np.ndarray, event: NetworkEvent | None, after: Phase | None) -> np.ndarray:
+    def _phase(self, ph: Phase, D: np.ndarray, event: Event | None, after: Phase | None) -> np.ndarray:
         """Record the phase's block matrix; return ``D`` just after its event (module Notes)."""
         fl = mode_flow(self.p, ph.mode)
         a, da, frow, dfrow = _matrices(self.p, ph, fl, self.params, self.gens)

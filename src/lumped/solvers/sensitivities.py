@@ -134,7 +134,7 @@ class Sensitivities:
     x, v : ndarray, (n, p)
         ``dx/dp`` and ``dv/dp`` at the times ``t`` (held fixed).
     events : tuple of EventSensitivity
-        Every stop, reversal, breakaway and forcing-off, in time order.
+        Every stop, reversal, breakaway and switch (the force going off), in time order.
     rest_time, rest_position : ndarray, (p,)
         Derivatives of the solution's ``rest_time`` and ``rest_position``
         (``nan`` where it has no rest).

@@ -151,7 +151,7 @@ class Chain:
         (2 x 10) at that fixed time and the field ``(v, a)`` there: at a zero of ``v``, or at the force going off.
 
         The phase's own force tells the two apart, not the events at ``t_b``: a stop a few ulps of ``t`` after
-        the force goes off (a slip just begun, stopped at once) shares ``t_b`` with the forcing-off event.
+        the force goes off (a slip just begun, stopped at once) shares ``t_b`` with the switch (the force going off).
         """
         kinds = self.ends.get(t_b, set())
         if not (on and not self.load.on(t_b)):
@@ -163,7 +163,7 @@ class Chain:
         dt = np.zeros(N)  # the force goes off at t_b = t_off: the state there gains f(t_b-) dt_b
         dt[OFF_] = 1.0
         out = np.vstack([dt, dz + np.outer(field, dt)])
-        self.at_events[(t_b, "forcing-off")] = (out[:2], math.inf)
+        self.at_events[(t_b, "switch")] = (out[:2], math.inf)
         return out
 
     def _v_zero_margin(self, kind: str, t: float, x: float, accel: float) -> float:
@@ -180,9 +180,9 @@ class Chain:
         D = np.vstack([D[:2], np.zeros(N)])  # v = 0 whatever the parameters: the projection
         self.pieces.append(("stick", D))
         t_c, kinds = phase.end, self.ends.get(phase.end, set())
-        if t_c >= self.t_end or not kinds & {"breakaway", "forcing-off"}:
+        if t_c >= self.t_end or not kinds & {"breakaway", "switch"}:
             return D
-        dt, margin, kind = np.zeros(N), math.inf, "forcing-off"
+        dt, margin, kind = np.zeros(N), math.inf, "switch"
         if "breakaway" in kinds:  # g = F(t_c) - k x - s tau = 0 moves t_c
             grad, slope = self.load.gradient(t_c)
             grad[K_] -= phase.x_start

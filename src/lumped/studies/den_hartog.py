@@ -241,7 +241,7 @@ class SteadyState(NamedTuple):
 def _window_max(solution: ExactSolution, events: list[Event], start: float, end: float) -> float:
     """Largest ``|x|`` over ``[start, end]``: at a zero of ``v`` (an event) or at an end of the window."""
     ends = solution.evaluate(np.array([start, end]))["x"]
-    inside = [abs(e.x) for e in events if start <= e.time <= end and e.kind in ("stop", "reversal")]
+    inside = [abs(e.x[0]) for e in events if start <= e.time <= end and e.kind in ("stop", "reversal")]
     return float(max([*np.abs(ends), *inside]))
 
 

@@ -38,7 +38,7 @@ error is that of ``x(t_end)`` and the rest time is not compared.  The
 (a grid of :data:`~lumped.studies.accuracy.runs.SAMPLE_DT` for the
 event-driven method, the accepted steps for ``solve_ivp``).  The *event
 errors* are, per kind, the largest distance in time between matched events
-(in displacement for ``forcing-off``, whose time is given).  The ``tanh``
+(in displacement for the ``switch``, the forcing going off, whose time is given).  The ``tanh``
 model never sticks: its "rest position" is ``x(t_end)`` compared with the
 reference's rest position, which is what a user of that model would report.
 

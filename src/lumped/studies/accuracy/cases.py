@@ -80,7 +80,7 @@ def cases(cfg: dict[str, Any] | None = None) -> dict[str, Case]:
 
     The free decay (Figures 11 to 14) and eq. (17b)'s forced case are
     :func:`lumped.studies.examples.paper`'s; Coulomb is the same system with
-    ``gamma = inf`` under eq. (17b) (breakaway, reversals, forcing-off and
+    ``gamma = inf`` under eq. (17b) (breakaway, reversals, the switch-off and
     stop in one run); the Herschel-Bulkley cases have ``tau = 1 N``,
     ``K = 1 N (s/m)^n``, ``n = 1/2`` and ``n = 2``, released at
     ``x0 = 0.5 m`` and run for 4 s.

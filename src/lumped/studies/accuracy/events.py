@@ -17,20 +17,20 @@ from lumped.solvers.events import Event
 
 __all__ = ["KINDS", "grid_events", "match_events"]
 
-#: The event kinds compared, with the issue's names: stick to slip, slip to
-#: stick, reversal, forcing switched off (``"rest"`` repeats a ``"stop"``).
+#: The event kinds compared (of :data:`lumped.solvers.events.KINDS`), with the issue's names: stick to slip,
+#: slip to stick, reversal, forcing switched off (the one switch of the cases; ``"rest"`` repeats a ``"stop"``).
 KINDS: Mapping[str, str] = {
     "breakaway": "stick to slip",
     "stop": "slip to stick",
     "reversal": "reversal",
-    "forcing-off": "forcing switched off",
+    "switch": "forcing switched off",
 }
 
 
 def _reversal(t: np.ndarray, x: np.ndarray, v: np.ndarray, i: int, j: int) -> Event:
     """The zero of the line through ``(t_i, v_i)`` and ``(t_j, v_j)`` (opposite signs), ``x`` likewise."""
     a = v[i] / (v[i] - v[j])
-    return Event(float(t[i] + a * (t[j] - t[i])), "reversal", float(x[i] + a * (x[j] - x[i])))
+    return Event(float(t[i] + a * (t[j] - t[i])), "reversal", (float(x[i] + a * (x[j] - x[i])),))
 
 
 def _stick_events(t: np.ndarray, x: np.ndarray, first: int, last: int) -> list[Event]:
@@ -40,9 +40,9 @@ def _stick_events(t: np.ndarray, x: np.ndarray, first: int, last: int) -> list[E
     of a mass outside the band, which slips at once (the exact solver records
     no event there either).
     """
-    out = [Event(float(t[first]), "stop", float(x[first]))] if first > 0 else []
+    out = [Event(float(t[first]), "stop", (float(x[first]),))] if first > 0 else []
     if last < t.size - 1 and last > 0:  # v = 0 at t = 0 alone is a release from rest, not a stick
-        out.append(Event(float(t[last]), "breakaway", float(x[last])))
+        out.append(Event(float(t[last]), "breakaway", (float(x[last]),)))
     return out
 
 
@@ -66,7 +66,7 @@ def grid_events(t: np.ndarray, x: np.ndarray, v: np.ndarray, t_off: float | None
         and the first of the other.  Every other run of ``v == 0`` is a
         stick: a *stop* at its first grid time (none for a run from
         ``t = 0``) and a *breakaway* at its last (none for a run to the
-        end, or for ``v = 0`` at ``t = 0`` alone, a release from rest).  *forcing-off* is at ``t_off`` with ``x`` interpolated
+        end, or for ``v = 0`` at ``t = 0`` alone, a release from rest).  the *switch* is at ``t_off`` with ``x`` interpolated
         linearly (exact on a grid through ``t_off``).
     """
     t, x, v = (np.asarray(a, dtype=float) for a in (t, x, v))
@@ -81,7 +81,7 @@ def grid_events(t: np.ndarray, x: np.ndarray, v: np.ndarray, t_off: float | None
         if not lone:
             events += _stick_events(t, x, int(run_[0]), int(run_[-1]))
     if t_off is not None and t[0] < t_off <= t[-1]:
-        events.append(Event(float(t_off), "forcing-off", float(np.interp(t_off, t, x))))
+        events.append(Event(float(t_off), "switch", (float(np.interp(t_off, t, x)),)))
     return tuple(sorted(events, key=lambda e: e.time))
 
 
@@ -90,7 +90,7 @@ def match_events(found: Sequence[Event], wanted: Sequence[Event]) -> dict[str, f
 
     The ``i``-th event of a kind in ``found`` is paired with the ``i``-th of
     that kind in ``wanted``; the error is in time (s), in displacement (m)
-    for ``forcing-off``.  If the count of any kind differs, every kind is
+    for the ``switch``.  If the count of any kind differs, every kind is
     ``nan``: the motion took another course (a half-cycle more or less, a
     spurious stick), and pairing its events in order would compare
     different switches.  A kind absent from ``wanted`` is left out.
@@ -106,6 +106,6 @@ def match_events(found: Sequence[Event], wanted: Sequence[Event]) -> dict[str, f
         if not paired:
             out[kind] = math.nan
             continue
-        values = [(a.x, b.x) if kind == "forcing-off" else (a.time, b.time) for a, b in zip(got, want)]
+        values = [(a.x[0], b.x[0]) if kind == "switch" else (a.time, b.time) for a, b in zip(got, want)]
         out[kind] = max(abs(a - b) for a, b in values)
     return out

@@ -128,7 +128,7 @@ def _exact_summary(ex: ExactSolution, sampled: Trajectory) -> dict[str, Any]:
         "breakaways": kinds.count("breakaway"),
         "first_event_time": moving[0].time if moving else math.nan,
         "reversal_times": [e.time for e in ex.events if e.kind == "reversal"],
-        "reversal_positions": [e.x for e in ex.events if e.kind == "reversal"],
+        "reversal_positions": [e.x[0] for e in ex.events if e.kind == "reversal"],
         "peak_x": float(np.max(np.abs(sampled.x))),
         "peak_v": float(np.max(np.abs(sampled.v))),
         "peak_F_d": float(np.max(np.abs(sampled.F_d))),
