@@ -100,6 +100,35 @@ def test_a_contact_loaded_at_exactly_its_static_force_sticks(masses: int, solver
     assert np.all(run.positions[:, 0] == 0.0)
 
 
+@pytest.mark.parametrize(("solver", "path"), [("python", "python"), ("auto", "one-mass-friction")])
+def test_a_slipping_stribeck_contact_that_arrives_at_exactly_its_static_force_sticks(solver: str, path: str) -> None:
+    """A slipping contact on a Stribeck branch whose step asks exactly ``static`` of it (``y = static``): no
+    slip speed, it sticks.  m = 1 kg at v0 = 1/16 m/s, dt = 1/8 s (m/dt = 8 N s/m, above the fall's steepest
+    slope 5 N s/m: the step is unique), a constant 0.5 N: ``y = m/dt v0 + F = 0.5 + 0.5 = 1 = static`` with
+    no rounding (powers of two).  The one-mass compiled loop's ``y > static`` turned ``y >= static`` (a
+    mutant that survived the suite) slips it at rate ``2.8e-17`` m/s, unflagged as stuck."""
+    text = """[[mass]]
+name = "m"
+mass = 1.0
+v0 = 0.0625
+[[element]]
+name = "f"
+kind = "friction"
+between = ["ground", "m"]
+static = 1.0
+kinetic = 0.5
+stribeck_velocity = 0.1
+[[force]]
+on = "m"
+kind = "constant"
+value = 0.5
+"""
+    run = run_network(parse_system(text, "arrives"), 0.5, 0.125, solver=solver)
+    assert run.solver == path
+    assert np.all(run.velocities[1:, 0] == 0.0) and np.all(run.rigid[1:, 0])
+    assert run.forces[1, 0] == 1.0 and np.all(run.forces[2:, 0] == 0.5)
+
+
 def _three_blocks(x: np.ndarray, v: np.ndarray) -> object:
     """The three blocks started at positions ``x`` and velocities ``v`` (exact: ``repr`` round-trips)."""
     text = THREE_BLOCKS
