@@ -98,6 +98,24 @@ static void least_index(net_t *q) {
     }
 }
 
+/* step._points_first: while a Stribeck contact's point still moves on its branch (its discrete mode kept, the
+ * point not settled: curve_same), no contact that is not monotone changes its discrete mode; the rule acts on
+ * the solve of the pieces chosen, not on an iterate on the way to it (issue 41: coupled(12) at step 215). */
+static void points_first(net_t *q, double scale) {
+    int moving = 0;
+    for (Py_ssize_t k = 0; k < q->cv->n && !moving; k++) {
+        const Py_ssize_t e = q->cv->el[k];
+        moving = q->next[e] == q->mode[e] && q->mode[e] != STICK_PIECE && !curve_same(q, e, q->sigma[e] * scale);
+    }
+    if (!moving) return;
+    for (Py_ssize_t e = 0; e < q->n_el; e++) {
+        const Py_ssize_t k = q->cv->ix[e];
+        if (q->next[e] == q->mode[e] || !(k >= 0 || (contact_kind(q->kind[e]) && q->count[e] == 3))) continue;
+        q->next[e] = q->mode[e];
+        if (k >= 0) q->cv->nw[k] = q->cv->pt[k].w, q->cv->nf[k] = q->cv->pt[k].f, q->cv->pt[k].near = 0;
+    }
+}
+
 static int iterate(net_t *q, double scale, int *iterations) {
     int seen = 0, cycling = 0, round = 0, single = 0;
     uint64_t first = 0;
@@ -118,6 +136,7 @@ static int iterate(net_t *q, double scale, int *iterations) {
             *iterations = it;
             return 1;
         }
+        if (curves) points_first(q, scale);
         /* step._iterate's one_at_a_time: the Newton finish.  step._pinned_rule has no twin here: a contact
          * held at rest by stuck ones that stops closes a rigid loop, which linear() hands to Python (and both
          * compiled steps refuse parallel elements that can be rigid: ineligible). */
