@@ -277,3 +277,13 @@ def test_a_range_one_ulp_long_writes_each_row_once():
     stop = float(np.nextafter(np.nextafter(0.2, 1.0), 1.0))
     rows = cycle_rows(lumped.cycles(load_system(BELT), vary=("belt.velocity", 0.2, stop), points=2))
     assert list(rows["belt.velocity"]) == [0.2, stop]
+
+
+def test_a_return_that_touches_the_section_at_rest_is_refused_in_one_line():
+    """``--vary fric.viscous=0:1 --points 10`` on the Gaussian belt: at viscous 0 (a Hopf point, the equilibrium's
+    real part 5e-26/s) a Newton trial from v = 9.3e-16 m/s came back to the section with v = 0 to the last bit,
+    and ``P' = v0/v1 ...`` divided by it: ``the cycles run failed: ZeroDivisionError``.  A return at rest is a
+    tangency of the section, where the map has no derivative: refused in one line, which Newton's halving (and the
+    walk) then takes as any return it cannot use, and the command answers (121 rows, 61 s here)."""
+    with pytest.raises(ValueError, match=r"^v: the motion from the section at v = 1 m/s comes back to it at rest"):
+        shooting._landed(None, None, 1.0, 2.0, 0.0)

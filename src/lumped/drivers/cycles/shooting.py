@@ -336,7 +336,13 @@ def _grid(steps: np.ndarray, end: float) -> np.ndarray:
 
 
 def _landed(sys: _System, march: March, v0: float, t_hit: float, v1: float) -> _Flight:
-    """The flight cut at the crossing ``t_hit``, with ``P'`` and its error bound."""
+    """The flight cut at the crossing ``t_hit``, with ``P'`` and its error bound; refused in one line where it
+    crosses at rest (``v1 = 0``: the orbit touches the section, and ``P' = v0/v1 ...`` has no value)."""
+    if v1 == 0:
+        raise ValueError(
+            f"v: the motion from the section at v = {v0:.6g} m/s comes back to it at rest (it touches the section): "
+            "the return map has no derivative there"
+        )
     ph = march.phases[-1]
     march.phases[-1] = Phase(ph.start, t_hit, ph.kind, ph.x_start, ph.motion)
     march.events = [e for e in march.events if e.time < t_hit]
