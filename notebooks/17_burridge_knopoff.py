@@ -318,35 +318,37 @@ if fit is not None:
 #
 #     snakemake --cores 2 results/notebooks/17_burridge_knopoff.ipynb --config bk_blocks=1000 bk_travel=20
 #
-# ($2\times10^8$ block-steps; 84 CPU-seconds on the machine it was run on, 6 minutes of wall time there on a
-# shared machine), and prints its own numbers in the cells above. Quoted here from that full run (one machine's
+# ($2\times10^8$ block-steps; 2.5 minutes of one core on the machine it was last run on, the notebook
+# included), and prints its own numbers in the cells above. Quoted here from that full run (one machine's
 # round-off; another CPU's catalogue differs event by event, not in its statistics beyond their errors):
-# 29164 events, 7 unfinished; 81 % of them one block; the fits $a = 1.57 \pm 0.01$ (2399 events from 10 creep
-# steps to $1\,D_0$), $1.52 \pm 0.02$ (1107, from 30), $1.67 \pm 0.03$ (603, from 100); 79 events above
-# $1\,D_0$ against 20.8 predicted by the first fit, slipping a median 268 of the 1000 blocks; 3.2 % of the
-# slipping cells backwards. The CI run, on the same machine: $a = 1.59 \pm 0.05$ on 196 events from 10 creep
-# steps, 14 events above $1\,D_0$ against 1.5 predicted, all of them slipping the whole chain of 100.
+# 26941 events, 7 unfinished; 82 % of them one block; the fits $a = 1.54 \pm 0.01$ (2129 events from 10 creep
+# steps to $1\,D_0$), $1.51 \pm 0.02$ (1046, from 30), $1.67 \pm 0.03$ (596, from 100); 80 events above
+# $1\,D_0$ against 23.4 predicted by the first fit, slipping a median 300.5 of the 1000 blocks; 2.9 % of the
+# slipping cells backwards. The CI run, on the same machine: $a = 1.60 \pm 0.05$ on 179 events from 10 creep
+# steps, 12 events above $1\,D_0$ against 1.2 predicted, all of them slipping the whole chain of 100.
 #
 # * **Small events and a power law: a power law, but not Carlson and Langer's, and not one exponent.** The
 #   fitted moments spread over three and a half decades ($2.4\times10^{-4}$ to $1\,D_0$), but the three fits of
-#   the full run differ by up to 0.15, four to eight times their standard errors: over
+#   the full run differ by up to 0.16, four to eight times their standard errors: over
 #   this range the law is not a single power law, and its exponent is known to about $\pm 0.1$, not $\pm 0.01$.
 #   Carlson and Langer's abstract (read) says only that their sizes are "consistent with the Gutenberg-Richter
 #   law"; the exponent they report is recalled: $b \approx 1$, $a \approx 2$. This chain's $a \approx 1.5$ to
 #   $1.7$ ($b \approx 0.5$ to $0.7$) is flatter: it does not reproduce the recalled value.
 # * **The step moves the exponent.** The same 1000 blocks over $10\,D_0$ at half the step ($\Delta t = 0.005$,
-#   `--config bk_blocks=1000 bk_travel=10 bk_dt=0.005`, 171 CPU-seconds) give $a = 1.48 \pm 0.02$ on 987
-#   events from $2.36\times10^{-4}\,D_0$ (the full run's events over its first $10\,D_0$: $1.58 \pm 0.02$ on
-#   1259), and $1.84 \pm 0.05$ against $1.64 \pm 0.05$ from $2.36\times10^{-3}\,D_0$: differences of three to
-#   four standard errors. The statistics are therefore not converged in $\Delta t$ at the study's step; what
+#   `--config bk_blocks=1000 bk_travel=10 bk_dt=0.005`, 2.3 minutes of one core) give $a = 1.48 \pm 0.02$ on
+#   917 events from $2.36\times10^{-4}\,D_0$ (the full run's events over its first $10\,D_0$: $1.56 \pm 0.02$
+#   on 1105), and $1.90 \pm 0.06$ against $1.66 \pm 0.05$ from $2.36\times10^{-3}\,D_0$: differences of about
+#   three standard errors of the difference. The statistics are therefore not converged in $\Delta t$ at the study's step; what
 #   the fits measure is backward Euler's chain at $\Delta t = 0.01$ (whose damping of the short waves, Step 1,
 #   is one candidate cause), and the exponent's uncertainty is dominated by that, not by the count of events.
-# * **An excess of large, delocalised events: holds.** Both runs have more events above $1\,D_0$ than the
-#   power law fitted below predicts (79 against 20.8 in the full run; 29 against 17.1 at half the step, still
-#   beyond two Poisson deviations), and they are delocalised: they slip hundreds of blocks (median 268 of
-#   1000; 337 at half the step), as Carlson and Langer's large events (recalled) do.
+# * **An excess of large, delocalised events: holds at the study's step, not shown at half of it.** The full
+#   run has more events above $1\,D_0$ than the power law fitted below predicts (80 against 23.4, far beyond
+#   two Poisson deviations); at half the step over $10\,D_0$ the count, 21 against 16.6, lies within two
+#   deviations, so the excess is not shown there. The large events are delocalised in both: they slip
+#   hundreds of blocks (median 300.5 of 1000; 526 at half the step), as Carlson and Langer's large events
+#   (recalled) do.
 # * **What differs from their model.** From the 1991 law: $\sigma = 0$ (the creep events are its mark) and
 #   backward slip allowed (the share above); the 1989 law, as read, has both. From either: backward Euler's
 #   damping of the short waves (Step 1), free ends (their boundary condition could not be read), and a finite
 #   run whose first events (the chain loaded alike from its nearly uniform start) are not discarded (leaving out
-#   the full run's events before $2\,D_0$ of travel moves its first fit from 1.57 to 1.55).
+#   the full run's events before $2\,D_0$ of travel moves its first fit from 1.54 to 1.52).
