@@ -287,3 +287,27 @@ def test_a_return_that_touches_the_section_at_rest_is_refused_in_one_line():
     walk) then takes as any return it cannot use, and the command answers (121 rows, 61 s here)."""
     with pytest.raises(ValueError, match=r"^v: the motion from the section at v = 1 m/s comes back to it at rest"):
         shooting._landed(None, None, 1.0, 2.0, 0.0)
+
+
+def test_a_range_beside_a_subcritical_hopf_point_reports_the_branch_that_enters_it():
+    """The Stribeck belt's slip-only cycles are born at its Hopf speed 0.52983 m/s and grow to faster belts
+    (unstable, never stuck).  Over ``belt.velocity = 0.55:0.8``, which leaves the Hopf point out, the branch was
+    not reported: only the stick-slip cycles.  The walk now starts at the Hopf point just outside the range
+    (within ``HOPF_REACH`` of its end) and reports its cycles inside it.  At 0.8 m/s, the file's own speed, the
+    row is the cycle that ``cycles`` without ``vary`` finds there by Newton from its own walk: both are
+    fixed points of the return map to its tolerance (1e-12 of the belt's speed in the section's speed), so their
+    periods agree far inside 1e-9.  The mirrored range reports the mirrored cycle at -0.8 m/s."""
+    net = load_system(STRIBECK)
+    table = lumped.cycles(net, vary=("belt.velocity", 0.55, 0.8), points=11).columns
+    slip = (table["branch"] == "cycle") & (table["stick_time"] == 0)
+    assert slip.sum() >= 5 and not table["stable"][slip].any()
+    assert np.all((table["belt.velocity"][slip] >= 0.55) & (table["belt.velocity"][slip] <= 0.8))
+    alone = lumped.cycles(net).columns
+    unstable = (alone["branch"] == "cycle") & ~alone["stable"]
+    at_end = slip & (table["belt.velocity"] == 0.8)
+    assert at_end.sum() == 1 and unstable.sum() == 1
+    assert table["period"][at_end][0] == pytest.approx(alone["period"][unstable][0], rel=1e-9)
+    back = lumped.cycles(net, vary=("belt.velocity", -0.8, -0.55), points=11).columns
+    mirrored = (back["branch"] == "cycle") & (back["stick_time"] == 0) & (back["belt.velocity"] == -0.8)
+    assert mirrored.sum() == 1 and back["period"][mirrored][0] == pytest.approx(alone["period"][unstable][0], rel=1e-9)
+    assert back["max_m"][mirrored][0] == pytest.approx(-alone["min_m"][unstable][0], rel=1e-9)

@@ -26,7 +26,8 @@ Newton); and from the belt's speed ``V > 0`` (a cycle stuck as it crosses the
 section crosses it at ``V`` exactly: its fixed point, whatever the length of
 its stick, which the long run's natural periods may not reach: 5e6 s on
 ``examples/belt.toml`` at 2e-7 m/s).  With ``vary = (name, start, stop)``: the branches of
-:func:`~lumped.drivers.cycles.continuation.continue_branches` over the range.
+:func:`~lumped.drivers.cycles.continuation.continue_branches` over the range and, varying the belt's speed, the
+cycles inside it of a branch born at a Hopf point just outside it (:func:`_hopf_branches_into`).
 
 A belt running backwards (``V < 0``) is the mirror image ``x -> -x`` of one running forwards
 (:func:`~lumped.drivers.cycles.equilibria.mirrored`) and is computed so: its rows are the forward belt's mirrored,
@@ -195,11 +196,40 @@ def cycles(
     name, start, stop = req.vary
     notes: list[str] = []  # what ended a branch early or found none: the summary says it
     branch = continue_branches(req.network, name, start, stop, req.points, progress, notes=notes)
+    branch += _hopf_branches_into(req.network, name, start, stop, req.points, notes)
     rows = [(p.value, p.branch, p.equilibrium if p.branch == "equilibrium" else p.cycle, p.kind) for p in branch]
     return CyclesTable(_table(rows, network.mass_names, name), "; ".join([_summary(rows, name), *notes]))
 
 
 Row = tuple[float, str, Any, str]  # (value, branch, Equilibrium or Cycle, kind)
+
+
+def _hopf_branches_into(network: Network, name: str, start: float, stop: float, points: int, notes: list[str]) -> list:
+    """The cycles, inside ``[start, stop]``, of the branch born at the nearest Hopf point in the belt's speed just
+    outside the range (within a factor :data:`HOPF_REACH` of its nearer end, on the range's side of 0): a
+    subcritical branch (``examples/stribeck_belt.toml``'s slip-only cycles, born at 0.0639693 m/s) reaches speeds
+    far from its Hopf point, and a range that leaves the point out would otherwise report none of them.  The
+    walk starts at that point and takes at most :data:`HOPF_RETURNS` returns outside the range (its rows there are
+    not reported); none for another parameter, a range through 0, or no such point."""
+    if name != belt_parameter(network) or start * stop <= 0:
+        return []
+    from lumped.drivers.cycles.continuation import continue_branches
+
+    near, far = sorted((start, stop), key=abs)
+    out = []
+    for end, side in ((near, near / HOPF_REACH), (far, far * HOPF_REACH)):
+        hopf = hopf_points(network, name, *sorted((side, end)))
+        hopf = [h for h in hopf if not start <= h <= stop]
+        if not hopf:
+            continue
+        h = min(hopf, key=lambda g: abs(g - end))
+        margin = 1e-3 * (stop - start)  # the point inside the walk's range (its ends are not looked at)
+        lo, hi = min(h - margin, start), max(h + margin, stop)
+        walked = continue_branches(  # the Hopf branch alone, over the range and the way to it
+            network, name, lo, hi, points, None, start_branch=False, returns=HOPF_RETURNS, notes=notes
+        )
+        out += [p for p in walked if p.branch == "cycle" and start <= p.value <= stop]
+    return out
 
 
 def _rows_at_file(network: Network, points: int, progress: Callable | None) -> tuple[list[Row], list[str]]:
