@@ -202,3 +202,45 @@ def test_the_burridge_knopoff_chain_settles_at_bk_dt_0_1() -> None:
     assert compiled.solver == "compiled-banded"
     np.testing.assert_allclose(compiled.positions, python.positions, rtol=1e-12, atol=1e-12)
     np.testing.assert_array_equal(compiled.rigid, python.rigid)
+
+
+@pytest.fixture
+def compiled_bound():
+    """Set the compiled step's bound on iterations per scale (``network_step.BOUND``, handed to C by
+    ``network_compiled.settings``) for one test, and put the definition back after it."""
+    from lumped.solvers import network_compiled, network_step
+
+    if network_compiled.KERNEL != "compiled":
+        pytest.skip("the compiled step is not built")
+    kept = network_step.BOUND
+
+    def set_bound(bound: tuple[int, int]) -> None:
+        network_step.BOUND = bound
+        network_compiled.settings()
+
+    yield set_bound
+    network_step.BOUND = kept
+    network_compiled.settings()
+
+
+def test_an_unsettled_compiled_step_names_the_elements_and_phi_from_the_python_step(compiled_bound) -> None:
+    """With one iteration per scale in both steps the three blocks' compiled step does not settle at its first
+    step: the Python step takes that step again from the same state, and the message is its own (a bug, the
+    step, the elements still changing, the step's function)."""
+    compiled_bound((1, 0))
+    with pytest.raises(ValueError) as err:
+        run_network(parse_system(THREE_BLOCKS, "three"), 0.01, 1e-3)
+    message = str(err.value)
+    assert "this is a bug" in message and "(step 1)" in message
+    assert "elements still changing:" in message and "Phi = " in message
+
+
+def test_a_compiled_step_that_fails_where_the_python_step_settles_says_so(compiled_bound) -> None:
+    """One iteration per scale in C only: the compiled step fails, the Python step settles the same step, and
+    the message says that the compiled step parts from its twin there."""
+    from lumped.solvers import network_step
+
+    compiled_bound((1, 0))
+    network_step.BOUND = (20, 2)  # the Python step's own bound again; C keeps the one it was handed
+    with pytest.raises(ValueError, match=r"the Python step settles this step from the same state, so the compiled"):
+        run_network(parse_system(THREE_BLOCKS, "three"), 0.01, 1e-3)

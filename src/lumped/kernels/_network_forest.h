@@ -30,14 +30,16 @@
 
 #include "_network_elements.h" /* piece, MAX_PIECES, mode_of */
 
-/* step.SIGMA_SCALES and step.DUAL_SWEEPS: set from Python when the module is imported
- * (network_settings in _network_kernel.c, called by lumped.solvers.network_compiled), so
- * that the two steps read one definition; until then one scale and no sweeps. */
+/* step.SIGMA_SCALES, step.DUAL_SWEEPS and step.default_bound's two numbers (the iterations per scale,
+ * BOUND_BASE + BOUND_PER_ELEMENT elements): set from Python when the module is imported (network_settings
+ * in _network_kernel.c, called by lumped.solvers.network_compiled), so that the two steps read one
+ * definition; until then one scale, no sweeps and the bound 20 + 2 elements. */
 #define MAX_SETTINGS 16
 static double SCALES[MAX_SETTINGS] = {1.0};
 static int N_SCALES = 1;
 static int SWEEPS[MAX_SETTINGS] = {0};
 static int N_SWEEPS = 0;
+static int BOUND_BASE = 20, BOUND_PER_ELEMENT = 2;
 
 /* The network: topology (read only), then the work arrays of one solve. */
 typedef struct {
@@ -79,7 +81,7 @@ typedef struct {
 static int allocate(net_t *q, Py_ssize_t n_mass, Py_ssize_t n_el) {
     const Py_ssize_t n_pt = n_mass + 1;
     q->n_mass = n_mass, q->n_el = n_el, q->n_pt = n_pt;
-    q->bound = 20 + 2 * (int)n_el;
+    q->bound = BOUND_BASE + BOUND_PER_ELEMENT * (int)n_el;
     q->graph = malloc((n_el * MAX_PIECES + 1) * sizeof(piece));
     q->count = malloc((4 * n_el + 1) * sizeof(int));
     q->rig = malloc(n_pt * sizeof(int64_t));

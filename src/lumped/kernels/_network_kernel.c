@@ -614,11 +614,19 @@ fail:
     return NULL;
 }
 
-/* network_settings(scales, sweeps): the iteration's sigma scales (floats > 0) and dual sweep
- * counts (ints > 0), at most MAX_SETTINGS each: step.SIGMA_SCALES and step.DUAL_SWEEPS. */
+/* network_settings(scales, sweeps, bound): the iteration's sigma scales (floats > 0) and dual sweep
+ * counts (ints > 0), at most MAX_SETTINGS each, and the bound on iterations per scale as (base,
+ * per_element), ints >= 0 with base + per_element >= 1: step.SIGMA_SCALES, step.DUAL_SWEEPS and
+ * step.BOUND. */
 static PyObject *network_settings(PyObject *self, PyObject *args) {
     PyObject *scales, *sweeps;
-    if (!PyArg_ParseTuple(args, "O!O!", &PyTuple_Type, &scales, &PyTuple_Type, &sweeps)) return NULL;
+    int base, per_element;
+    if (!PyArg_ParseTuple(args, "O!O!(ii)", &PyTuple_Type, &scales, &PyTuple_Type, &sweeps, &base, &per_element))
+        return NULL;
+    if (base < 0 || per_element < 0 || base + per_element < 1 || base > 1000000 || per_element > 1000) {
+        PyErr_SetString(PyExc_ValueError, "bound must be (base, per_element), ints >= 0, base + per_element >= 1");
+        return NULL;
+    }
     const Py_ssize_t ns = PyTuple_GET_SIZE(scales), nw = PyTuple_GET_SIZE(sweeps);
     if (ns < 1 || ns > MAX_SETTINGS || nw > MAX_SETTINGS) {
         PyErr_Format(PyExc_ValueError, "scales must hold 1 to %d values and sweeps at most %d", MAX_SETTINGS, MAX_SETTINGS);
@@ -645,11 +653,12 @@ static PyObject *network_settings(PyObject *self, PyObject *args) {
     for (Py_ssize_t i = 0; i < ns; i++) SCALES[i] = s[i];
     for (Py_ssize_t i = 0; i < nw; i++) SWEEPS[i] = (int)w[i];
     N_SCALES = (int)ns, N_SWEEPS = (int)nw;
+    BOUND_BASE = base, BOUND_PER_ELEMENT = per_element;
     Py_RETURN_NONE;
 }
 
 static PyMethodDef methods[] = {
-    {"network_settings", network_settings, METH_VARARGS, "The iteration's sigma scales and dual sweep counts."},
+    {"network_settings", network_settings, METH_VARARGS, "The iteration's sigma scales, dual sweep counts and bound on iterations."},
     {"network_block", network_block, METH_VARARGS, "Backward Euler for a forest network, one block of steps."},
     {"network_solve", network_solve, METH_VARARGS, "One step problem of a forest network with given graphs."},
     {"sparse_block", sparse_block, METH_VARARGS, "Backward Euler for any network (the sparse step), one block of steps."},

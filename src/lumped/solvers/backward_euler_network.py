@@ -233,6 +233,30 @@ def _failed(net: Network, n: int, dt: float, err: StepError) -> ValueError:
     return ValueError(f"elements {names} {err} at the step to t = {n * dt:.6g} s")
 
 
+def _compiled_failed(
+    net: Network, dt: float, steps: tuple[int, int, int], rec: _Record, start: _Start, marching: tuple, kind: int
+) -> ValueError:
+    """The message of a compiled step that failed (``kind`` 1: it did not settle; 2: not finite) at step
+    ``steps[0]``, the state before it in ``marching``.  An unsettled one is taken again by the Python step
+    from that state: the message then names what the Python step's failure names (the elements still
+    changing, ``Phi`` at the last iterate), or says that the Python step settles it, where the compiled
+    twin parts from it (both a defect, said as such)."""
+    n = steps[0]
+    if kind != 1:
+        return _overflowed(n, dt)
+    time = np.array([n * dt])
+    delta = _shifts(net, time, dt)
+    now = (marching[0].copy(), marching[1].copy(), [float(s) for s in marching[2]], None)
+    try:
+        _python_step(net, dt, steps, rec, start, now, net.load_table(time)[0], None if delta is None else delta[0])
+    except ValueError as err:
+        return err
+    return ValueError(
+        f"{_unsettled(n, dt, len(net.elements))}; the Python step settles this step from the same state, so the "
+        "compiled step parts from its twin there"
+    )
+
+
 def _overflowed(n: int, dt: float) -> ValueError:
     return ValueError(f"the run overflowed at t = {n * dt:.6g} s (step {n}): a velocity or force is not finite")
 
@@ -316,8 +340,7 @@ def _run_compiled(
         kernel.march_block(topology, start.inertia, start.sigma, loaded, marching, record, table, dt, steps)
         rec.row = int(counters[0])
         if counters[2]:
-            n = int(counters[1])
-            raise _unsettled(n, dt, len(net.elements)) if counters[2] == 1 else _overflowed(n, dt)
+            raise _compiled_failed(net, dt, (int(counters[1]), n_steps, save_every), rec, start, marching, counters[2])
     return marching[1], int(counters[3])
 
 
@@ -373,8 +396,7 @@ def _run_sparse(
             most, n = max(most, sol.iterations), n + 1
             rec.python_steps += 1
         if counters[2]:
-            n = int(counters[1])
-            raise _unsettled(n, dt, len(net.elements)) if counters[2] == 1 else _overflowed(n, dt)
+            raise _compiled_failed(net, dt, (int(counters[1]), n_steps, save_every), rec, start, marching, counters[2])
     return v, max(most, int(counters[3]))
 
 
@@ -393,6 +415,5 @@ def _run_friction(
         friction.march_block(topology, float(start.inertia[0]), marching, record, table, dt, steps)
         rec.row = int(counters[0])
         if counters[2]:
-            n = int(counters[1])
-            raise _unsettled(n, dt, len(net.elements)) if counters[2] == 1 else _overflowed(n, dt)
+            raise _compiled_failed(net, dt, (int(counters[1]), n_steps, save_every), rec, start, marching, counters[2])
     return marching[1], int(counters[3])

@@ -57,10 +57,14 @@ if os.environ.get("LUMPED_PURE_PYTHON", "") in ("", "0"):
 
 
 def settings() -> None:
-    """Hand the iteration's ``SIGMA_SCALES`` and ``DUAL_SWEEPS`` (:mod:`lumped.solvers.network_step`)
+    """Hand the iteration's ``SIGMA_SCALES``, ``DUAL_SWEEPS`` and ``BOUND`` (:mod:`lumped.solvers.network_step`)
     to the compiled step: one definition for both (done at import; again after changing them)."""
     if KERNEL == "compiled":
-        _network_settings(tuple(float(s) for s in step.SIGMA_SCALES), tuple(int(n) for n in step.DUAL_SWEEPS))
+        _network_settings(
+            tuple(float(s) for s in step.SIGMA_SCALES),
+            tuple(int(n) for n in step.DUAL_SWEEPS),
+            tuple(int(n) for n in step.BOUND),
+        )
 
 
 settings()

@@ -106,6 +106,7 @@ from lumped.solvers.merged_system import assemble, solve_merged
 from lumped.solvers.rigid_clusters import Clusters, Merged, loop_merge
 
 __all__ = [
+    "BOUND",
     "DUAL_SWEEPS",
     "SIGMA_SCALES",
     "StepError",
@@ -324,9 +325,14 @@ def unsettled(bound: int) -> str:
     )
 
 
+#: The bound on active-set iterations per scale, ``(base, per_element)``: ``base + per_element * elements``
+#: (:func:`default_bound`); handed to the compiled step with the scales (``network_settings``).
+BOUND = (20, 2)
+
+
 def default_bound(elements: int) -> int:
-    """The bound on active-set iterations per scale: ``20 + 2 * elements``."""
-    return 20 + 2 * elements
+    """The bound on active-set iterations per scale: ``20 + 2 * elements`` (:data:`BOUND`)."""
+    return BOUND[0] + BOUND[1] * elements
 
 
 def _iterate(
