@@ -17,6 +17,7 @@ from cli_run import run_lumped
 import lumped
 from lumped.drivers.cycles import api, continuation, find_cycle, return_map, shooting
 from lumped.drivers.cycles.continuation import continue_branches
+from lumped.drivers.cycles.equilibria import hopf_points
 from lumped.model.files import load_system
 from lumped.model.system_parameters import system_parameters, with_values
 from lumped.solvers.closed_form_belt import belt_cycle
@@ -311,3 +312,8 @@ def test_a_range_beside_a_subcritical_hopf_point_reports_the_branch_that_enters_
     mirrored = (back["branch"] == "cycle") & (back["stick_time"] == 0) & (back["belt.velocity"] == -0.8)
     assert mirrored.sum() == 1 and back["period"][mirrored][0] == pytest.approx(alone["period"][unstable][0], rel=1e-9)
     assert back["max_m"][mirrored][0] == pytest.approx(-alone["min_m"][unstable][0], rel=1e-9)
+    # a range that starts on the Hopf point itself (as one search locates it; another puts it some ulps on the
+    # range's side, and neither search that ends there sees it) reports the branch too
+    (hopf,) = hopf_points(net, "belt.velocity", 0.5, 5.0)  # one search's located value (each lands some ulps apart)
+    edge = lumped.cycles(net, vary=("belt.velocity", hopf, 0.7), points=5).columns
+    assert ((edge["branch"] == "cycle") & (edge["stick_time"] == 0)).sum() >= 5

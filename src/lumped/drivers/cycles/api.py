@@ -207,7 +207,7 @@ Row = tuple[float, str, Any, str]  # (value, branch, Equilibrium or Cycle, kind)
 def _hopf_branches_into(network: Network, name: str, start: float, stop: float, points: int, notes: list[str]) -> list:
     """The cycles, inside ``[start, stop]``, of the branch born at the nearest Hopf point in the belt's speed just
     outside the range (within a factor :data:`HOPF_REACH` of its nearer end, on the range's side of 0): a
-    subcritical branch (``examples/stribeck_belt.toml``'s slip-only cycles, born at 0.0639693 m/s) reaches speeds
+    subcritical branch (``examples/stribeck_belt.toml``'s slip-only cycles, born at 0.52983 m/s) reaches speeds
     far from its Hopf point, and a range that leaves the point out would otherwise report none of them.  The
     walk starts at that point and takes at most :data:`HOPF_RETURNS` returns outside the range (its rows there are
     not reported); none for another parameter, a range through 0, or no such point."""
@@ -215,15 +215,20 @@ def _hopf_branches_into(network: Network, name: str, start: float, stop: float, 
         return []
     from lumped.drivers.cycles.continuation import continue_branches
 
+    inside = hopf_points(network, name, start, stop)  # the range's own walk follows these
     near, far = sorted((start, stop), key=abs)
+    chosen: list[float] = []
+    for end, side, other in ((near, near / HOPF_REACH, far), (far, far * HOPF_REACH, near)):
+        # from the reach's end across the range, so that a point on the range's end (which a search that stops
+        # there does not see) is found too
+        found = hopf_points(network, name, *sorted((side, other)))  # each search locates a point to some ulps
+        hopf = [h for h in found if all(abs(h - g) > 1e-9 * abs(g) for g in inside + chosen)]
+        if hopf:
+            chosen.append(min(hopf, key=lambda g: abs(g - end)))
     out = []
-    for end, side in ((near, near / HOPF_REACH), (far, far * HOPF_REACH)):
-        hopf = hopf_points(network, name, *sorted((side, end)))
-        hopf = [h for h in hopf if not start <= h <= stop]
-        if not hopf:
-            continue
-        h = min(hopf, key=lambda g: abs(g - end))
-        margin = 1e-3 * (stop - start)  # the point inside the walk's range (its ends are not looked at)
+    for h in chosen:
+        end = min((start, stop), key=lambda e: abs(e - h))
+        margin = 1e-3 * max(stop - start, abs(h - end), 1e-6 * abs(h))  # the point inside the walk's range
         lo, hi = min(h - margin, start), max(h + margin, stop)
         walked = continue_branches(  # the Hopf branch alone, over the range and the way to it
             network, name, lo, hi, points, None, start_branch=False, returns=HOPF_RETURNS, notes=notes
